@@ -1,0 +1,14 @@
+# One INTERFACE target that carries the project's warnings, architecture and sanitizer flags.
+# No -ffast-math: numerics are checked against tolerances and NaN handling is explicit.
+add_library(prt_options INTERFACE)
+target_compile_options(prt_options INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual
+  -Wno-unused-parameter)
+if(PRT_ARCH)
+  target_compile_options(prt_options INTERFACE -march=${PRT_ARCH})
+endif()
+if(PRT_SANITIZE)
+  target_compile_options(prt_options INTERFACE -fsanitize=${PRT_SANITIZE} -fno-omit-frame-pointer
+    -fno-sanitize-recover=all)
+  target_link_options(prt_options INTERFACE -fsanitize=${PRT_SANITIZE})
+endif()

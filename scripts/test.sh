@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Installs, builds and runs every test (ctest). Usage: scripts/test.sh [ctest options...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+cd build
+ctest --output-on-failure -j"$(nproc)" "$@"

@@ -1,0 +1,45 @@
+#pragma once
+// Output files that never exist half-written. A writer writes to a temporary sibling of the target,
+// named ".<stem>.tmp-<pid>-<n><ext>" (same folder, so rename is atomic; same extension, so libraries
+// that pick a format from the extension still do), and commit() renames it over the target. If the
+// writer is destroyed without commit() (an error, an exception) the temporary is removed; on SIGINT or
+// SIGTERM every live temporary is removed before the process exits with 128+signal.
+#include <fstream>
+#include <string>
+
+namespace prt {
+
+class AtomicFile {
+ public:
+  /// Prepares to write `path`. Nothing is created until stream() is called or a library writes to
+  /// temp_path(). Throws Error if the target's folder does not exist.
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  /// The final path.
+  const std::string& path() const { return path_; }
+  /// Where to write; for libraries that take a file name (OpenImageIO, tinygltf).
+  const std::string& temp_path() const { return temp_; }
+  /// A binary output stream on temp_path(), opened on first use. Throws Error if it cannot be opened.
+  std::ofstream& stream();
+  /// Flushes and closes the stream (if used), then renames the temporary over path().
+  /// Throws Error naming path() if writing or renaming failed.
+  void commit();
+
+ private:
+  std::string path_;
+  std::string temp_;
+  std::ofstream out_;
+  bool committed_ = false;
+  int slot_ = -1;
+};
+
+/// Writes `bytes` to `path` through an AtomicFile.
+void write_file_atomically(const std::string& path, const std::string& bytes);
+
+/// Reads a whole file. Throws Error("<path>: cannot open ...") if it cannot be read.
+std::string read_file(const std::string& path);
+
+}  // namespace prt

@@ -1,0 +1,1 @@
+// placeholder: filled by the eval_batch work
