@@ -1,0 +1,259 @@
+#include "transfer/transfer_file.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/fnv.h"
+#include "transfer/half.h"
+
+namespace prt::transfer {
+
+namespace {
+
+constexpr char kMagic[8] = {'P', 'R', 'T', 'X', 'F', 'E', 'R', '\0'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::size_t kFixedHeaderBytes = 76;  // up to and including the parameters length
+constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
+constexpr std::uint32_t kMaxBands = 32;
+
+struct Kinds {
+  Kind kind;
+  const char* name;
+};
+constexpr Kinds kKinds[] = {
+    {Kind::unshadowed, "unshadowed"},
+    {Kind::shadowed, "shadowed"},
+    {Kind::interreflected, "interreflected"},
+    {Kind::glossy_shadowed, "glossy-shadowed"},
+    {Kind::glossy_interreflected, "glossy-interreflected"},
+};
+
+// Little-endian field packing (the format is little-endian whatever the host).
+void put_u32(std::string& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+}
+void put_u64(std::string& out, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+}
+std::uint32_t get_u32(const unsigned char* p) {
+  std::uint32_t v = 0;
+  for (int i = 0; i < 4; ++i) v |= static_cast<std::uint32_t>(p[i]) << (8 * i);
+  return v;
+}
+std::uint64_t get_u64(const unsigned char* p) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(p[i]) << (8 * i);
+  return v;
+}
+
+std::size_t scalar_bytes(Scalar s) { return s == Scalar::float16 ? 2 : 4; }
+
+void validate(const std::string& path, const Header& h) {
+  bool known_kind = false;
+  for (const auto& k : kKinds) known_kind |= (k.kind == h.kind);
+  if (!known_kind) fail_file(path, "unknown transfer kind " + std::to_string(static_cast<std::uint32_t>(h.kind)));
+  if (h.bands < 1 || h.bands > kMaxBands) fail_file(path, "bands " + std::to_string(h.bands) + " out of range 1..32");
+  if (is_glossy(h.kind)) {
+    if (h.bands_out < 1 || h.bands_out > kMaxBands)
+      fail_file(path, "output bands " + std::to_string(h.bands_out) + " out of range 1..32 for a glossy transfer");
+  } else if (h.bands_out != 0) {
+    fail_file(path, "output bands must be 0 for a diffuse transfer");
+  }
+  if (h.channels != 1 && h.channels != 3) fail_file(path, "channels " + std::to_string(h.channels) + " must be 1 or 3");
+  if (h.scalar != Scalar::float32 && h.scalar != Scalar::float16)
+    fail_file(path, "unknown scalar type " + std::to_string(static_cast<std::uint32_t>(h.scalar)));
+  if (h.parameters_json.size() > kMaxParametersBytes) fail_file(path, "parameters block larger than 1 MiB");
+}
+
+// Serialises the header including its trailing checksum.
+std::string encode_header(const Header& h, std::uint64_t payload_bytes, std::uint64_t payload_checksum) {
+  std::string out(kMagic, kMagic + 8);
+  put_u32(out, kVersion);
+  put_u32(out, static_cast<std::uint32_t>(h.kind));
+  put_u32(out, h.bands);
+  put_u32(out, h.bands_out);
+  put_u32(out, h.channels);
+  put_u32(out, static_cast<std::uint32_t>(h.scalar));
+  put_u64(out, h.vertex_count);
+  put_u64(out, h.triangle_count);
+  put_u64(out, h.mesh_fingerprint);
+  put_u64(out, payload_bytes);
+  put_u64(out, payload_checksum);
+  put_u32(out, static_cast<std::uint32_t>(h.parameters_json.size()));
+  out += h.parameters_json;
+  while (out.size() % 8) out.push_back('\0');
+  put_u64(out, fnv1a64(out.data(), out.size()));
+  return out;
+}
+
+struct DecodedHeader {
+  Header header;
+  std::uint64_t header_bytes = 0;  // including the checksum
+  std::uint64_t payload_bytes = 0;
+  std::uint64_t payload_checksum = 0;
+};
+
+DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uint64_t file_size) {
+  if (file_size < kFixedHeaderBytes + 8) fail_file(path, "truncated: " + std::to_string(file_size) + " bytes is shorter than a transfer header");
+  std::string fixed(kFixedHeaderBytes, '\0');
+  in.read(fixed.data(), static_cast<std::streamsize>(fixed.size()));
+  if (!in) fail_file(path, "truncated header");
+  const auto* p = reinterpret_cast<const unsigned char*>(fixed.data());
+  if (std::memcmp(p, kMagic, 8) != 0) fail_file(path, "not a prt transfer file (wrong magic)");
+  std::uint32_t version = get_u32(p + 8);
+  if (version != kVersion)
+    fail_file(path, "unsupported transfer file version " + std::to_string(version) + " (this prt reads version 1)");
+  DecodedHeader d;
+  Header& h = d.header;
+  h.kind = static_cast<Kind>(get_u32(p + 12));
+  h.bands = get_u32(p + 16);
+  h.bands_out = get_u32(p + 20);
+  h.channels = get_u32(p + 24);
+  h.scalar = static_cast<Scalar>(get_u32(p + 28));
+  h.vertex_count = get_u64(p + 32);
+  h.triangle_count = get_u64(p + 40);
+  h.mesh_fingerprint = get_u64(p + 48);
+  d.payload_bytes = get_u64(p + 56);
+  d.payload_checksum = get_u64(p + 64);
+  std::uint32_t params = get_u32(p + 72);
+  if (params > kMaxParametersBytes) fail_file(path, "corrupt header: parameters block of " + std::to_string(params) + " bytes");
+  std::uint64_t padded = (kFixedHeaderBytes + params + 7) / 8 * 8;
+  d.header_bytes = padded + 8;
+  if (file_size < d.header_bytes) fail_file(path, "truncated header");
+  std::string rest(static_cast<std::size_t>(d.header_bytes - kFixedHeaderBytes), '\0');
+  in.read(rest.data(), static_cast<std::streamsize>(rest.size()));
+  if (!in) fail_file(path, "truncated header");
+  std::string all = fixed + rest;
+  std::uint64_t stored = get_u64(reinterpret_cast<const unsigned char*>(all.data()) + padded);
+  if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != stored) fail_file(path, "header checksum mismatch (file is corrupt)");
+  h.parameters_json = all.substr(kFixedHeaderBytes, params);
+  validate(path, h);
+  std::uint64_t expected = h.vertex_count * h.values_per_vertex() * scalar_bytes(h.scalar);
+  if (d.payload_bytes != expected) fail_file(path, "corrupt header: payload size does not match vertex count, bands and channels");
+  if (file_size < d.header_bytes + d.payload_bytes)
+    fail_file(path, "truncated: payload has " + std::to_string(file_size - d.header_bytes) + " of " +
+                        std::to_string(d.payload_bytes) + " bytes");
+  if (file_size > d.header_bytes + d.payload_bytes) fail_file(path, "unexpected bytes after the payload");
+  return d;
+}
+
+std::uint64_t file_size_of(const std::string& path, std::ifstream& in) {
+  in.seekg(0, std::ios::end);
+  auto size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size < 0) fail_file(path, "cannot determine file size");
+  return static_cast<std::uint64_t>(size);
+}
+
+std::ifstream open_for_reading(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  return in;
+}
+
+}  // namespace
+
+Kind parse_kind(const std::string& name) {
+  for (const auto& k : kKinds)
+    if (name == k.name) return k.kind;
+  fail("unknown transfer kind '" + name + "' (expected unshadowed, shadowed, interreflected, glossy-shadowed or glossy-interreflected)");
+}
+
+const char* kind_name(Kind kind) {
+  for (const auto& k : kKinds)
+    if (k.kind == kind) return k.name;
+  return "unknown";
+}
+
+bool is_glossy(Kind kind) { return kind == Kind::glossy_shadowed || kind == Kind::glossy_interreflected; }
+
+std::uint64_t Header::values_per_vertex() const {
+  std::uint64_t in = static_cast<std::uint64_t>(bands) * bands;
+  if (is_glossy(kind)) return static_cast<std::uint64_t>(channels) * bands_out * bands_out * in;
+  return static_cast<std::uint64_t>(channels) * in;
+}
+
+void write_transfer(const std::string& path, const TransferData& data) {
+  const Header& h = data.header;
+  validate(path, h);
+  if (data.values.size() != h.vertex_count * h.values_per_vertex())
+    fail_file(path, "internal: value count does not match the header");
+  std::string payload;
+  payload.resize(data.values.size() * scalar_bytes(h.scalar));
+  auto* out = reinterpret_cast<unsigned char*>(payload.data());
+  for (std::size_t i = 0; i < data.values.size(); ++i) {
+    if (h.scalar == Scalar::float16) {
+      std::uint16_t v = float_to_half(data.values[i]);
+      out[2 * i] = static_cast<unsigned char>(v & 0xffu);
+      out[2 * i + 1] = static_cast<unsigned char>(v >> 8);
+    } else {
+      std::uint32_t v;
+      std::memcpy(&v, &data.values[i], 4);
+      for (int b = 0; b < 4; ++b) out[4 * i + b] = static_cast<unsigned char>((v >> (8 * b)) & 0xffu);
+    }
+  }
+  std::string header = encode_header(h, payload.size(), fnv1a64(payload.data(), payload.size()));
+  AtomicFile file(path);
+  file.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
+  file.stream().write(payload.data(), static_cast<std::streamsize>(payload.size()));
+  file.commit();
+}
+
+Header read_transfer_header(const std::string& path) {
+  std::ifstream in = open_for_reading(path);
+  return decode_header(path, in, file_size_of(path, in)).header;
+}
+
+TransferData read_transfer(const std::string& path) {
+  std::ifstream in = open_for_reading(path);
+  DecodedHeader d = decode_header(path, in, file_size_of(path, in));
+  std::string payload(static_cast<std::size_t>(d.payload_bytes), '\0');
+  in.read(payload.data(), static_cast<std::streamsize>(payload.size()));
+  if (!in) fail_file(path, "truncated payload");
+  if (fnv1a64(payload.data(), payload.size()) != d.payload_checksum) fail_file(path, "payload checksum mismatch (file is corrupt)");
+  TransferData data;
+  data.header = d.header;
+  std::size_t count = static_cast<std::size_t>(d.header.vertex_count * d.header.values_per_vertex());
+  data.values.resize(count);
+  const auto* p = reinterpret_cast<const unsigned char*>(payload.data());
+  for (std::size_t i = 0; i < count; ++i) {
+    if (d.header.scalar == Scalar::float16) {
+      data.values[i] = half_to_float(static_cast<std::uint16_t>(p[2 * i] | (p[2 * i + 1] << 8)));
+    } else {
+      std::uint32_t v = get_u32(p + 4 * i);
+      std::memcpy(&data.values[i], &v, 4);
+    }
+  }
+  return data;
+}
+
+void check_mesh_match(const std::string& path, const Header& h, std::uint64_t vertex_count, std::uint64_t triangle_count,
+                      std::uint64_t fingerprint) {
+  if (h.vertex_count != vertex_count || h.triangle_count != triangle_count || h.mesh_fingerprint != fingerprint) {
+    std::ostringstream msg;
+    msg << "transfer was baked for a different mesh (file: " << h.vertex_count << " vertices, " << h.triangle_count
+        << " triangles, fingerprint " << std::hex << h.mesh_fingerprint << std::dec << "; mesh: " << vertex_count
+        << " vertices, " << triangle_count << " triangles, fingerprint " << std::hex << fingerprint << ")";
+    fail_file(path, msg.str());
+  }
+}
+
+std::string describe(const Header& h) {
+  std::ostringstream s;
+  s << "kind: " << kind_name(h.kind) << "\n";
+  s << "bands: " << h.bands << " (" << h.bands * h.bands << " coefficients)\n";
+  if (is_glossy(h.kind)) s << "output bands: " << h.bands_out << " (" << h.bands_out * h.bands_out << " rows)\n";
+  s << "channels: " << h.channels << "\n";
+  s << "scalar: " << (h.scalar == Scalar::float16 ? "float16" : "float32") << "\n";
+  s << "vertices: " << h.vertex_count << "\n";
+  s << "triangles: " << h.triangle_count << "\n";
+  s << "mesh fingerprint: " << std::hex << h.mesh_fingerprint << std::dec << "\n";
+  s << "values per vertex: " << h.values_per_vertex() << "\n";
+  s << "parameters: " << h.parameters_json << "\n";
+  return s.str();
+}
+
+}  // namespace prt::transfer

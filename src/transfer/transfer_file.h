@@ -1,0 +1,76 @@
+#pragma once
+// Transfer files (.prt): baked per-vertex transfer vectors or matrices. Binary layout specified in
+// docs/formats.md ("Transfer files"); this header is the reader and writer.
+//
+// A transfer file belongs to one mesh: it stores the mesh's vertex count, triangle count and
+// fingerprint (prt::mesh::fingerprint), and readers check them against the mesh they are given.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace prt::transfer {
+
+/// What a transfer maps lighting to.
+enum class Kind : std::uint32_t {
+  unshadowed = 0,             ///< diffuse, no visibility: vectors (one per channel)
+  shadowed = 1,               ///< diffuse with binary visibility: vectors
+  interreflected = 2,         ///< diffuse, visibility + interreflection bounces: vectors
+  glossy_shadowed = 3,        ///< matrices: lighting SH -> transferred incident radiance SH, local frame
+  glossy_interreflected = 4,  ///< as glossy_shadowed, with interreflection
+};
+
+/// Parses "unshadowed", "shadowed", "interreflected", "glossy-shadowed", "glossy-interreflected";
+/// throws prt::Error naming the value otherwise.
+Kind parse_kind(const std::string& name);
+const char* kind_name(Kind kind);
+bool is_glossy(Kind kind);
+
+/// Scalar type of the payload.
+enum class Scalar : std::uint32_t { float32 = 0, float16 = 1 };
+
+/// Everything in a transfer file except the payload.
+struct Header {
+  Kind kind = Kind::unshadowed;
+  std::uint32_t bands = 0;       ///< lighting bands (input side): bands^2 coefficients, 1..32
+  std::uint32_t bands_out = 0;   ///< glossy only: output bands (rows); 0 for diffuse kinds
+  std::uint32_t channels = 1;    ///< 1 (grey albedo, folded in) or 3 (RGB, coloured albedo)
+  Scalar scalar = Scalar::float32;
+  std::uint64_t vertex_count = 0;
+  std::uint64_t triangle_count = 0;
+  std::uint64_t mesh_fingerprint = 0;
+  std::string parameters_json;   ///< bake parameters (samples, bounces, seed, albedo, ...), UTF-8 JSON object
+
+  /// Floats per vertex: channels * bands^2 (diffuse) or channels * bands_out^2 * bands^2 (glossy).
+  std::uint64_t values_per_vertex() const;
+};
+
+/// A transfer file in memory. `values` is vertex-major: vertex v's block starts at
+/// v * header.values_per_vertex(); inside a block channel-major, then (glossy) row-major
+/// [out coefficient][in coefficient]. Always float32 in memory, whatever the file's scalar type.
+struct TransferData {
+  Header header;
+  std::vector<float> values;
+};
+
+/// Writes `data` atomically (temporary file + rename). Stored as header.scalar (float16 rounds to
+/// nearest even). Throws prt::Error naming the file on failure or on an inconsistent header (value
+/// count, bands or channels out of range).
+void write_transfer(const std::string& path, const TransferData& data);
+
+/// Reads the header only (fast; used by `prt info`). Checks magic, version, header checksum and sizes;
+/// throws prt::Error("<path>: <problem>") saying exactly what is wrong (truncated, wrong magic, unsupported
+/// version, header checksum mismatch, ...).
+Header read_transfer_header(const std::string& path);
+
+/// Reads and checks the whole file, including the payload checksum.
+TransferData read_transfer(const std::string& path);
+
+/// Throws prt::Error("<path>: transfer was baked for a different mesh (...)") unless the header's
+/// vertex count, triangle count and fingerprint match.
+void check_mesh_match(const std::string& path, const Header& header, std::uint64_t vertex_count,
+                      std::uint64_t triangle_count, std::uint64_t fingerprint);
+
+/// Multi-line human-readable description of a header, for `prt info`.
+std::string describe(const Header& header);
+
+}  // namespace prt::transfer
