@@ -1,8 +1,13 @@
 #include "sh/basis.h"
 
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <utility>
 
 #include <glm/geometric.hpp>
+
+#include "sh/eval_kernels.h"
 
 namespace prt::sh {
 
@@ -62,56 +67,37 @@ double eval_reference(int l, int m, const glm::dvec3& dir) {
 
 namespace {
 
-// Generic evaluation by the factored form Y_lm = N_lm Q_l^|m|(z) {C_m | S_m}(x, y), where
-// Q_l^m = P_l^m / sin^m(theta) is a polynomial in z, C_m + i S_m = (x + i y)^m, and N_lm folds
-// K_lm, sqrt(2) and nothing else. Q follows the same recurrence in l as P_l^m.
+// One direction: the straight-line kernel for bands <= kMaxFastBands (dispatched through a table of
+// instantiations), the runtime-loop recurrence beyond. Both read the compile-time constant tables of
+// eval_kernels.h; nothing is recomputed per call.
 template <typename T>
-void eval_generic(int bands, T x, T y, T z, T* out) {
-  // Column m = 0 first, then each m > 0: Q_m^m = (-1)^m (2m-1)!!, Q_{m+1}^m = (2m+1) z Q_m^m.
-  T c_m = 1, s_m = 0;  // (x + i y)^m
-  T q_mm = 1;          // Q_m^m
-  for (int m = 0; m < bands; ++m) {
-    if (m > 0) {
-      T c_next = c_m * x - s_m * y;
-      s_m = c_m * y + s_m * x;
-      c_m = c_next;
-      q_mm *= -static_cast<T>(2 * m - 1);
-    }
-    T q_lm2 = 0, q_lm1 = q_mm;
-    for (int l = m; l < bands; ++l) {
-      T q;
-      if (l == m) {
-        q = q_mm;
-      } else if (l == m + 1) {
-        q = static_cast<T>(2 * m + 1) * z * q_mm;
-      } else {
-        q = (static_cast<T>(2 * l - 1) * z * q_lm1 - static_cast<T>(l + m - 1) * q_lm2) / static_cast<T>(l - m);
-      }
-      if (l > m) {
-        q_lm2 = q_lm1;
-        q_lm1 = q;
-      }
-      double k = normalisation(l, m);
-      if (m == 0) {
-        out[index(l, 0)] = static_cast<T>(k) * q;
-      } else {
-        T n = static_cast<T>(std::sqrt(2.0) * k);
-        out[index(l, m)] = n * q * c_m;
-        out[index(l, -m)] = n * q * s_m;
-      }
-    }
+using OneFunction = void (*)(T, T, T, T*);
+
+template <int N, typename T>
+void eval_one_fixed(T x, T y, T z, T* out) {
+  auto put = [out](int k, T v) { out[k] = v; };
+  detail::eval_fixed<N, T>(x, y, z, put);
+}
+
+template <typename T, int... I>
+constexpr auto make_one_table(std::integer_sequence<int, I...>) {
+  return std::array<OneFunction<T>, sizeof...(I)>{&eval_one_fixed<I + 1, T>...};
+}
+
+template <typename T>
+void eval_one(int bands, T x, T y, T z, T* out) {
+  static constexpr auto kFixed = make_one_table<T>(std::make_integer_sequence<int, kMaxFastBands>{});
+  if (bands >= 1 && bands <= kMaxFastBands) {
+    kFixed[static_cast<std::size_t>(bands - 1)](x, y, z, out);
+  } else {
+    detail::eval_one_generic(bands, x, y, z, out);
   }
 }
 
 }  // namespace
 
-void eval(int bands, const glm::dvec3& dir, double* out) { eval_generic<double>(bands, dir.x, dir.y, dir.z, out); }
+void eval(int bands, const glm::dvec3& dir, double* out) { eval_one<double>(bands, dir.x, dir.y, dir.z, out); }
 
-void eval(int bands, const glm::vec3& dir, float* out) {
-  // Accumulate in double: the generic path is the accuracy reference for the float fast path.
-  double tmp[kMaxBands * kMaxBands];
-  eval_generic<double>(bands, dir.x, dir.y, dir.z, tmp);
-  for (int i = 0; i < bands * bands; ++i) out[i] = static_cast<float>(tmp[i]);
-}
+void eval(int bands, const glm::vec3& dir, float* out) { eval_one<float>(bands, dir.x, dir.y, dir.z, out); }
 
 }  // namespace prt::sh

@@ -51,11 +51,20 @@ void eval(int bands, const glm::vec3& dir, float* out);
 
 /// Batched evaluation over many unit directions given as a structure of arrays:
 /// out[k * out_stride + j] = Y_k(x[j], y[j], z[j]) for j < count, k < bands^2.
-/// Preconditions: 1 <= bands <= kMaxBands, out_stride >= count, unit directions.
+/// Preconditions: 1 <= bands <= kMaxBands, out_stride >= count, unit directions, `out` does not
+/// overlap x, y, z. Entries out[k * out_stride + j] for count <= j < out_stride are not touched.
 /// The fast path (bands <= kMaxFastBands) is specialised per band count and vectorised across directions.
+/// Speed: an out_stride whose byte size is a multiple of 4 KiB (e.g. out_stride = count = 1024) makes
+/// the rows collide in the L1 cache; such strides take a slower staged path (about 2x). Prefer
+/// out_stride = padded_stride(count, sizeof(T)), and a 64-byte aligned `out`.
 void eval_batch(int bands, std::size_t count, const float* x, const float* y, const float* z, float* out,
                 std::size_t out_stride);
 void eval_batch(int bands, std::size_t count, const double* x, const double* y, const double* z, double* out,
                 std::size_t out_stride);
+
+/// An out_stride >= count (at most count + 2 cache lines more) that keeps eval_batch on its fastest
+/// path, for elements of `element_bytes` (4 for float, 8 for double): an odd number of 64-byte lines,
+/// so rows stay line-aligned when `out` is and spread over all cache sets.
+std::size_t padded_stride(std::size_t count, std::size_t element_bytes);
 
 }  // namespace prt::sh

@@ -1,6 +1,8 @@
 #pragma once
 // Deterministic, seedable sample sets and random numbers. The same (count, seed) always gives the same
-// points on every machine and thread count.
+// points on every machine and thread count (integer hashing only; the maps to directions use
+// sqrt, sin, cos of the same inputs).
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -9,33 +11,52 @@
 
 namespace prt::sh {
 
-/// Point `index` of the 2D Sobol (0,2)-sequence, Owen-scrambled with a hash keyed by `seed` (Burley
-/// 2020, "Practical Hash-based Owen Scrambling"), in [0, 1)^2. Any prefix of length 2^k is stratified
-/// in every elementary interval.
+/// Point `index` of the 2D Sobol (0,2)-sequence (dimension 0: van der Corput, dimension 1: Sobol's
+/// second dimension, primitive polynomial x + 1), shuffled and Owen-scrambled with hashes keyed by
+/// `seed` (Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4): the index is scrambled by
+/// a nested uniform scramble, then each coordinate by its own one, each a Laine-Karras permutation
+/// of the reversed bits). Coordinates are (k + 1/2) / 2^32 for 32-bit integers k: strictly inside
+/// (0, 1). Any prefix of length 2^k (k <= 32) is a (0,k,2)-net: every elementary interval
+/// [a/2^i, (a+1)/2^i) x [b/2^j, (b+1)/2^j) with i + j = k holds exactly one point.
+/// Different seeds give independent-looking randomisations of the same net structure.
 glm::dvec2 sobol_2d(std::uint32_t index, std::uint32_t seed);
 
-/// `count` low-discrepancy directions uniform on the sphere (each stands for 4 pi / count sr).
+/// `count` low-discrepancy directions uniform on the sphere: square_to_sphere(sobol_2d(i, seed)),
+/// i < count (pdf 1 / (4 pi); each stands for 4 pi / count sr). Best stratified when count is a
+/// power of two.
 std::vector<glm::dvec3> sphere_directions(std::size_t count, std::uint32_t seed);
 
 /// `count` low-discrepancy directions on the hemisphere about +z, uniform in solid angle
-/// (pdf 1 / (2 pi)).
+/// (pdf 1 / (2 pi)): square_to_hemisphere_uniform(sobol_2d(i, seed)).
 std::vector<glm::dvec3> hemisphere_directions_uniform(std::size_t count, std::uint32_t seed);
 
-/// `count` low-discrepancy directions on the hemisphere about +z with pdf cos(theta) / pi.
+/// `count` low-discrepancy directions on the hemisphere about +z with pdf cos(theta) / pi:
+/// square_to_hemisphere_cosine(sobol_2d(i, seed)).
 std::vector<glm::dvec3> hemisphere_directions_cosine(std::size_t count, std::uint32_t seed);
 
-/// Maps a point of [0,1)^2 to the unit sphere (uniform) / hemisphere about +z (uniform / cosine).
+/// Area-preserving maps of the unit square (u in [0,1)^2) to directions:
+/// - sphere: z = 1 - 2 u.x, phi = 2 pi u.y (Archimedes' cylinder projection), pdf 1 / (4 pi);
+/// - hemisphere about +z, uniform: z = 1 - u.x, phi = 2 pi u.y, pdf 1 / (2 pi);
+/// - hemisphere about +z, cosine-weighted: Shirley-Chiu concentric map to the unit disk, lifted to
+///   z = sqrt(1 - x^2 - y^2) (Malley's method), pdf cos(theta) / pi. z > 0 when u is strictly inside.
 glm::dvec3 square_to_sphere(const glm::dvec2& u);
 glm::dvec3 square_to_hemisphere_uniform(const glm::dvec2& u);
 glm::dvec3 square_to_hemisphere_cosine(const glm::dvec2& u);
 
-/// Small counter-based random generator for Monte Carlo (PCG32). Independent streams come from
-/// distinct (seed, stream) pairs, e.g. stream = vertex index, so results do not depend on threads.
+/// The densities of the maps above, per steradian, at a unit direction.
+inline constexpr double kSpherePdf = 0.25 / 3.14159265358979323846;
+inline constexpr double kHemisphereUniformPdf = 0.5 / 3.14159265358979323846;
+/// cos(theta) / pi for direction.z > 0, else 0.
+double hemisphere_cosine_pdf(const glm::dvec3& direction);
+
+/// Small, fast random generator for Monte Carlo (PCG32, O'Neill 2014: 64-bit LCG state,
+/// XSH-RR output). Independent streams come from distinct (seed, stream) pairs, e.g. stream = vertex
+/// index, so results do not depend on threads. Same seeding as the reference pcg32_srandom_r.
 class Rng {
  public:
   Rng(std::uint64_t seed, std::uint64_t stream);
   std::uint32_t next_u32();
-  /// Uniform double in [0, 1).
+  /// Uniform double in [0, 1) with 53 random bits.
   double next_double();
 
  private:
