@@ -8,10 +8,30 @@
 // So the centre column looks along +X, three quarters across along +Z, one quarter across along -Z, and
 // the top row is +Y.
 //
-// CUBE CONVENTION: the OpenGL cube-map face orientation (OpenGL 4.5 spec, table 8.19), faces ordered
-// +X, -X, +Y, -Y, +Z, -Z. A cross image is a horizontal 4:3 or vertical 3:4 cross, detected from the
-// aspect; its exact layout and face orientations are specified in docs/conventions.md.
+// CUBE CONVENTION: the OpenGL cube-map face orientation (OpenGL 4.5 core spec, table 8.19), faces
+// ordered +X, -X, +Y, -Y, +Z, -Z (index 0..5). Face images are stored top row first; s runs to the
+// right and t down the face image, both in [0,1], and with sc = 2 s - 1, tc = 2 t - 1 the face's
+// direction (before normalisation) is
+//   +X: ( 1, -tc, -sc)   -X: (-1, -tc,  sc)
+//   +Y: (sc,   1,  tc)   -Y: (sc,  -1, -tc)
+//   +Z: (sc, -tc,   1)   -Z: (-sc, -tc, -1)
+// i.e. exactly what a GL samplerCube returns for that world direction when face f's image is uploaded
+// (first row first) to GL_TEXTURE_CUBE_MAP_POSITIVE_X + f. Seen from inside the cube the faces appear
+// mirrored (the RenderMan/GL cube-map convention); a "{face}" set exported for GL loads unchanged.
+//
+// CROSS LAYOUT: one image holding the six faces of size N on a grid of N x N cells.
+//   Horizontal cross, 4N x 3N (aspect 4:3):      Vertical cross, 3N x 4N (aspect 3:4):
+//          .  +Y   .   .                                .  +Y   .
+//         -X  +Z  +X  -Z                               -X  +Z  +X
+//          .  -Y   .   .                                .  -Y   .
+//                                                       .  -Z*  .
+// Every face stands in its cell exactly as its face image (same orientation), except -Z* in the
+// vertical cross, which is rotated by 180 degrees (cell pixel (i, j) = face pixel (N-1-i, N-1-j)).
+// With these orientations neighbouring cells continue each other across every seam (+Y above +Z,
+// -Y below +Z, -X | +Z | +X | -Z left to right, -Z* below -Y); unused cells are ignored on load and
+// written black.
 #include <array>
+#include <cstddef>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -31,6 +51,27 @@ glm::dvec3 cube_direction(int face, double s, double t);
 /// Inverse of cube_direction.
 void cube_face_st(const glm::dvec3& direction, int& face, double& s, double& t);
 
+/// Pixel values (one colour channel of one pixel) found invalid and set to 0 on load.
+struct PixelRepairCounts {
+  std::size_t nan = 0;       ///< NaN values
+  std::size_t inf = 0;       ///< +Inf or -Inf values
+  std::size_t negative = 0;  ///< finite values < 0
+  std::size_t total() const { return nan + inf + negative; }
+};
+
+/// Sets every NaN, infinite or negative value of `image` to 0 and returns how many of each it found.
+PixelRepairCounts zero_invalid_values(image::Image& image);
+
+enum class CrossLayout { horizontal, vertical };
+
+/// Splits a cross image (see CROSS LAYOUT) into the six faces +X..-Z. The layout is chosen by aspect:
+/// 4N x 3N is horizontal, 3N x 4N vertical. Throws prt::Error("<name>: ...") for any other size.
+std::array<image::Image, 6> faces_from_cross(const image::Image& cross, const std::string& name);
+
+/// Assembles six square faces of equal size into a cross image (inverse of faces_from_cross); unused
+/// cells are black. Precondition: six N x N faces with equal channel counts.
+image::Image cross_from_faces(const std::array<image::Image, 6>& faces, CrossLayout layout);
+
 /// A loaded environment: either one equirect image or six cube faces, linear RGB radiance.
 struct Environment {
   enum class Layout { equirect, cube };
@@ -38,18 +79,25 @@ struct Environment {
   image::Image equirect;                 ///< when layout == equirect: any 2:1 size
   std::array<image::Image, 6> faces;     ///< when layout == cube: square, equal sizes
   std::string source;                    ///< what was loaded, for messages
+  PixelRepairCounts repaired;            ///< invalid values zeroed on load
 
-  /// Radiance toward `direction` (unit), bilinear filtered (wraps in phi for equirect).
+  /// Radiance toward `direction` (unit), bilinear filtered between texel centres: equirect wraps in
+  /// phi and clamps at the top and bottom rows; cube faces clamp at their own edges (no filtering
+  /// across faces).
   glm::dvec3 radiance(const glm::dvec3& direction) const;
 };
 
-/// Loads `spec`:
-///  - an image with aspect 2:1: equirect;
-///  - an image with aspect 4:3 or 3:4: a cross (horizontal or vertical);
+/// Loads `spec`, any format OpenImageIO reads (.exr, .hdr, .tif, .pfm, ...; 8-bit files are
+/// linearised, see image::read_rgb):
+///  - an image of width 2H x H (H >= 1): equirect;
+///  - an image of 4N x 3N or 3N x 4N: a cross (horizontal or vertical, see CROSS LAYOUT);
 ///  - six comma-separated files in the order +X,-X,+Y,-Y,+Z,-Z, or a path containing "{face}" that is
-///    expanded to px, nx, py, ny, pz, nz.
-/// NaN, Inf and negative pixels are set to 0 and reported in one warning line on stderr with their
-/// counts. Throws prt::Error("<file>: <problem>") for missing/unreadable files or other aspects.
+///    expanded to px, nx, py, ny, pz, nz; each face square, all the same size.
+/// (A spec naming an existing file is always read as one image, even if it contains a comma.)
+/// NaN, Inf and negative values are set to 0 and, if there were any, reported in ONE warning line on
+/// stderr: "prt: warning: <spec>: set <a> NaN, <b> Inf and <c> negative pixel values to 0"; the counts
+/// are also kept in Environment::repaired. Throws prt::Error("<file>: <problem>") for missing or
+/// unreadable files and for sizes that are neither 2:1 nor a cross (nor square, equal faces).
 Environment load_environment(const std::string& spec);
 
 }  // namespace prt::light

@@ -1,1 +1,116 @@
-// placeholder: filled by the module's work
+#include "light/light_file.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "sh/basis.h"
+
+namespace prt::light {
+
+namespace {
+
+using nlohmann::json;
+
+const char* const kBasis = "real-orthonormal-condon-shortley";
+const char* const kIndex = "l*(l+1)+m";
+const char* const kFrame = "right-handed, +Y up";
+const char* const kQuantity = "radiance";
+
+std::string number(double v) { return json(v).dump(); }
+
+const json& require(const json& root, const char* key, const std::string& path) {
+  auto it = root.find(key);
+  if (it == root.end()) fail_file(path, std::string("missing key \"") + key + "\"");
+  return *it;
+}
+
+void require_string(const json& root, const char* key, const char* expected, const std::string& path) {
+  const json& value = require(root, key, path);
+  if (!value.is_string() || value.get<std::string>() != expected)
+    fail_file(path, std::string("\"") + key + "\" is " + value.dump() + ", expected \"" + expected + "\"");
+}
+
+}  // namespace
+
+std::string format_light_file(const sh::RgbCoefficients& coefficients, const LightFileInfo& info) {
+  if (coefficients.bands < 1 || coefficients.bands > sh::kMaxBands ||
+      coefficients.values.size() != static_cast<std::size_t>(coefficients.bands) * coefficients.bands)
+    fail("inconsistent SH coefficient set (bands " + std::to_string(coefficients.bands) + ")");
+  std::ostringstream out;
+  out << "{\n";
+  out << "  \"bands\": " << coefficients.bands << ",\n";
+  out << "  \"basis\": " << json(kBasis).dump() << ",\n";
+  out << "  \"index\": " << json(kIndex).dump() << ",\n";
+  out << "  \"frame\": " << json(kFrame).dump() << ",\n";
+  out << "  \"quantity\": " << json(kQuantity).dump() << ",\n";
+  out << "  \"source\": " << json(info.source).dump() << ",\n";
+  out << "  \"window\": " << json(info.window).dump() << ",\n";
+  out << "  \"rotation_ypr_degrees\": [" << number(info.yaw) << ", " << number(info.pitch) << ", "
+      << number(info.roll) << "],\n";
+  out << "  \"coefficients\": [\n";
+  for (std::size_t i = 0; i < coefficients.values.size(); ++i) {
+    const glm::dvec3& c = coefficients.values[i];
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+      fail("SH coefficient " + std::to_string(i) + " is not finite");
+    out << "    [" << number(c.x) << ", " << number(c.y) << ", " << number(c.z) << "]"
+        << (i + 1 < coefficients.values.size() ? ",\n" : "\n");
+  }
+  out << "  ]\n}\n";
+  return out.str();
+}
+
+void write_light_file(const std::string& path, const sh::RgbCoefficients& coefficients, const LightFileInfo& info) {
+  std::string text;
+  try {
+    text = format_light_file(coefficients, info);
+  } catch (const Error& e) {
+    fail_file(path, e.what());
+  }
+  write_file_atomically(path, text);
+}
+
+sh::RgbCoefficients read_light_file(const std::string& path) {
+  const std::string text = read_file(path);
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    fail_file(path, std::string("not valid JSON: ") + e.what());
+  }
+  if (!root.is_object()) fail_file(path, "not an SH lighting file (expected a JSON object)");
+
+  const json& bands_value = require(root, "bands", path);
+  if (!bands_value.is_number_integer()) fail_file(path, "\"bands\" must be an integer, got " + bands_value.dump());
+  const long long bands = bands_value.get<long long>();
+  if (bands < 1 || bands > sh::kMaxBands)
+    fail_file(path, "\"bands\" is " + std::to_string(bands) + ", out of range 1.." + std::to_string(sh::kMaxBands));
+  require_string(root, "basis", kBasis, path);
+  require_string(root, "index", kIndex, path);
+  require_string(root, "frame", kFrame, path);
+  if (root.contains("quantity")) require_string(root, "quantity", kQuantity, path);
+
+  const json& list = require(root, "coefficients", path);
+  const std::size_t count = static_cast<std::size_t>(bands * bands);
+  if (!list.is_array() || list.size() != count)
+    fail_file(path, "\"coefficients\" must be an array of " + std::to_string(count) + " [r, g, b] triples for " +
+                        std::to_string(bands) + " bands" + (list.is_array() ? ", got " + std::to_string(list.size()) : ""));
+  sh::RgbCoefficients out(static_cast<int>(bands));
+  for (std::size_t i = 0; i < count; ++i) {
+    const json& triple = list[i];
+    if (!triple.is_array() || triple.size() != 3)
+      fail_file(path, "coefficient " + std::to_string(i) + " is not an [r, g, b] triple");
+    for (int c = 0; c < 3; ++c) {
+      if (!triple[c].is_number()) fail_file(path, "coefficient " + std::to_string(i) + " has a non-numeric entry");
+      const double v = triple[c].get<double>();
+      if (!std::isfinite(v)) fail_file(path, "coefficient " + std::to_string(i) + " is not finite");
+      out.values[i][c] = v;
+    }
+  }
+  return out;
+}
+
+}  // namespace prt::light
