@@ -1,1 +1,246 @@
-// placeholder: filled by the module's work
+// load_mesh's dispatch and the steps shared by every format: validation, degenerate triangles,
+// normals, albedo clamping, notes; plus fingerprints and bounds.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "mesh/loaders.h"
+#include "mesh/mesh.h"
+
+namespace prt::mesh {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+/// The first bytes of the file (up to 4 KiB), or prt::Error if it cannot be read.
+std::string read_head(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail_file(path, "cannot read: is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  std::string head(4096, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(in.gcount()));
+  return head;
+}
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+/// What the content looks like, to name it in "not a ... file" errors.
+std::string sniff(const std::string& head) {
+  if (starts_with(head, "ply\n") || starts_with(head, "ply\r\n")) return "a PLY file";
+  if (starts_with(head, "glTF")) return "a binary glTF (.glb) file";
+  std::size_t first = head.find_first_not_of(" \t\r\n");
+  if (starts_with(head, "\xEF\xBB\xBF")) first = head.find_first_not_of(" \t\r\n", 3);
+  if (first != std::string::npos && head[first] == '{') return "JSON (.gltf)";
+  if (starts_with(head, "solid") || starts_with(head, "OFF")) return "an STL or OFF file";
+  if (head.find('\0') != std::string::npos) return "binary data";
+  return "text";
+}
+
+void check_content(const std::string& path, const std::string& ext, const std::string& head) {
+  if (head.empty()) fail_file(path, "file is empty");
+  const std::string kind = sniff(head);
+  auto refuse = [&](const char* expected) {
+    fail_file(path, std::string("not ") + expected + " (its content looks like " + kind + ")");
+  };
+  if (ext == ".ply" && kind != "a PLY file") refuse("a PLY file");
+  if (ext == ".glb" && kind != "a binary glTF (.glb) file") refuse("a binary glTF file");
+  if (ext == ".gltf" && kind != "JSON (.gltf)") refuse("a glTF JSON file");
+  if (ext == ".obj" && kind != "text") refuse("an OBJ text file");
+}
+
+std::string vec_text(const glm::vec3& v) {
+  std::ostringstream s;
+  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return s.str();
+}
+
+}  // namespace
+
+namespace detail {
+
+double srgb_to_linear(double encoded) {
+  if (encoded <= 0.04045) return encoded / 12.92;
+  return std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet) {
+  LoadReport result = std::move(raw.notes_only);
+  const std::size_t vertex_count = raw.positions.size();
+
+  // Validate: finite positions, indices in range (loaders already checked with file context).
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    const glm::vec3& p = raw.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail_file(path, "vertex " + std::to_string(i) + " has a non-finite position " + vec_text(p));
+  }
+  if (raw.indices.size() % 3 != 0) fail_file(path, "internal error: index count not a multiple of 3");
+  for (std::size_t k = 0; k < raw.indices.size(); ++k)
+    if (raw.indices[k] >= vertex_count)
+      fail_file(path, "triangle " + std::to_string(k / 3) + " refers to vertex " + std::to_string(raw.indices[k]) +
+                          ", but there are " + std::to_string(vertex_count) + " vertices");
+
+  // Drop degenerate triangles.
+  Mesh mesh;
+  mesh.indices.reserve(raw.indices.size());
+  std::size_t degenerate = 0;
+  for (std::size_t t = 0; t + 2 < raw.indices.size(); t += 3) {
+    const std::uint32_t a = raw.indices[t], b = raw.indices[t + 1], c = raw.indices[t + 2];
+    if (a == b || b == c || a == c || is_degenerate(raw.positions[a], raw.positions[b], raw.positions[c])) {
+      ++degenerate;
+      continue;
+    }
+    mesh.indices.insert(mesh.indices.end(), {a, b, c});
+  }
+  result.skipped_degenerate = degenerate + raw.skipped_polygons;
+  if (mesh.indices.empty()) {
+    if (result.skipped_degenerate > 0)
+      fail_file(path, "no triangles left: all " + std::to_string(result.skipped_degenerate) + " are degenerate");
+    fail_file(path, "no triangles (the file has no faces)");
+  }
+  if (result.skipped_degenerate > 0)
+    result.notes.push_back("skipped " + std::to_string(result.skipped_degenerate) +
+                           " degenerate triangles (repeated vertex, zero area, or fewer than 3 vertices)");
+  mesh.positions = std::move(raw.positions);
+
+  // Normals: the file's where usable, area-weighted ones elsewhere.
+  mesh.normals.assign(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
+  std::size_t computed = 0;
+  std::vector<glm::vec3> area_weighted;
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    const bool usable = !raw.normals.empty() && raw.normal_usable[i];
+    if (usable) {
+      // Normals already unit to float precision are kept bit for bit (files written by prt round-trip).
+      const glm::dvec3 n(raw.normals[i]);
+      const double length_sq = glm::dot(n, n);
+      mesh.normals[i] = std::abs(length_sq - 1.0) <= 1e-6 ? raw.normals[i] : glm::vec3(n / std::sqrt(length_sq));
+      continue;
+    }
+    if (area_weighted.empty()) area_weighted = area_weighted_normals(mesh.positions, mesh.indices);
+    mesh.normals[i] = area_weighted[i];
+    ++computed;
+  }
+  result.normals_computed = computed > 0;
+  result.computed_normal_count = computed;
+  if (computed > 0) {
+    std::string reason = raw.computed_normals_reason.empty() ? "the file has no normals" : raw.computed_normals_reason;
+    result.notes.push_back("computed area-weighted normals for " + std::to_string(computed) + " of " +
+                           std::to_string(vertex_count) + " vertices (" + reason + ")");
+  }
+
+  // Albedo, clamped to [0,1] (NaN -> 0).
+  if (!raw.albedo.empty()) {
+    std::size_t clamped = 0;
+    for (glm::vec3& a : raw.albedo) {
+      for (int c = 0; c < 3; ++c) {
+        float v = a[c];
+        float fixed = std::isnan(v) ? 0.0f : std::min(1.0f, std::max(0.0f, v));
+        if (!(fixed == v)) ++clamped;
+        a[c] = fixed;
+      }
+    }
+    if (clamped > 0) result.notes.push_back("clamped " + std::to_string(clamped) + " albedo components to [0,1]");
+    mesh.albedo = std::move(raw.albedo);
+    result.albedo_from_file = true;
+  }
+
+  if (!quiet)
+    for (const std::string& note : result.notes) std::cerr << path << ": " << note << "\n";
+  if (report) *report = std::move(result);
+  return mesh;
+}
+
+}  // namespace detail
+
+Mesh load_mesh(const std::string& path, LoadReport* report, bool quiet) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".obj" && ext != ".ply" && ext != ".gltf" && ext != ".glb")
+    fail_file(path, "unsupported mesh format \"" + ext + "\" (prt reads .obj, .ply, .gltf and .glb)");
+  check_content(path, ext, read_head(path));
+  detail::RawMesh raw;
+  if (ext == ".obj")
+    raw = detail::load_obj(path);
+  else if (ext == ".ply")
+    raw = detail::load_ply(path);
+  else
+    raw = detail::load_gltf(path, ext == ".glb");
+  return detail::finish_mesh(path, std::move(raw), report, quiet);
+}
+
+bool is_degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::dvec3 pa(a), pb(b), pc(c);
+  const glm::dvec3 e1 = pb - pa, e2 = pc - pa, e3 = pc - pb;
+  const double twice_area = glm::length(glm::cross(e1, e2));
+  const double longest_sq = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
+  return !(twice_area > 1e-12 * longest_sq);
+}
+
+std::vector<glm::vec3> area_weighted_normals(const std::vector<glm::vec3>& positions,
+                                             const std::vector<std::uint32_t>& indices) {
+  std::vector<glm::dvec3> sums(positions.size(), glm::dvec3(0.0));
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const std::uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
+    const glm::dvec3 pa(positions[a]);
+    const glm::dvec3 face = glm::cross(glm::dvec3(positions[b]) - pa, glm::dvec3(positions[c]) - pa);
+    sums[a] += face;
+    sums[b] += face;
+    sums[c] += face;
+  }
+  std::vector<glm::vec3> normals(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const double len = glm::length(sums[i]);
+    normals[i] = (len > 0.0 && std::isfinite(len)) ? glm::vec3(sums[i] / len) : glm::vec3(0.0f, 1.0f, 0.0f);
+  }
+  return normals;
+}
+
+std::uint64_t fingerprint(const Mesh& mesh) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  auto add_bytes = [&hash](std::uint64_t value, int byte_count) {
+    for (int k = 0; k < byte_count; ++k) {
+      hash ^= (value >> (8 * k)) & 0xffu;
+      hash *= 0x100000001b3ull;
+    }
+  };
+  add_bytes(mesh.positions.size(), 8);
+  for (const glm::vec3& p : mesh.positions) {
+    for (int c = 0; c < 3; ++c) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &p[c], 4);
+      add_bytes(bits, 4);
+    }
+  }
+  add_bytes(mesh.indices.size(), 8);
+  for (std::uint32_t index : mesh.indices) add_bytes(index, 4);
+  return hash;
+}
+
+float Bounds::diagonal() const { return glm::length(hi - lo); }
+
+Bounds bounds(const Mesh& mesh) {
+  Bounds box;
+  if (mesh.positions.empty()) return box;
+  box.lo = box.hi = mesh.positions[0];
+  for (const glm::vec3& p : mesh.positions) {
+    box.lo = glm::min(box.lo, p);
+    box.hi = glm::max(box.hi, p);
+  }
+  return box;
+}
+
+}  // namespace prt::mesh

@@ -2,8 +2,42 @@
 // Triangle meshes as prt bakes and renders them.
 //
 // VERTEX ORDER: a loaded mesh's vertices map 1:1, in order, to the input file's vertices (engines load
-// baked per-vertex data onto their own copy of the mesh): OBJ "v" lines, PLY "vertex" elements, glTF
-// primitives' vertices in the order documented in docs/formats.md. Nothing is welded or reordered.
+// baked per-vertex data onto their own copy of the mesh). Nothing is welded, reordered or dropped:
+// - OBJ: the "v" lines, in file order.
+// - PLY: the "vertex" elements, in file order.
+// - glTF: the nodes of the scene (the default scene, else scene 0, else every root node in document
+//   order) are visited depth-first, each node before its children, children in the order of the
+//   node's "children" array; for each visited node with a mesh, that mesh's primitives in order; for
+//   each triangle primitive (modes 4, 5, 6), all `count` elements of its POSITION accessor in accessor
+//   order. A mesh instanced by two nodes appears twice. Primitives in point or line modes contribute
+//   no vertices. The hierarchy must be a set of trees (as the glTF spec requires): a node reached
+//   twice is an error.
+// Polygons with more than 3 vertices (OBJ, PLY) are fan-triangulated: (v0, v1, v2), (v0, v2, v3), ...
+// glTF triangle strips and fans are converted to triangle lists as the glTF spec defines.
+//
+// NORMALS: the file's, made unit length (kept bit for bit when already unit to within 1e-6 in squared
+// length, so meshes written by prt round-trip exactly). Where a file (OBJ, PLY) or a glTF primitive
+// has no normals, or any of its normals is zero or not finite, that mesh's normals are all computed
+// as area-weighted vertex normals (see area_weighted_normals). OBJ normals indexed apart from positions: each position
+// gets the normalised sum of the distinct unit normals its corners reference (hard edges are smoothed,
+// since a vertex carries one normal). glTF normals are transformed by the inverse transpose of the
+// node's world matrix; where that matrix mirrors (negative determinant) the triangles' winding is
+// reversed so that front faces stay counter-clockwise.
+//
+// ALBEDO (linear diffuse reflectance per vertex, clamped to [0,1]):
+// - OBJ: the MTL "Kd" of the faces' materials (taken as linear). A vertex used by faces of several
+//   materials gets the mean of those materials' Kd (each distinct material once). If no face names a
+//   material, albedo is empty; faces without a material in a file where others have one count as
+//   Kd = 0.8 (grey). Texture maps and OBJ vertex colours are ignored.
+// - PLY: vertex properties red/green/blue (or diffuse_red/diffuse_green/diffuse_blue). Integer types
+//   (uchar 0..255, ushort 0..65535) are sRGB-encoded: divided by the type's maximum and decoded with
+//   the sRGB transfer function to linear. float/double colours are already linear and used as they are.
+// - glTF: baseColorFactor.rgb (linear) times COLOR_0.rgb (linear; float, or normalised unsigned
+//   byte/short) when both are present, as the glTF spec defines. A primitive without a material has
+//   base colour 1. If no primitive has a material or COLOR_0, albedo is empty. Base colour textures
+//   are ignored (one note on stderr).
+// Albedo is empty when the file gives none; the caller then chooses a default.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,39 +47,59 @@
 namespace prt::mesh {
 
 struct Mesh {
-  std::vector<glm::vec3> positions;   ///< in the file's units and frame (glTF: node transforms applied)
-  std::vector<glm::vec3> normals;     ///< unit length, one per vertex
-  std::vector<glm::vec3> albedo;      ///< linear diffuse reflectance in [0,1] per vertex; empty if none given
-  std::vector<std::uint32_t> indices; ///< 3 per triangle, counter-clockwise front faces; degenerate removed
+  std::vector<glm::vec3> positions;    ///< in the file's units and frame (glTF: node transforms applied)
+  std::vector<glm::vec3> normals;      ///< unit length, one per vertex
+  std::vector<glm::vec3> albedo;       ///< linear diffuse reflectance in [0,1] per vertex; empty if none given
+  std::vector<std::uint32_t> indices;  ///< 3 per triangle, counter-clockwise front faces; degenerate removed
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
 /// What loading found, for messages and tests.
 struct LoadReport {
-  std::size_t skipped_degenerate = 0;  ///< triangles dropped: repeated index or zero area
-  bool normals_computed = false;       ///< the file had no (usable) normals: area-weighted ones computed
-  bool albedo_from_file = false;       ///< albedo came from materials or vertex colours
+  std::size_t skipped_degenerate = 0;     ///< triangles dropped: repeated index, zero area, polygons of < 3 vertices
+  bool normals_computed = false;          ///< some vertices had no (usable) file normal: area-weighted ones computed
+  std::size_t computed_normal_count = 0;  ///< how many vertices got computed normals
+  bool albedo_from_file = false;          ///< albedo came from materials or vertex colours
+  std::size_t skipped_primitives = 0;     ///< glTF primitives in point/line modes or without POSITION
+  std::vector<std::string> notes;         ///< the one-line notes printed on stderr (also when quiet)
 };
 
-/// Loads .obj (+ .mtl Kd), .ply (ASCII / binary, optional red/green/blue), .gltf / .glb (every mesh
-/// primitive of the default scene, node transforms, baseColorFactor and COLOR_0 as albedo).
-/// Throws prt::Error("<path>: <problem>") for: unreadable file, unsupported format, NaN/Inf positions,
-/// indices out of range, no triangles left. Prints one line on stderr when normals are computed or
-/// triangles are skipped (unless `quiet`).
+/// Loads .obj (+ .mtl Kd), .ply (ASCII / binary little or big endian, optional red/green/blue),
+/// .gltf / .glb (every triangle primitive of the scene, node transforms, baseColorFactor and COLOR_0
+/// as albedo); the extension (case-insensitive) picks the format, and the content must match it.
+/// Throws prt::Error("<path>: <problem>") for: unreadable file, unsupported format (by extension or
+/// content), malformed or truncated data, NaN/Inf positions, indices out of range, no triangles left.
+/// Prints each note of the report (normals computed, triangles or primitives skipped) as one line
+/// "<path>: <note>" on stderr, unless `quiet`.
 Mesh load_mesh(const std::string& path, LoadReport* report = nullptr, bool quiet = false);
 
-/// Area-weighted vertex normals (unit; +Y for vertices of no triangle).
+/// Area-weighted vertex normals: for each vertex, the normalised sum of (p1-p0)x(p2-p0) over the
+/// triangles using it (the cross product's length is twice the area, so large triangles weigh more),
+/// accumulated in double in triangle order. Vertices of no triangle, or whose sum vanishes, get +Y.
+/// Preconditions: indices.size() % 3 == 0, every index < positions.size().
 std::vector<glm::vec3> area_weighted_normals(const std::vector<glm::vec3>& positions,
                                              const std::vector<std::uint32_t>& indices);
 
-/// 64-bit fingerprint of positions and indices (bit patterns, FNV-1a), stored in transfer files so a
-/// reader can tell that a file belongs to a mesh.
+/// True if triangle (a, b, c) has zero area: two equal points, or its double-precision cross
+/// product's length is at most 1e-12 times the square of its longest edge (collinear to within far
+/// below float resolution). load_mesh drops such triangles.
+bool is_degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+
+/// 64-bit fingerprint of positions and indices, stored in transfer files so a reader can tell that a
+/// file belongs to a mesh. FNV-1a 64 (offset basis 0xcbf29ce484222325, prime 0x100000001b3) over the
+/// bytes: vertex count as uint64 little-endian; each position's x, y, z float bit patterns as uint32
+/// little-endian; index count as uint64 little-endian; each index as uint32 little-endian.
+/// Identical on every machine; any change of one position bit or one index changes it.
 std::uint64_t fingerprint(const Mesh& mesh);
 
 /// Axis-aligned bounds.
 struct Bounds {
   glm::vec3 lo{0.0f}, hi{0.0f};
-  float diagonal() const;
+  float diagonal() const;  ///< |hi - lo|
 };
+/// Bounds of all positions (zero box for an empty mesh).
 Bounds bounds(const Mesh& mesh);
 
 }  // namespace prt::mesh

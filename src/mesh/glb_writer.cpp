@@ -1,0 +1,152 @@
+// glTF 2.0 binary (.glb) output with application-specific vertex attributes (layout in writers.h).
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <set>
+#include <string>
+
+#include <glm/common.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "mesh/writers.h"
+
+namespace prt::mesh {
+
+namespace {
+
+constexpr int kFloat = 5126;        // glTF componentType FLOAT
+constexpr int kUnsignedInt = 5125;  // glTF componentType UNSIGNED_INT
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;
+constexpr std::uint32_t kChunkBin = 0x004E4942;
+
+void put_u32(std::string& out, std::uint32_t value) {
+  for (int k = 0; k < 4; ++k) out.push_back(char((value >> (8 * k)) & 0xffu));
+}
+
+void put_floats(std::string& out, const float* values, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &values[i], 4);
+    put_u32(out, bits);
+  }
+}
+
+bool valid_semantic(const std::string& name) {
+  if (name.size() < 2 || name[0] != '_') return false;
+  for (char c : name)
+    if (!((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_')) return false;
+  return true;
+}
+
+/// Accumulates the BIN chunk and the buffer views / accessors that describe it.
+struct GlbBuilder {
+  std::string bin;
+  nlohmann::json buffer_views = nlohmann::json::array();
+  nlohmann::json accessors = nlohmann::json::array();
+
+  /// Appends tightly packed data as a new buffer view (4-byte aligned) and an accessor on it;
+  /// returns the accessor index.
+  int add(const std::string& bytes, std::size_t count, const char* type, int component_type, int target) {
+    while (bin.size() % 4 != 0) bin.push_back('\0');
+    buffer_views.push_back(
+        {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}, {"target", target}});
+    bin += bytes;
+    accessors.push_back(
+        {{"bufferView", buffer_views.size() - 1}, {"componentType", component_type}, {"count", count}, {"type", type}});
+    return int(accessors.size() - 1);
+  }
+
+  int add_floats(const float* values, std::size_t count, int components, const char* type) {
+    std::string bytes;
+    bytes.reserve(count * std::size_t(components) * 4);
+    put_floats(bytes, values, count * std::size_t(components));
+    return add(bytes, count, type, kFloat, kArrayBuffer);
+  }
+};
+
+}  // namespace
+
+void write_glb(const std::string& path, const Mesh& mesh, const std::vector<VertexAttribute>& extra_attributes,
+               const std::vector<glm::vec3>& colour_0) {
+  const std::size_t n = mesh.positions.size();
+  if (n == 0 || mesh.indices.empty()) fail_file(path, "cannot write glTF: the mesh is empty");
+  if (mesh.indices.size() % 3 != 0) fail_file(path, "cannot write glTF: index count is not a multiple of 3");
+  for (std::uint32_t index : mesh.indices)
+    if (index >= n) fail_file(path, "cannot write glTF: index " + std::to_string(index) + " out of range");
+  for (const glm::vec3& p : mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail_file(path, "cannot write glTF: a position is not finite");
+  if (!mesh.normals.empty() && mesh.normals.size() != n)
+    fail_file(path, "cannot write glTF: normal count differs from vertex count");
+  if (!colour_0.empty() && colour_0.size() != n)
+    fail_file(path, "cannot write glTF: COLOR_0 length differs from vertex count");
+  std::set<std::string> names;
+  for (const VertexAttribute& attribute : extra_attributes) {
+    if (!valid_semantic(attribute.name))
+      fail_file(path, "cannot write glTF: \"" + attribute.name +
+                          "\" is not an application-specific attribute name ('_' then A-Z, 0-9, '_')");
+    if (!names.insert(attribute.name).second)
+      fail_file(path, "cannot write glTF: attribute \"" + attribute.name + "\" repeated");
+    if (attribute.values.size() != n)
+      fail_file(path, "cannot write glTF: attribute " + attribute.name + " has " +
+                          std::to_string(attribute.values.size()) + " values for " + std::to_string(n) + " vertices");
+  }
+
+  GlbBuilder glb;
+  nlohmann::json attributes = nlohmann::json::object();
+  const int position = glb.add_floats(&mesh.positions[0].x, n, 3, "VEC3");
+  glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  // Floats widen to double exactly and nlohmann prints the shortest round-trip text, so min/max
+  // read back as exactly the extreme float values (the spec requires them to match the data).
+  glb.accessors[std::size_t(position)]["min"] = {double(lo.x), double(lo.y), double(lo.z)};
+  glb.accessors[std::size_t(position)]["max"] = {double(hi.x), double(hi.y), double(hi.z)};
+  attributes["POSITION"] = position;
+  if (!mesh.normals.empty()) attributes["NORMAL"] = glb.add_floats(&mesh.normals[0].x, n, 3, "VEC3");
+  if (!colour_0.empty()) attributes["COLOR_0"] = glb.add_floats(&colour_0[0].x, n, 3, "VEC3");
+  for (const VertexAttribute& attribute : extra_attributes)
+    attributes[attribute.name] = glb.add_floats(&attribute.values[0].x, n, 4, "VEC4");
+  std::string index_bytes;
+  index_bytes.reserve(mesh.indices.size() * 4);
+  for (std::uint32_t index : mesh.indices) put_u32(index_bytes, index);
+  const int indices = glb.add(index_bytes, mesh.indices.size(), "SCALAR", kUnsignedInt, kElementArrayBuffer);
+  while (glb.bin.size() % 4 != 0) glb.bin.push_back('\0');
+
+  const nlohmann::json document = {
+      {"asset", {{"version", "2.0"}, {"generator", "prt"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", indices}, {"mode", 4}}}}}}},
+      {"buffers", {{{"byteLength", glb.bin.size()}}}},
+      {"bufferViews", glb.buffer_views},
+      {"accessors", glb.accessors},
+  };
+  std::string json = document.dump();
+  while (json.size() % 4 != 0) json.push_back(' ');  // the spec pads the JSON chunk with spaces
+
+  const std::uint64_t total = 12 + 8 + json.size() + 8 + glb.bin.size();
+  if (total > std::numeric_limits<std::uint32_t>::max()) fail_file(path, "cannot write glTF: more than 4 GiB");
+  std::string bytes;
+  bytes.reserve(std::size_t(total));
+  put_u32(bytes, kGlbMagic);
+  put_u32(bytes, 2);
+  put_u32(bytes, std::uint32_t(total));
+  put_u32(bytes, std::uint32_t(json.size()));
+  put_u32(bytes, kChunkJson);
+  bytes += json;
+  put_u32(bytes, std::uint32_t(glb.bin.size()));
+  put_u32(bytes, kChunkBin);
+  bytes += glb.bin;
+  write_file_atomically(path, bytes);
+}
+
+}  // namespace prt::mesh

@@ -1,0 +1,424 @@
+// glTF 2.0 (.gltf / .glb) loading through tinygltf: the scene's nodes depth-first, node transforms
+// applied, every triangle primitive's vertices in accessor order (see mesh.h for the exact order).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <tiny_gltf.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "mesh/loaders.h"
+
+namespace prt::mesh::detail {
+
+namespace {
+
+constexpr int kMaxNodeDepth = 1024;
+
+std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+/// Image data is not needed (textures are ignored): accept every image without decoding it.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+/// Extensions that change nothing prt reads (materials, textures, lights), or that it handles
+/// (KHR_mesh_quantization: integer attributes are read through the generic accessor reader).
+bool extension_is_harmless(const std::string& name) {
+  return name == "KHR_mesh_quantization" || name == "KHR_texture_transform" || name == "KHR_texture_basisu" ||
+         name == "KHR_lights_punctual" || name == "EXT_texture_webp" || name.rfind("KHR_materials_", 0) == 0;
+}
+
+std::size_t component_size(int component_type) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+int component_count(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+/// One little-endian component, as double; normalised integers mapped to [0,1] / [-1,1].
+double read_component(const unsigned char* p, int component_type, bool normalized) {
+  std::uint32_t bits = 0;
+  const std::size_t size = component_size(component_type);
+  for (std::size_t k = 0; k < size; ++k) bits |= std::uint32_t(p[k]) << (8 * k);
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const double v = std::int8_t(std::uint8_t(bits));
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? bits / 255.0 : double(bits);
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      const double v = std::int16_t(std::uint16_t(bits));
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return normalized ? bits / 65535.0 : double(bits);
+    case TINYGLTF_COMPONENT_TYPE_INT:
+      return double(std::int32_t(bits));
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return double(bits);
+    default: {
+      float f;
+      std::memcpy(&f, &bits, 4);
+      return double(f);
+    }
+  }
+}
+
+class GltfReader {
+ public:
+  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
+
+  /// Accessor `index` as count x components doubles (row per element), bounds-checked; sparse
+  /// substitutions applied. `what` names it in errors.
+  std::vector<double> read_accessor(int index, const std::string& what, int* components_out) const {
+    if (index < 0 || std::size_t(index) >= model_.accessors.size())
+      bad(what + ": accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
+    const int components = component_count(a.type);
+    const std::size_t csize = component_size(a.componentType);
+    if (components == 0 || csize == 0) bad(what + ": unsupported accessor type or component type");
+    *components_out = components;
+    const std::size_t element_size = std::size_t(components) * csize;
+    std::vector<double> values;
+    if (a.bufferView >= 0) {
+      const unsigned char* data = view_data(a.bufferView, what);
+      const tinygltf::BufferView& view = model_.bufferViews[std::size_t(a.bufferView)];
+      const std::size_t stride = view.byteStride ? view.byteStride : element_size;
+      if (stride < element_size) bad(what + ": buffer view stride smaller than an element");
+      if (a.count > 0 && (a.byteOffset > view.byteLength || a.count - 1 > view.byteLength / stride ||
+                          a.byteOffset + stride * (a.count - 1) + element_size > view.byteLength))
+        bad(what + ": accessor runs past the end of its buffer view");
+      values.resize(a.count * std::size_t(components));
+      for (std::size_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < components; ++c)
+          values[i * std::size_t(components) + std::size_t(c)] =
+              read_component(data + a.byteOffset + i * stride + std::size_t(c) * csize, a.componentType, a.normalized);
+    } else {
+      // No buffer view: zeros (plus sparse values). Bound the count by the data there is, so that a
+      // garbage count cannot ask for an enormous allocation.
+      std::size_t buffer_bytes = 0;
+      for (const tinygltf::Buffer& buffer : model_.buffers) buffer_bytes += buffer.data.size();
+      if (a.count > std::max<std::size_t>(std::size_t(1) << 20, buffer_bytes)) bad(what + ": accessor count too large");
+      values.assign(a.count * std::size_t(components), 0.0);
+    }
+    if (a.sparse.isSparse) apply_sparse(a, components, csize, what, &values);
+    return values;
+  }
+
+  [[noreturn]] void bad(const std::string& problem) const { fail_file(path_, problem); }
+
+ private:
+  const unsigned char* view_data(int view_index, const std::string& what) const {
+    if (view_index < 0 || std::size_t(view_index) >= model_.bufferViews.size())
+      bad(what + ": buffer view " + std::to_string(view_index) + " does not exist");
+    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(view_index)];
+    if (view.buffer < 0 || std::size_t(view.buffer) >= model_.buffers.size())
+      bad(what + ": buffer " + std::to_string(view.buffer) + " does not exist");
+    const std::vector<unsigned char>& buffer = model_.buffers[std::size_t(view.buffer)].data;
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+      bad(what + ": buffer view " + std::to_string(view_index) + " runs past the end of its buffer");
+    return buffer.data() + view.byteOffset;
+  }
+
+  void apply_sparse(const tinygltf::Accessor& a, int components, std::size_t csize, const std::string& what,
+                    std::vector<double>* values) const {
+    const std::size_t count = std::size_t(std::max(a.sparse.count, 0));
+    const int index_type = a.sparse.indices.componentType;
+    const std::size_t isize = component_size(index_type);
+    if (isize == 0 || index_type == TINYGLTF_COMPONENT_TYPE_FLOAT) bad(what + ": bad sparse index type");
+    auto check = [&](int view, int offset, std::size_t bytes) {
+      const unsigned char* data = view_data(view, what + " (sparse)");
+      const std::size_t length = model_.bufferViews[std::size_t(view)].byteLength;
+      if (offset < 0 || std::size_t(offset) > length || bytes > length - std::size_t(offset))
+        bad(what + ": sparse data runs past the end of its buffer view");
+      return data + offset;
+    };
+    if (count > a.count) bad(what + ": more sparse values than elements");
+    const unsigned char* indices = check(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, count * isize);
+    const std::size_t element_size = std::size_t(components) * csize;
+    const unsigned char* data = check(a.sparse.values.bufferView, a.sparse.values.byteOffset, count * element_size);
+    for (std::size_t k = 0; k < count; ++k) {
+      const double target = read_component(indices + k * isize, index_type, false);
+      if (target < 0 || target >= double(a.count)) bad(what + ": sparse index out of range");
+      for (int c = 0; c < components; ++c)
+        (*values)[std::size_t(target) * std::size_t(components) + std::size_t(c)] =
+            read_component(data + k * element_size + std::size_t(c) * csize, a.componentType, a.normalized);
+    }
+  }
+
+  const std::string& path_;
+  const tinygltf::Model& model_;
+};
+
+glm::dmat4 local_transform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glTF
+  glm::dmat4 m(1.0);
+  if (node.translation.size() == 3)
+    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+  if (node.rotation.size() == 4)  // glTF stores (x, y, z, w); glm's constructor takes (w, x, y, z)
+    m = m * glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+  if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+  return m;
+}
+
+struct Loader {
+  const std::string& path;
+  const tinygltf::Model& model;
+  GltfReader reader;
+  RawMesh raw;
+  std::vector<std::uint8_t> visited;  // the hierarchy must be a forest: each node reached once
+  bool any_albedo_source = false, any_texture = false, any_skin_or_morph = false;
+  std::size_t primitives_without_normals = 0, primitives_with_bad_normals = 0, skipped_modes = 0;
+
+  void visit(int node_index, const glm::dmat4& parent, int depth) {
+    if (node_index < 0 || std::size_t(node_index) >= model.nodes.size())
+      reader.bad("node " + std::to_string(node_index) + " does not exist");
+    // glTF requires disjoint strict trees; refusing a second visit also stops cycles and the
+    // exponential blow-up of a node DAG. The depth limit keeps the recursion's stack bounded.
+    if (visited[std::size_t(node_index)])
+      reader.bad("node " + std::to_string(node_index) +
+                 " is reached twice (the node hierarchy must be a set of trees)");
+    if (depth > kMaxNodeDepth) reader.bad("the node hierarchy is deeper than " + std::to_string(kMaxNodeDepth));
+    visited[std::size_t(node_index)] = 1;
+    const tinygltf::Node& node = model.nodes[std::size_t(node_index)];
+    const glm::dmat4 world = parent * local_transform(node);
+    if (node.mesh >= 0) {
+      if (std::size_t(node.mesh) >= model.meshes.size())
+        reader.bad("node " + std::to_string(node_index) + ": mesh does not exist");
+      const tinygltf::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
+      if (node.skin >= 0) any_skin_or_morph = true;
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+        add_primitive(mesh.primitives[p], world,
+                      "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p));
+    }
+    for (int child : node.children) visit(child, world, depth + 1);
+  }
+
+  void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& what) {
+    const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode > TINYGLTF_MODE_TRIANGLE_FAN) reader.bad(what + ": invalid mode " + std::to_string(mode));
+    const auto position_it = prim.attributes.find("POSITION");
+    if (mode < TINYGLTF_MODE_TRIANGLES || position_it == prim.attributes.end()) {
+      ++skipped_modes;
+      return;
+    }
+    if (!prim.targets.empty()) any_skin_or_morph = true;
+    int components = 0;
+    const std::vector<double> positions = reader.read_accessor(position_it->second, what + " POSITION", &components);
+    if (components != 3) reader.bad(what + ": POSITION is not a vec3");
+    const std::size_t count = positions.size() / 3;
+    const std::size_t base = raw.positions.size();
+    if (base + count >= std::numeric_limits<std::uint32_t>::max()) reader.bad("too many vertices");
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::dvec3 local(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+      if (!std::isfinite(local.x) || !std::isfinite(local.y) || !std::isfinite(local.z)) {
+        std::ostringstream text;
+        text << what << ": POSITION " << i << " is not finite (" << local.x << ", " << local.y << ", " << local.z
+             << ")";
+        reader.bad(text.str());
+      }
+      const glm::dvec4 p = world * glm::dvec4(local, 1.0);
+      raw.positions.emplace_back(float(p.x), float(p.y), float(p.z));
+    }
+
+    // Triangles, in the winding the spec defines for each mode; reversed where the transform mirrors.
+    const glm::dmat3 linear(world);
+    const bool mirrored = glm::determinant(linear) < 0.0;
+    std::vector<std::uint32_t> order;
+    if (prim.indices >= 0) {
+      if (std::size_t(prim.indices) >= model.accessors.size()) reader.bad(what + ": indices accessor does not exist");
+      const tinygltf::Accessor& ia = model.accessors[std::size_t(prim.indices)];
+      if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+          ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        reader.bad(what + ": indices must be unsigned byte, short or int");
+      const std::vector<double> values = reader.read_accessor(prim.indices, what + " indices", &components);
+      if (components != 1) reader.bad(what + ": indices are not scalars");
+      order.reserve(values.size());
+      for (double v : values) {
+        if (v >= double(count))
+          reader.bad(what + ": index " + std::to_string(std::uint64_t(v)) + " out of range (POSITION has " +
+                     std::to_string(count) + " vertices)");
+        order.push_back(std::uint32_t(v));
+      }
+    } else {
+      for (std::size_t i = 0; i < count; ++i) order.push_back(std::uint32_t(i));
+    }
+    auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      if (mirrored) std::swap(b, c);
+      raw.indices.insert(raw.indices.end(),
+                         {std::uint32_t(base + a), std::uint32_t(base + b), std::uint32_t(base + c)});
+    };
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      for (std::size_t t = 0; t + 2 < order.size(); t += 3) emit(order[t], order[t + 1], order[t + 2]);
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (std::size_t i = 0; i + 2 < order.size(); ++i) emit(order[i], order[i + 1 + i % 2], order[i + 2 - i % 2]);
+    } else {  // fan: (v[i+1], v[i+2], v[0])
+      for (std::size_t i = 0; i + 2 < order.size(); ++i) emit(order[i + 1], order[i + 2], order[0]);
+    }
+
+    add_normals(prim, linear, count, what);
+    add_albedo(prim, count, what);
+  }
+
+  void add_normals(const tinygltf::Primitive& prim, const glm::dmat3& linear, std::size_t count,
+                   const std::string& what) {
+    raw.normals.resize(raw.positions.size(), glm::vec3(0.0f, 1.0f, 0.0f));
+    raw.normal_usable.resize(raw.positions.size(), 0);
+    const std::size_t base = raw.positions.size() - count;
+    const auto it = prim.attributes.find("NORMAL");
+    if (it == prim.attributes.end()) {
+      ++primitives_without_normals;
+      return;
+    }
+    int components = 0;
+    const std::vector<double> normals = reader.read_accessor(it->second, what + " NORMAL", &components);
+    if (components != 3 || normals.size() != 3 * count) reader.bad(what + ": NORMAL is not a vec3 per vertex");
+    const glm::dmat3 normal_matrix = glm::inverseTranspose(linear);
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::dvec3 n = normal_matrix * glm::dvec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+      const double len = glm::length(n);
+      if (!(len > 0.0) || !std::isfinite(len)) {
+        ++primitives_with_bad_normals;
+        std::fill(raw.normal_usable.begin() + std::ptrdiff_t(base), raw.normal_usable.end(), std::uint8_t(0));
+        return;
+      }
+      // Leave unit normals unrounded by a division (finish_mesh keeps them bit for bit).
+      raw.normals[base + i] = std::abs(len * len - 1.0) <= 1e-6 ? glm::vec3(n) : glm::vec3(n / len);
+      raw.normal_usable[base + i] = 1;
+    }
+  }
+
+  void add_albedo(const tinygltf::Primitive& prim, std::size_t count, const std::string& what) {
+    glm::dvec3 factor(1.0);
+    if (prim.material >= 0) {
+      if (std::size_t(prim.material) >= model.materials.size()) reader.bad(what + ": material does not exist");
+      const tinygltf::PbrMetallicRoughness& pbr = model.materials[std::size_t(prim.material)].pbrMetallicRoughness;
+      if (pbr.baseColorFactor.size() >= 3)
+        factor = glm::dvec3(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
+      if (pbr.baseColorTexture.index >= 0) any_texture = true;
+      any_albedo_source = true;
+    }
+    std::vector<double> colours;
+    int components = 0;
+    const auto it = prim.attributes.find("COLOR_0");
+    if (it != prim.attributes.end()) {
+      colours = reader.read_accessor(it->second, what + " COLOR_0", &components);
+      if ((components != 3 && components != 4) || colours.size() != std::size_t(components) * count)
+        reader.bad(what + ": COLOR_0 is not a vec3 or vec4 per vertex");
+      any_albedo_source = true;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      glm::dvec3 albedo = factor;
+      if (!colours.empty())
+        albedo *= glm::dvec3(colours[i * std::size_t(components)], colours[i * std::size_t(components) + 1],
+                             colours[i * std::size_t(components) + 2]);
+      raw.albedo.emplace_back(albedo);
+    }
+  }
+};
+
+}  // namespace
+
+RawMesh load_gltf(const std::string& path, bool binary) {
+  const std::string bytes = read_file(path);
+  if (bytes.size() >= std::numeric_limits<unsigned int>::max())
+    fail_file(path, "file too large for glTF (4 GiB or more)");
+  tinygltf::TinyGLTF gltf;
+  gltf.SetImageLoader(skip_image, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  const bool ok =
+      binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                         static_cast<unsigned int>(bytes.size()), base_dir)
+             : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
+                                        base_dir);
+  if (!ok) fail_file(path, "cannot read glTF: " + first_line(err.empty() ? warn : err));
+  for (const std::string& name : model.extensionsRequired)
+    if (!extension_is_harmless(name))
+      fail_file(path, "requires the glTF extension " + name + ", which prt does not support");
+
+  Loader loader{path, model, GltfReader(path, model), RawMesh{}, std::vector<std::uint8_t>(model.nodes.size(), 0)};
+  if (!first_line(warn).empty()) loader.raw.notes_only.notes.push_back("glTF reader: " + first_line(warn));
+
+  // Roots: the default scene, else scene 0, else every node that is no node's child.
+  std::vector<int> roots;
+  if (model.defaultScene >= 0) {
+    if (std::size_t(model.defaultScene) >= model.scenes.size()) fail_file(path, "the default scene does not exist");
+    roots = model.scenes[std::size_t(model.defaultScene)].nodes;
+  } else if (!model.scenes.empty()) {
+    roots = model.scenes[0].nodes;
+  } else {
+    std::vector<std::uint8_t> is_child(model.nodes.size(), 0);
+    for (const tinygltf::Node& node : model.nodes)
+      for (int child : node.children)
+        if (child >= 0 && std::size_t(child) < model.nodes.size()) is_child[std::size_t(child)] = 1;
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+      if (!is_child[i]) roots.push_back(int(i));
+  }
+  for (int root : roots) loader.visit(root, glm::dmat4(1.0), 0);
+
+  RawMesh raw = std::move(loader.raw);
+  LoadReport& notes = raw.notes_only;
+  notes.skipped_primitives = loader.skipped_modes;
+  if (loader.skipped_modes > 0)
+    notes.notes.push_back("skipped " + std::to_string(loader.skipped_modes) +
+                          " primitives in point or line modes or without POSITION");
+  if (loader.any_texture)
+    notes.notes.push_back("base colour textures are ignored; albedo uses baseColorFactor and COLOR_0");
+  if (loader.any_skin_or_morph) notes.notes.push_back("skins and morph targets are ignored (the bind pose is used)");
+  if (!loader.any_albedo_source) raw.albedo.clear();
+  std::string reason;
+  if (loader.primitives_without_normals > 0)
+    reason = std::to_string(loader.primitives_without_normals) + " primitives have no normals";
+  if (loader.primitives_with_bad_normals > 0)
+    reason += (reason.empty() ? "" : ", ") + std::to_string(loader.primitives_with_bad_normals) +
+              " primitives have zero or non-finite normals";
+  raw.computed_normals_reason = reason;
+  return raw;
+}
+
+}  // namespace prt::mesh::detail

@@ -1,0 +1,41 @@
+#pragma once
+// Internal to prt_mesh: what each format's loader hands to the common finishing step, and the
+// loaders themselves. Not part of the public API.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/mesh.h"
+
+namespace prt::mesh::detail {
+
+/// A mesh as read from a file, before validation.
+struct RawMesh {
+  std::vector<glm::vec3> positions;
+  /// Empty (no vertex has a file normal) or one per position; meaningful where normal_usable is 1.
+  std::vector<glm::vec3> normals;
+  /// One per position when normals is non-empty: 1 if the file's normal is used, 0 if computed.
+  std::vector<std::uint8_t> normal_usable;
+  /// Why some normals are computed, for the stderr note (e.g. "the file has no normals").
+  std::string computed_normals_reason;
+  std::vector<glm::vec3> albedo;       ///< empty or one per position (linear, not yet clamped)
+  std::vector<std::uint32_t> indices;  ///< 3 per triangle; each loader has range-checked them
+  std::size_t skipped_polygons = 0;    ///< faces of fewer than 3 vertices, counted as degenerate
+  LoadReport notes_only;               ///< loader-specific notes and skipped_primitives
+};
+
+/// Validates `raw` (finite positions, indices in range), drops degenerate triangles, computes the
+/// normals that are missing, clamps albedo, fills `report` and prints its notes unless `quiet`.
+/// Throws prt::Error("<path>: ...") for non-finite positions and when no triangle is left.
+Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet);
+
+RawMesh load_obj(const std::string& path);
+RawMesh load_ply(const std::string& path);
+RawMesh load_gltf(const std::string& path, bool binary);
+
+/// sRGB-encoded value in [0,1] to linear (IEC 61966-2-1 piecewise curve).
+double srgb_to_linear(double encoded);
+
+}  // namespace prt::mesh::detail

@@ -1,0 +1,226 @@
+// Wavefront OBJ (+ MTL) loading through tinyobjloader, keeping the "v" lines' order.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <utility>
+
+#include <glm/geometric.hpp>
+#include <tiny_obj_loader.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "mesh/loaders.h"
+
+namespace prt::mesh::detail {
+
+namespace {
+
+/// Kd for faces without a material in a file where other faces have one.
+constexpr float kDefaultKd = 0.8f;
+
+std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+/// Accumulates, per position, the distinct values (normal or material indices) its corners reference.
+/// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per position.
+class DistinctPairs {
+ public:
+  void add(std::uint32_t position, int value) { pairs_.emplace_back(position, value); }
+  /// Calls f(position, value) once per distinct pair, in position order.
+  template <class F>
+  void for_each(F f) {
+    std::sort(pairs_.begin(), pairs_.end());
+    pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
+    for (const auto& [position, value] : pairs_) f(position, value);
+  }
+
+ private:
+  std::vector<std::pair<std::uint32_t, int>> pairs_;
+};
+
+/// The "v" lines' positions, parsed strictly (tinyobjloader reads "nan" or "abc" as 0 without a
+/// word): correctly rounded to float, and prt::Error naming the line for malformed or non-finite
+/// values. Lines are split as tinyobjloader splits them (\n, \r\n or \r), and a "v" line is one
+/// whose first non-blank characters are 'v' and a space or tab.
+std::vector<glm::vec3> strict_positions(const std::string& path, const std::string& text) {
+  std::vector<glm::vec3> positions;
+  std::size_t line_number = 0, pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find_first_of("\r\n", pos);
+    if (end == std::string::npos) end = text.size();
+    ++line_number;
+    std::size_t i = pos;
+    while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
+    if (i + 1 < end && text[i] == 'v' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
+      const std::string line = text.substr(i, std::min<std::size_t>(end - i, 60));
+      auto problem = [&](const char* what) {
+        fail_file(path, "line " + std::to_string(line_number) + ": vertex " + std::to_string(positions.size() + 1) +
+                            " (1-based) has " + what + " position \"" + line + "\"");
+      };
+      glm::vec3 p(0.0f);
+      std::size_t at = i + 2;
+      for (int c = 0; c < 3; ++c) {
+        while (at < end && (text[at] == ' ' || text[at] == '\t')) ++at;
+        std::size_t token_end = at;
+        while (token_end < end && text[token_end] != ' ' && text[token_end] != '\t') ++token_end;
+        const char* first = text.data() + at + (at < token_end && text[at] == '+' ? 1 : 0);
+        const char* last = text.data() + token_end;
+        auto [ptr, ec] = std::from_chars(first, last, p[c]);
+        if (ec == std::errc::result_out_of_range && ptr == last) {
+          // Overflow is an error; underflow rounds to zero or a denormal, as strtod gives it.
+          const double value = std::strtod(std::string(first, last).c_str(), nullptr);
+          if (!(std::abs(value) <= double(std::numeric_limits<float>::max()))) problem("a non-finite");
+          p[c] = float(value);
+        } else if (ec != std::errc() || ptr != last || first == last) {
+          problem("a malformed");
+        }
+        if (!std::isfinite(p[c])) problem("a non-finite");
+        at = token_end;
+      }
+      positions.push_back(p);
+    }
+    pos = end + 1;
+    if (end < text.size() && text[end] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
+  }
+  return positions;
+}
+
+}  // namespace
+
+RawMesh load_obj(const std::string& path) {
+  std::vector<glm::vec3> positions = strict_positions(path, read_file(path));
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warn, err;
+  std::string base_dir = std::filesystem::path(path).parent_path().string();
+  if (!base_dir.empty()) base_dir += "/";
+  // triangulate = false: prt fan-triangulates itself (and tinyobjloader's triangulation would index
+  // vertices before prt has range-checked them). default_vcols_fallback = false: colours are ignored.
+  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(), base_dir.c_str(),
+                                   /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (!ok) fail_file(path, "cannot read OBJ: " + first_line(err.empty() ? warn : err));
+
+  RawMesh raw;
+  if (!first_line(warn).empty()) raw.notes_only.notes.push_back("OBJ reader: " + first_line(warn));
+  const std::size_t vertex_count = attrib.vertices.size() / 3;
+  if (vertex_count >= std::numeric_limits<std::uint32_t>::max()) fail_file(path, "too many vertices");
+  if (positions.size() == vertex_count) {
+    raw.positions = std::move(positions);
+  } else {  // not expected: the two readers disagree on which lines are "v" lines; trust tinyobjloader
+    raw.positions.resize(vertex_count);
+    for (std::size_t i = 0; i < vertex_count; ++i)
+      raw.positions[i] = glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  }
+  const std::size_t normal_count = attrib.normals.size() / 3;
+
+  DistinctPairs position_normals, position_materials;
+  bool any_corner_without_normal = false, any_material = false;
+  std::size_t face_number = 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    const tinyobj::mesh_t& m = shape.mesh;
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f, ++face_number) {
+      const std::size_t n = m.num_face_vertices[f];
+      if (offset + n > m.indices.size())
+        fail_file(path, "face " + std::to_string(face_number) + " is malformed (a polygon of more than 255 vertices?)");
+      const int material = f < m.material_ids.size() ? m.material_ids[f] : -1;
+      if (material >= int(materials.size()))
+        fail_file(path, "face " + std::to_string(face_number) + " has an unknown material");
+      if (material >= 0) any_material = true;
+      std::uint32_t first = 0, previous = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        const tinyobj::index_t& corner = m.indices[offset + j];
+        if (corner.vertex_index < 0)
+          fail_file(path, "face " + std::to_string(face_number) + " refers to a vertex before the first");
+        if (std::size_t(corner.vertex_index) >= vertex_count)
+          fail_file(path, "face " + std::to_string(face_number) + " refers to vertex " +
+                              std::to_string(corner.vertex_index + 1) + " (1-based), but the file has " +
+                              std::to_string(vertex_count) + " vertices");
+        if (corner.normal_index < -1 || (corner.normal_index >= 0 && std::size_t(corner.normal_index) >= normal_count))
+          fail_file(path, "face " + std::to_string(face_number) + " refers to normal " +
+                              std::to_string(corner.normal_index + 1) + " (1-based), but the file has " +
+                              std::to_string(normal_count) + " normals");
+        const std::uint32_t index = std::uint32_t(corner.vertex_index);
+        if (corner.normal_index < 0)
+          any_corner_without_normal = true;
+        else
+          position_normals.add(index, corner.normal_index);
+        position_materials.add(index, material);
+        if (j == 0) first = index;
+        if (j >= 2) raw.indices.insert(raw.indices.end(), {first, previous, index});  // fan
+        previous = index;
+      }
+      if (n < 3) ++raw.skipped_polygons;
+      offset += n;
+    }
+  }
+
+  // Normals: the normalised sum of the distinct unit normals each position's corners reference.
+  if (normal_count == 0 || any_corner_without_normal) {
+    raw.computed_normals_reason = normal_count == 0 ? "the file has no normals" : "some faces have no normals";
+  } else {
+    std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
+    std::vector<std::uint8_t> bad_normal(normal_count, 0);
+    position_normals.for_each([&](std::uint32_t position, int normal) {
+      const glm::dvec3 n(attrib.normals[3 * normal], attrib.normals[3 * normal + 1], attrib.normals[3 * normal + 2]);
+      const double len = glm::length(n);
+      if (!(len > 0.0) || !std::isfinite(len))
+        bad_normal[std::size_t(normal)] = 1;
+      else
+        sums[position] += n / len;
+    });
+    const std::size_t bad = std::size_t(std::count(bad_normal.begin(), bad_normal.end(), 1));
+    std::vector<glm::vec3> normals(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
+    std::vector<std::uint8_t> usable(vertex_count, 0);
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+      const double len = glm::length(sums[i]);
+      if (len > 0.0) {
+        normals[i] = glm::vec3(sums[i] / len);
+        usable[i] = 1;
+      }
+    }
+    // Positions of no face keep +Y and are marked usable: there is nothing to compute from.
+    std::vector<std::uint8_t> referenced(vertex_count, 0);
+    for (std::uint32_t index : raw.indices) referenced[index] = 1;
+    std::size_t cancelled = 0;
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+      if (!referenced[i])
+        usable[i] = 1;
+      else if (!usable[i])
+        ++cancelled;
+    }
+    if (bad > 0 || cancelled > 0) {
+      raw.computed_normals_reason = bad > 0 ? std::to_string(bad) + " referenced normals are zero or not finite"
+                                            : std::to_string(cancelled) + " vertices' normals cancel out";
+    } else {
+      raw.normals = std::move(normals);
+      raw.normal_usable = std::move(usable);
+    }
+  }
+
+  // Albedo: the mean Kd of the distinct materials of the faces using each position.
+  if (any_material) {
+    std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
+    std::vector<int> counts(vertex_count, 0);
+    position_materials.for_each([&](std::uint32_t position, int material) {
+      const glm::dvec3 kd = material >= 0 ? glm::dvec3(materials[material].diffuse[0], materials[material].diffuse[1],
+                                                       materials[material].diffuse[2])
+                                          : glm::dvec3(kDefaultKd);
+      sums[position] += kd;
+      counts[position] += 1;
+    });
+    raw.albedo.assign(vertex_count, glm::vec3(kDefaultKd));
+    for (std::size_t i = 0; i < vertex_count; ++i)
+      if (counts[i] > 0) raw.albedo[i] = glm::vec3(sums[i] / double(counts[i]));
+  }
+  return raw;
+}
+
+}  // namespace prt::mesh::detail

@@ -1,0 +1,201 @@
+// OBJ loading: vertex order, MTL Kd albedo, computed and indexed normals, fan triangulation, errors.
+#include <cmath>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+#include <glm/geometric.hpp>
+
+#include "mesh/mesh.h"
+#include "mesh_test_util.h"
+
+using namespace prt::mesh;
+using namespace prt::mesh::test;
+
+namespace {
+
+/// Outward CCW faces of the unit cube [0,1]^3, each with its own 4 vertices, and the face normals.
+struct CubeFace {
+  glm::vec3 corners[4];
+  glm::vec3 normal;
+};
+const CubeFace kCube[6] = {
+    {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {-1, 0, 0}},
+    {{{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}, {1, 0, 0}},
+    {{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {0, -1, 0}},
+    {{{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}}, {0, 1, 0}},
+    {{{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {0, 0, -1}},
+    {{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}, {0, 0, 1}},
+};
+
+double signed_volume(const Mesh& mesh) {
+  double volume = 0.0;
+  for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
+        c(mesh.positions[mesh.indices[t + 2]]);
+    volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+  }
+  return volume;
+}
+
+}  // namespace
+
+TEST_CASE("OBJ with MTL: vertex order and Kd albedo per material and file normals", "[mesh][obj]") {
+  write_temp("mats.mtl", "newmtl red\nKd 0.8 0.1 0.2\n\nnewmtl blue\nKd 0.2 0.3 0.9\n");
+  const std::string path = write_temp("materials.obj",
+                                      "# test\nmtllib mats.mtl\n"
+                                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
+                                      "v 0 0 1\nv 1 0 1\nv 0 1 1\n"
+                                      "v 5 5 5\n"  // used by no face
+                                      "vn 0 0 1\n"
+                                      "f 6//1 7//1 8//1\n"  // no material yet: Kd 0.8
+                                      "usemtl red\nf 1//1 2//1 3//1\n"
+                                      "usemtl blue\nf 1//1 3//1 4//1\nf 2//1 5//1 3//1\n");
+  LoadReport report;
+  const Mesh mesh = load_mesh(path, &report, true);
+  REQUIRE(mesh.vertex_count() == 9);
+  const glm::vec3 expected_positions[9] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0},
+                                           {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {5, 5, 5}};
+  for (int i = 0; i < 9; ++i) CHECK(mesh.positions[i] == expected_positions[i]);
+  CHECK(mesh.indices == std::vector<std::uint32_t>{5, 6, 7, 0, 1, 2, 0, 2, 3, 1, 4, 2});
+  for (int i = 0; i < 8; ++i) CHECK(mesh.normals[i] == glm::vec3(0, 0, 1));
+  CHECK(mesh.normals[8] == glm::vec3(0, 1, 0));  // no face: +Y
+  CHECK_FALSE(report.normals_computed);
+  REQUIRE(report.albedo_from_file);
+  REQUIRE(mesh.albedo.size() == 9);
+  // Vertices 1, 2, 3 (0-based 0, 1, 2) touch red and blue faces: the mean of the two Kd.
+  for (int i : {0, 1, 2}) {
+    CHECK(mesh.albedo[i].x == Approx(0.5).epsilon(1e-6));
+    CHECK(mesh.albedo[i].y == Approx(0.2).epsilon(1e-6));
+    CHECK(mesh.albedo[i].z == Approx(0.55).epsilon(1e-6));
+  }
+  for (int i : {3, 4}) CHECK(mesh.albedo[i] == glm::vec3(0.2f, 0.3f, 0.9f));
+  for (int i : {5, 6, 7, 8}) CHECK(mesh.albedo[i] == glm::vec3(0.8f));
+}
+
+TEST_CASE("OBJ without normals: area-weighted normals of a tetrahedron corner", "[mesh][obj]") {
+  // Corner tetrahedron O, X, Y, Z with outward CCW faces. The area-weighted normal at X sums the
+  // cross products (0,-1,0) + (0,0,-1) + (1,1,1) = (1,0,0); at O it is (-1,-1,-1)/sqrt(3).
+  const std::string path = write_temp("tetra.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                      "f 1 2 4\nf 1 4 3\nf 1 3 2\nf 2 3 4\n");
+  LoadReport report;
+  const Mesh mesh = load_mesh(path, &report, true);
+  REQUIRE(mesh.triangle_count() == 4);
+  CHECK(report.normals_computed);
+  CHECK(report.computed_normal_count == 4);
+  REQUIRE(report.notes.size() == 1);
+  CHECK(report.notes[0] == "computed area-weighted normals for 4 of 4 vertices (the file has no normals)");
+  CHECK(mesh.normals[1] == glm::vec3(1, 0, 0));
+  CHECK(mesh.normals[2] == glm::vec3(0, 1, 0));
+  CHECK(mesh.normals[3] == glm::vec3(0, 0, 1));
+  const double k = -1.0 / std::sqrt(3.0);
+  for (int c = 0; c < 3; ++c) CHECK(mesh.normals[0][c] == Approx(k).margin(1e-7));
+  CHECK(mesh.albedo.empty());
+  CHECK_FALSE(report.albedo_from_file);
+  CHECK(signed_volume(mesh) == Approx(1.0 / 6.0).epsilon(1e-12));
+}
+
+TEST_CASE("OBJ quads and polygons are fan-triangulated and cube normals are the face normals", "[mesh][obj]") {
+  std::ostringstream obj;
+  for (const CubeFace& face : kCube)
+    for (const glm::vec3& p : face.corners) obj << "v " << p.x << " " << p.y << " " << p.z << "\n";
+  for (int f = 0; f < 6; ++f)
+    obj << "f " << 4 * f + 1 << " " << 4 * f + 2 << " " << 4 * f + 3 << " " << 4 * f + 4 << "\n";
+  const Mesh cube = load_mesh(write_temp("cube.obj", obj.str()), nullptr, true);
+  REQUIRE(cube.vertex_count() == 24);
+  REQUIRE(cube.triangle_count() == 12);
+  for (std::uint32_t f = 0; f < 6; ++f) {
+    const std::vector<std::uint32_t> expected = {4 * f, 4 * f + 1, 4 * f + 2, 4 * f, 4 * f + 2, 4 * f + 3};
+    CHECK(std::vector<std::uint32_t>(cube.indices.begin() + 6 * f, cube.indices.begin() + 6 * f + 6) == expected);
+    for (int k = 0; k < 4; ++k) {
+      CHECK(cube.positions[4 * f + k] == kCube[f].corners[k]);
+      CHECK(cube.normals[4 * f + k] == kCube[f].normal);
+    }
+  }
+  CHECK(signed_volume(cube) == Approx(1.0).epsilon(1e-12));
+
+  // A convex pentagon: (0,1,2), (0,2,3), (0,3,4).
+  const Mesh pentagon = load_mesh(
+      write_temp("pentagon.obj", "v 0 0 0\nv 2 0 0\nv 3 2 0\nv 1 3 0\nv -1 2 0\nf 1 2 3 4 5\n"), nullptr, true);
+  CHECK(pentagon.indices == std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4});
+  for (const glm::vec3& n : pentagon.normals) CHECK(n == glm::vec3(0, 0, 1));
+}
+
+TEST_CASE("OBJ normals indexed apart from positions: mean of the distinct normals per position", "[mesh][obj]") {
+  // Position 2 is used with normal 1 (twice) and normal 2 (once): each distinct normal counts once,
+  // so its normal is (1,0,1)/sqrt(2), not (1,0,2)/sqrt(5).
+  const std::string path = write_temp("indexed_normals.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
+                                      "vn 0 0 1\nvn 1 0 0\nvn 0 1 0\n"
+                                      "f 1//1 2//1 3//1\nf 2//2 4//2 3//1\nf 2//1 5//1 4//2\n");
+  LoadReport report;
+  const Mesh mesh = load_mesh(path, &report, true);
+  CHECK_FALSE(report.normals_computed);
+  const float h = float(1.0 / std::sqrt(2.0));
+  CHECK(mesh.normals[0] == glm::vec3(0, 0, 1));
+  CHECK(mesh.normals[1].x == Approx(h).epsilon(1e-7));
+  CHECK(mesh.normals[1].y == 0.0f);
+  CHECK(mesh.normals[1].z == Approx(h).epsilon(1e-7));
+  CHECK(mesh.normals[2] == glm::vec3(0, 0, 1));
+  CHECK(mesh.normals[3] == glm::vec3(1, 0, 0));
+  CHECK(mesh.normals[4] == glm::vec3(0, 0, 1));
+}
+
+TEST_CASE("OBJ with a zero normal: the mesh's normals are all computed", "[mesh][obj]") {
+  LoadReport report;
+  const Mesh mesh = load_mesh(write_temp("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n"),
+                              &report, true);
+  CHECK(report.normals_computed);
+  CHECK(report.notes.back() ==
+        "computed area-weighted normals for 3 of 3 vertices (1 referenced normals are zero or not finite)");
+  for (const glm::vec3& n : mesh.normals) CHECK(n == glm::vec3(0, 0, 1));
+}
+
+TEST_CASE("OBJ errors are one line naming the file and the problem", "[mesh][obj]") {
+  const std::string out_of_range = write_temp("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  CHECK(error_of([&] { load_mesh(out_of_range, nullptr, true); }) ==
+        out_of_range + ": face 0 refers to vertex 9 (1-based), but the file has 3 vertices");
+  const std::string negative = write_temp("negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n");
+  CHECK(error_of([&] { load_mesh(negative, nullptr, true); }) ==
+        negative + ": face 0 refers to a vertex before the first");
+  const std::string zero_index = write_temp("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+  CHECK_THAT(error_of([&] { load_mesh(zero_index, nullptr, true); }),
+             Catch::StartsWith(zero_index + ": cannot read OBJ: "));
+  const std::string no_faces = write_temp("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  CHECK(error_of([&] { load_mesh(no_faces, nullptr, true); }) == no_faces + ": no triangles (the file has no faces)");
+  const std::string degenerate = write_temp("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n");
+  CHECK(error_of([&] { load_mesh(degenerate, nullptr, true); }) ==
+        degenerate + ": no triangles left: all 2 are degenerate");
+  const std::string infinite = write_temp("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n");
+  CHECK(error_of([&] { load_mesh(infinite, nullptr, true); }) ==
+        infinite + ": line 2: vertex 2 (1-based) has a non-finite position \"v 1e999 0 0\"");
+  const std::string nan = write_temp("nan.obj", "v 0 0 0\nv 1 0 0\n\n  v nan 0 0\nf 1 2 3\n");
+  CHECK(error_of([&] { load_mesh(nan, nullptr, true); }) ==
+        nan + ": line 4: vertex 3 (1-based) has a non-finite position \"v nan 0 0\"");
+  const std::string word = write_temp("word.obj", "v 0 0 0\r\nv 1 zero 0\r\nv 0 1 0\r\nf 1 2 3\r\n");
+  CHECK(error_of([&] { load_mesh(word, nullptr, true); }) ==
+        word + ": line 2: vertex 2 (1-based) has a malformed position \"v 1 zero 0\"");
+  const std::string short_line = write_temp("short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n");
+  CHECK(error_of([&] { load_mesh(short_line, nullptr, true); }) ==
+        short_line + ": line 2: vertex 2 (1-based) has a malformed position \"v 1 0\"");
+  // Underflow is not an error: it rounds to zero (or a denormal) as strtod does.
+  const Mesh tiny = load_mesh(write_temp("tiny.obj", "v 0 0 1e-60\nv +1 0 0\nv 0 1 0\nf 1 2 3\n"), nullptr, true);
+  CHECK(tiny.positions[0] == glm::vec3(0, 0, 0));
+  CHECK(tiny.positions[1] == glm::vec3(1, 0, 0));
+  const std::string binary = write_temp("binary.obj", std::string("v 0 0 0\n\0\x01\x02garbage", 18));
+  CHECK(error_of([&] { load_mesh(binary, nullptr, true); }) ==
+        binary + ": not an OBJ text file (its content looks like binary data)");
+  const std::string ply_inside = write_temp("ply_inside.obj", "ply\nformat ascii 1.0\n");
+  CHECK(error_of([&] { load_mesh(ply_inside, nullptr, true); }) ==
+        ply_inside + ": not an OBJ text file (its content looks like a PLY file)");
+}
+
+TEST_CASE("OBJ with a missing MTL loads without albedo and notes the warning", "[mesh][obj]") {
+  LoadReport report;
+  const Mesh mesh =
+      load_mesh(write_temp("missing_mtl.obj", "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n"),
+                &report, true);
+  CHECK(mesh.albedo.empty());
+  REQUIRE(report.notes.size() == 2);
+  CHECK_THAT(report.notes[0], Catch::StartsWith("OBJ reader: "));
+}
