@@ -90,6 +90,8 @@ void write_file_at(const std::string& file, const Image& image, const std::strin
   const bool display = is_display_format(reported_path);
   OIIO::ImageSpec spec(image.width, image.height, image.channels,
                        display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  // No time stamp in the file: the same image must give the same bytes (determinism).
+  spec.attribute("DateTime", "");
   if (display) {
     spec.attribute("oiio:ColorSpace", "sRGB");
   } else {

@@ -1,0 +1,68 @@
+// prt view: the interactive relighting viewer (GLFW window, Dear ImGui panel).
+#include <cmath>
+
+#include "cli/arguments.h"
+#include "cli/commands.h"
+#include "core/error.h"
+#include "render/camera.h"
+#include "render/viewer.h"
+
+namespace prt::cli {
+
+namespace {
+
+struct ViewCommandOptions {
+  std::string mesh_path, rotate, object_rotate, camera = "auto", size = "1280x800", background, screenshot;
+  std::vector<std::string> transfer_paths, environments;
+  double exposure = 0.0;
+  int bands = 0, frames = 0;
+};
+
+void run_view(const ViewCommandOptions& o) {
+  render::ViewerOptions options;
+  options.mesh_path = o.mesh_path;
+  options.transfer_paths = o.transfer_paths;
+  options.environments = o.environments;
+  if (!o.rotate.empty()) options.rotate = parse_angles(o.rotate, "--rotate");
+  if (!o.object_rotate.empty()) options.object_rotate = parse_angles(o.object_rotate, "--object-rotate");
+  options.camera = render::parse_camera(o.camera);
+  render::parse_size(o.size, options.width, options.height);
+  if (!std::isfinite(o.exposure)) fail("--exposure: must be a finite number of stops");
+  options.exposure = o.exposure;
+  if (!o.background.empty()) options.background = render::parse_background(o.background);
+  if (o.bands < 0) fail("--bands: must be at least 1 (0 = all of the transfer's bands)");
+  options.bands = o.bands;
+  if (o.frames < 0) fail("--frames: must be positive");
+  options.frames = o.frames;
+  options.screenshot = o.screenshot;
+  render::run_viewer(options);
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app) {
+  auto options = std::make_shared<ViewCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "view", "Interactive relighting viewer: drag orbits, Shift+drag rotates the lighting, scroll zooms, H for help");
+  cmd->add_option("MESH", options->mesh_path, "The mesh the transfers were baked for")->required();
+  cmd->add_option("TRANSFER", options->transfer_paths, "One or more diffuse transfer files (.prt); keys 1-9 switch")
+      ->required();
+  cmd->add_option("--env", options->environments,
+                  "Environment image or SH lighting .json; repeat for several (E switches), or drop files on the window")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--rotate", options->rotate, "Initial YAW,PITCH,ROLL degrees of the environment");
+  cmd->add_option("--object-rotate", options->object_rotate, "Initial YAW,PITCH,ROLL degrees of the object");
+  cmd->add_option("--camera", options->camera, "Initial AZ,EL,DIST or auto (as prt render)")->capture_default_str();
+  cmd->add_option("--size", options->size, "Window size WxH")->capture_default_str();
+  cmd->add_option("--exposure", options->exposure, "Initial exposure in stops")->capture_default_str();
+  cmd->add_option("--background", options->background, "Initial background: env, sh or black");
+  cmd->add_option("--bands", options->bands, "Initial band truncation (0 = all)");
+  cmd->add_option("--frames", options->frames, "Render N frames and exit (scripted runs)");
+  cmd->add_option("--screenshot", options->screenshot,
+                  "With --frames: save the last frame here (.png tone mapped, .exr linear)");
+  cmd->callback([options] { run_view(*options); });
+}
+
+}  // namespace prt::cli

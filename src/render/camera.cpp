@@ -1,0 +1,95 @@
+#include "render/camera.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+
+namespace prt::render {
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    std::size_t end = text.find(separator, start);
+    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+bool parse_number(const std::string& text, double& value) {
+  if (text.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return errno == 0 && end == text.c_str() + text.size() && std::isfinite(value);
+}
+
+}  // namespace
+
+Camera parse_camera(const std::string& text) {
+  Camera camera;
+  if (text == "auto") return camera;
+  const std::vector<std::string> parts = split(text, ',');
+  if (parts.size() != 3) fail("--camera: expected AZ,EL,DIST or auto, got '" + text + "'");
+  if (!parse_number(parts[0], camera.azimuth_degrees) || !parse_number(parts[1], camera.elevation_degrees))
+    fail("--camera: azimuth and elevation must be numbers (degrees), got '" + text + "'");
+  if (std::fabs(camera.elevation_degrees) >= 89.9)
+    fail("--camera: elevation must be between -89.9 and 89.9 degrees, got '" + parts[1] + "'");
+  if (parts[2] == "auto") {
+    camera.distance = 0.0;
+  } else if (!parse_number(parts[2], camera.distance) || camera.distance <= 0.0) {
+    fail("--camera: distance must be a positive number (mesh units) or auto, got '" + parts[2] + "'");
+  }
+  return camera;
+}
+
+void parse_size(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find('x');
+  auto parse_int = [](const std::string& part, int& out) {
+    if (part.empty() || part.size() > 5 || part.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = std::atoi(part.c_str());
+    return out >= 1 && out <= 16384;
+  };
+  if (x == std::string::npos || !parse_int(text.substr(0, x), width) || !parse_int(text.substr(x + 1), height))
+    fail("--size: expected WxH with integers from 1 to 16384, got '" + text + "'");
+}
+
+ViewMatrices orbit_view(const Camera& camera, const mesh::Bounds& bounds, int width, int height,
+                        const glm::dmat3& object_rotation) {
+  ViewMatrices v;
+  v.centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
+  const double radius = std::max(0.5 * glm::length(glm::dvec3(bounds.hi) - glm::dvec3(bounds.lo)), 1e-30);
+  const double aspect = static_cast<double>(width) / static_cast<double>(height);
+  const double half_fov_y = glm::radians(kVerticalFovDegrees) * 0.5;
+  v.tan_half_fov_y = std::tan(half_fov_y);
+  v.tan_half_fov_x = v.tan_half_fov_y * aspect;
+  const double half_fov_narrow = std::min(half_fov_y, std::atan(v.tan_half_fov_x));
+  v.distance = camera.distance > 0.0 ? camera.distance : 1.05 * radius / std::sin(half_fov_narrow);
+
+  const double az = glm::radians(camera.azimuth_degrees);
+  const double el = glm::radians(camera.elevation_degrees);
+  const glm::dvec3 backward(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+  v.eye = v.centre + v.distance * backward;
+  v.view = glm::lookAt(v.eye, v.centre, glm::dvec3(0.0, 1.0, 0.0));
+  v.near_plane = std::max(v.distance - 1.01 * radius, 1e-3 * radius);
+  v.far_plane = v.distance + 1.01 * radius;
+  v.projection = glm::perspective(2.0 * half_fov_y, aspect, v.near_plane, v.far_plane);
+  // Rows of the view's rotation are the camera axes in world coordinates.
+  for (int axis = 0; axis < 3; ++axis)
+    v.camera_to_world[axis] = glm::dvec3(v.view[0][axis], v.view[1][axis], v.view[2][axis]);
+
+  v.model = glm::translate(glm::dmat4(1.0), v.centre) * glm::dmat4(object_rotation) *
+            glm::translate(glm::dmat4(1.0), -v.centre);
+  return v;
+}
+
+}  // namespace prt::render

@@ -1,0 +1,79 @@
+#include "render/headless_render.h"
+
+#include <chrono>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/error.h"
+#include "render/headless_context.h"
+#include "render/scene_inputs.h"
+#include "sh/rotation.h"
+
+namespace prt::render {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+glm::dmat3 rotation_of(const glm::dvec3& ypr) { return sh::rotation_from_yaw_pitch_roll(ypr.x, ypr.y, ypr.z); }
+
+}  // namespace
+
+void check_output_extension(const std::string& path) {
+  const std::string extension = lower_extension(path);
+  if (extension != ".png" && extension != ".exr")
+    fail_file(path, "output must be .png (tone mapped) or .exr (linear radiance)");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code error;
+  if (!folder.empty() && !std::filesystem::is_directory(folder, error))
+    fail_file(path, "output folder does not exist");
+}
+
+void render_to_file(const RenderOptions& options) {
+  check_output_extension(options.output);
+  const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path});
+  const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
+  if (options.bands < 0 || options.bands > transfer_bands)
+    fail("--bands: must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
+         std::to_string(options.bands));
+  const Lighting lighting = load_lighting(options.environment, transfer_bands);
+  const Background background =
+      options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
+  if (background == Background::environment && !lighting.has_image)
+    fail_file(options.environment, "--background env needs an environment image, this is an SH lighting file");
+
+  HeadlessContext context;
+  Renderer renderer;
+  renderer.set_mesh(scene.mesh);
+  renderer.add_transfer(scene.transfers[0], scene.transfer_paths[0]);
+  renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
+
+  FrameSettings settings;
+  settings.camera = options.camera;
+  settings.environment_rotation = rotation_of(options.rotate);
+  settings.object_rotation = rotation_of(options.object_rotate);
+  settings.bands = options.bands;
+  settings.background = background;
+  const auto start = std::chrono::steady_clock::now();
+  renderer.render(settings, options.width, options.height);
+  const image::Image radiance = renderer.read_radiance();
+  const double milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  if (lower_extension(options.output) == ".exr") {
+    image::write(options.output, radiance);
+  } else {
+    image::write(options.output, image::to_display(radiance, options.exposure, options.tone_map));
+  }
+  if (!options.quiet)
+    std::fprintf(stderr, "prt render: %s: %dx%d, %d bands, %s background, %.1f ms on %s\n", options.output.c_str(),
+                 options.width, options.height, options.bands > 0 ? options.bands : transfer_bands,
+                 background_name(background), milliseconds, context.description().c_str());
+}
+
+}  // namespace prt::render

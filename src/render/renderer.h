@@ -1,0 +1,191 @@
+#pragma once
+// The real-time relighting renderer, shared by the window (prt view) and headless (prt render) paths.
+// Everything here needs a current OpenGL 4.5 core context (HeadlessContext, or a GLFW window's).
+//
+// PASSES (shaders/ names; see shader_program.h for how sources are found):
+//   background  fullscreen.vert + background.frag: the environment behind the mesh, per pixel along the
+//               view direction: the equirect image (bilinear, as Environment::radiance), its SH
+//               reconstruction (the first k bands, as prt::sh::eval), or black.
+//   prt_diffuse prt_diffuse.vert + surface.frag (one program per channel count, transfer bands and
+//               truncation, compiled on first use): per-vertex diffuse PRT. The transfer is uploaded once
+//               into a buffer, vertex-major exactly as in the file (channels x bands^2 floats per vertex),
+//               read through buffer-texture views (see TransferBuffer); per frame the CPU rotates the lighting by R_object^-1 R_environment with
+//               prt::sh::rotate_rgb and uploads it; the vertex shader takes, per channel, the dot product
+//               of the first k^2 transfer coefficients with the lighting (prt::shade::shade_diffuse), and
+//               the rasteriser interpolates that radiance (perspective-correct).
+//   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
+//               directional light (see lambert_light()).
+//   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
+//               prt::image::to_display.
+// The frame is drawn into a float framebuffer: attachment 0 RGBA32F linear radiance (alpha 1 on the
+// mesh, 0 on the background), attachment 1 R32UI triangle index (kNoTriangle on the background),
+// 32-bit float depth. No multisampling, so every pixel is one sample at its centre.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "image/image.h"
+#include "mesh/mesh.h"
+#include "render/camera.h"
+#include "render/gl.h"
+#include "render/shader_program.h"
+#include "sh/coefficients.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::render {
+
+/// Triangle index of pixels the mesh does not cover.
+inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
+
+/// What is drawn behind the mesh.
+enum class Background { black, environment, sh };
+/// Parses "black", "env", "sh"; throws prt::Error("--background: ...") otherwise.
+Background parse_background(const std::string& name);
+const char* background_name(Background background);  ///< "black", "env", "sh"
+
+/// How the mesh is shaded.
+enum class Shading { prt, lambert };
+
+/// Most ranges one transfer is split into (buffer textures the vertex shader samples).
+inline constexpr int kMaxTransferChunks = 8;
+
+/// A diffuse transfer on the GPU: one buffer holding the vertex-major floats exactly as
+/// TransferData::values, uploaded once, read by the vertex shader through GL_R32F buffer-texture views
+/// (texelFetch). Views rather than a shader storage block: on llvmpipe the 75 texelFetches of a 5-band
+/// RGB vertex cost about half as much as 75 storage-buffer loads, and a view may be larger (Mesa:
+/// 128 Mi texels = 512 MiB, against 128 MiB per storage block). A transfer larger than one view is viewed as up to
+/// kMaxTransferChunks consecutive ranges of vertices_per_chunk() whole vertices each (offsets aligned
+/// to GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT); the vertex shader picks the range by vertex index.
+class TransferBuffer {
+ public:
+  /// Uploads the values once (immutable storage) and creates the views. Throws prt::Error("<origin>:
+  /// ...") if the transfer is glossy, its value count does not match its header, or it needs more than
+  /// kMaxTransferChunks views. `max_range_bytes` > 0 lowers the per-view limit below the
+  /// implementation's (tests use it to exercise several ranges).
+  TransferBuffer(const transfer::TransferData& transfer, const std::string& origin, std::size_t max_range_bytes = 0);
+  ~TransferBuffer();
+  TransferBuffer(const TransferBuffer&) = delete;
+  TransferBuffer& operator=(const TransferBuffer&) = delete;
+
+  const transfer::Header& header() const { return header_; }
+  GLuint buffer() const { return buffer_; }
+  int chunks() const { return chunks_; }
+  std::size_t vertices_per_chunk() const { return vertices_per_chunk_; }
+  /// Binds view k to texture unit k, for k < chunks().
+  void bind() const;
+
+ private:
+  transfer::Header header_;
+  GLuint buffer_ = 0;
+  std::vector<GLuint> views_;
+  int chunks_ = 1;
+  std::size_t vertices_per_chunk_ = 0;
+};
+
+/// Everything that can change from frame to frame.
+struct FrameSettings {
+  Camera camera;
+  glm::dmat3 environment_rotation{1.0};  ///< active rotation of the environment (lighting and background)
+  glm::dmat3 object_rotation{1.0};       ///< active rotation of the mesh about its bounds centre
+  int transfer = 0;                      ///< which transfer (index returned by add_transfer)
+  int bands = 0;                         ///< use the first `bands` bands; 0 = all the transfer has
+  Background background = Background::environment;
+  Shading shading = Shading::prt;
+};
+
+/// The single directional light of the Lambert baseline, in the environment's frame: direction = the
+/// normalised luminance-weighted band-1 vector of the lighting (where a cosine lobe collects most light;
+/// +Y if band 1 is zero), radiance = the lighting's mean radiance L_0 Y_0 per channel, so that
+/// E = pi * mean radiance at normal incidence, as for a uniform environment.
+void lambert_light(const sh::RgbCoefficients& lighting, glm::dvec3& direction, glm::dvec3& radiance);
+
+class Renderer {
+ public:
+  /// Compiles and links every pass (prt_diffuse for 3 channels and 5 bands; other variants on first
+  /// use). Throws prt::Error naming the shader file on a GLSL error.
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Uploads positions, normals, albedo (0.8 grey where the mesh has none) and indices; drops the
+  /// transfers of a previous mesh.
+  void set_mesh(const mesh::Mesh& mesh);
+  /// Uploads a diffuse transfer for the current mesh (see TransferBuffer, also for max_range_bytes);
+  /// returns its index. Throws prt::Error("<origin>: ...") if its vertex count differs from the mesh's
+  /// or it is not diffuse. (Callers check the mesh fingerprint with transfer::check_mesh_match first.)
+  int add_transfer(const transfer::TransferData& transfer, const std::string& origin, std::size_t max_range_bytes = 0);
+  int transfer_count() const { return static_cast<int>(transfers_.size()); }
+  const transfer::Header& transfer_header(int index) const;
+
+  /// Sets the lighting: SH radiance coefficients in the environment's own frame (any bands; missing
+  /// bands count as zero, as in shade_diffuse) and, optionally, the equirect image it came from (for
+  /// the "env" background; nullptr if there is none, e.g. an SH lighting file).
+  void set_lighting(const sh::RgbCoefficients& lighting, const image::Image* equirect);
+  bool has_environment_image() const { return environment_texture_ != 0; }
+
+  /// The per-frame CPU work of relighting: rotates the first `bands` bands of the lighting by
+  /// R_object^-1 R_environment (prt::sh::rotate_rgb) and uploads them. render() calls it.
+  void update_lighting(const glm::dmat3& environment_rotation, const glm::dmat3& object_rotation, int bands);
+
+  /// Draws one frame into the float framebuffer (resized to width x height as needed). Throws
+  /// prt::Error if no mesh is set, the transfer index is out of range, bands is outside
+  /// [0, transfer bands], or the background is "env" without an environment image.
+  void render(const FrameSettings& settings, int width, int height);
+
+  /// The view and the model-view-projection matrix (as uploaded, float) of the last render().
+  const ViewMatrices& last_view() const { return view_; }
+  const glm::mat4& last_model_view_projection() const { return model_view_projection_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  /// Linear radiance of the last frame, RGB, top row first (no exposure, no tone map).
+  image::Image read_radiance() const;
+  /// Triangle index per pixel of the last frame, top row first; kNoTriangle where the mesh is absent.
+  std::vector<std::uint32_t> read_triangle_ids() const;
+
+  /// Draws the last frame tone mapped into framebuffer `target` (0: the window) of the same size:
+  /// 2^exposure_stops, the operator, sRGB encoding; the same maths as prt::image::to_display.
+  void present(GLuint target, double exposure_stops, image::ToneMap tone_map);
+
+ private:
+  void resize(int width, int height);
+  void draw_background(const FrameSettings& settings, int bands);
+  void draw_mesh(const FrameSettings& settings, int bands);
+
+  /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks), compiled
+  /// on first use and kept.
+  const Program& prt_program(int channels, int coefficient_count, int used_count, int chunks);
+
+  Program background_, lambert_, tonemap_;
+  std::map<std::tuple<int, int, int, int>, Program> prt_programs_;
+  GLuint empty_vao_ = 0, mesh_vao_ = 0;
+  GLuint positions_ = 0, normals_ = 0, albedo_ = 0, indices_ = 0;
+  GLsizei index_count_ = 0;
+  std::size_t vertex_count_ = 0;
+  mesh::Bounds bounds_;
+  bool has_mesh_ = false;
+  std::vector<std::unique_ptr<TransferBuffer>> transfers_;
+
+  std::vector<glm::vec3> lighting_;          // environment frame, padded to kMaxBands^2
+  int lighting_bands_ = 1;
+  std::vector<glm::vec3> rotated_;           // scratch: object frame
+  std::vector<glm::vec4> upload_;            // scratch: std140 layout
+  glm::dvec3 lambert_direction_{0.0, 1.0, 0.0}, lambert_radiance_{0.0};
+  GLuint object_lighting_ = 0, environment_lighting_ = 0;  // uniform buffers, kMaxBands^2 vec4 each
+  GLuint environment_texture_ = 0;
+
+  GLuint framebuffer_ = 0, radiance_texture_ = 0, triangle_texture_ = 0, depth_buffer_ = 0;
+  int width_ = 0, height_ = 0;
+  ViewMatrices view_;
+  glm::mat4 model_view_projection_{1.0f};
+};
+
+}  // namespace prt::render

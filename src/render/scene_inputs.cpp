@@ -1,0 +1,76 @@
+#include "render/scene_inputs.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/error.h"
+#include "light/environment.h"
+#include "light/light_file.h"
+#include "light/projection.h"
+
+namespace prt::render {
+
+namespace {
+
+bool is_json(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".json";
+}
+
+image::Image equirect_from_cube(const light::Environment& environment) {
+  const int face = std::max(1, environment.faces[0].width);
+  image::Image out(4 * face, 2 * face, 3);
+  for (int y = 0; y < out.height; ++y) {
+    for (int x = 0; x < out.width; ++x) {
+      const glm::dvec3 d = light::equirect_direction((x + 0.5) / out.width, (y + 0.5) / out.height);
+      const glm::dvec3 radiance = environment.radiance(d);
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = static_cast<float>(radiance[c]);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths) {
+  SceneInputs scene;
+  scene.mesh = mesh::load_mesh(mesh_path, nullptr, /*quiet=*/true);
+  const std::uint64_t fingerprint = mesh::fingerprint(scene.mesh);
+  for (const std::string& path : transfer_paths) {
+    transfer::TransferData data = transfer::read_transfer(path);
+    transfer::check_mesh_match(path, data.header, scene.mesh.vertex_count(), scene.mesh.triangle_count(),
+                               fingerprint);
+    if (transfer::is_glossy(data.header.kind))
+      fail_file(path, std::string("the renderer draws diffuse transfer only, this is ") +
+                          transfer::kind_name(data.header.kind));
+    scene.transfers.push_back(std::move(data));
+    scene.transfer_paths.push_back(path);
+  }
+  return scene;
+}
+
+Lighting load_lighting(const std::string& spec, int bands) {
+  Lighting lighting;
+  lighting.source = spec;
+  if (is_json(spec)) {
+    lighting.coefficients = light::read_light_file(spec);
+    return lighting;
+  }
+  light::Environment environment = light::load_environment(spec);
+  lighting.coefficients = light::project(environment, bands);
+  lighting.has_image = true;
+  lighting.equirect = environment.layout == light::Environment::Layout::equirect
+                          ? std::move(environment.equirect)
+                          : equirect_from_cube(environment);
+  return lighting;
+}
+
+int max_bands(const SceneInputs& scene) {
+  int bands = 1;
+  for (const auto& transfer : scene.transfers) bands = std::max(bands, static_cast<int>(transfer.header.bands));
+  return bands;
+}
+
+}  // namespace prt::render

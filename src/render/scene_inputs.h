@@ -1,0 +1,44 @@
+#pragma once
+// Loading what the renderer draws: a mesh with its baked transfers, and lighting (environment images or
+// SH lighting files). No GL here; shared by `prt render` and `prt view`.
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "mesh/mesh.h"
+#include "sh/coefficients.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::render {
+
+/// A mesh and the diffuse transfers baked for it.
+struct SceneInputs {
+  mesh::Mesh mesh;
+  std::vector<transfer::TransferData> transfers;
+  std::vector<std::string> transfer_paths;
+};
+
+/// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer, checks every transfer against the mesh
+/// (transfer::check_mesh_match with mesh::fingerprint) and that it is a diffuse kind. Throws
+/// prt::Error("<file>: <problem>") for the first file that fails.
+SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths);
+
+/// Distant lighting for the renderer.
+struct Lighting {
+  std::string source;               ///< the path (or cube-face spec) it came from
+  sh::RgbCoefficients coefficients; ///< SH radiance, environment frame
+  bool has_image = false;           ///< an environment image was given (not an SH lighting file)
+  image::Image equirect;            ///< when has_image: the environment as an equirect image
+};
+
+/// Loads `spec`: a file ending in .json is an SH lighting file (light::read_light_file, its own bands);
+/// anything else is an environment (light::load_environment: equirect, cross or six faces), projected
+/// to `bands` bands (light::project). Cube environments are resampled to an equirect image of
+/// 4 x 2 face widths (bilinear, Environment::radiance at each pixel centre) for the background.
+/// Throws prt::Error("<file>: <problem>").
+Lighting load_lighting(const std::string& spec, int bands);
+
+/// Largest band count among the transfers (the bands lighting is projected to).
+int max_bands(const SceneInputs& scene);
+
+}  // namespace prt::render

@@ -1,0 +1,344 @@
+#include "render/viewer.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "render/gl.h"  // before GLFW, which then includes no GL header of its own
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "core/error.h"
+#include "render/viewer_state.h"
+#include "sh/rotation.h"
+
+namespace prt::render {
+
+namespace {
+
+using viewer_detail::ViewerState;
+
+constexpr double kDragDegreesPerPixel = 0.25;
+constexpr double kZoomPerNotch = 0.9;
+
+std::string glfw_error() {
+  const char* description = nullptr;
+  glfwGetError(&description);
+  return description != nullptr ? description : "unknown GLFW error";
+}
+
+// GLFW and the window, released in reverse order whatever happens.
+class Window {
+ public:
+  Window(int width, int height, bool vsync) {
+    if (glfwInit() != GLFW_TRUE)
+      fail("cannot open a window: " + glfw_error() + " (prt view needs a display; use xvfb-run -a without one)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, kGlMajor);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, kGlMinor);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);
+    window_ = glfwCreateWindow(width, height, "prt view", nullptr, nullptr);
+    if (window_ == nullptr) {
+      const std::string why = glfw_error();
+      glfwTerminate();
+      fail("cannot open a window with an OpenGL 4.5 core context: " + why);
+    }
+    glfwMakeContextCurrent(window_);
+    glfwSwapInterval(vsync ? 1 : 0);
+  }
+  ~Window() {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+  }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  GLFWwindow* get() const { return window_; }
+
+ private:
+  GLFWwindow* window_ = nullptr;
+};
+
+// Dear ImGui's context and backends.
+class Gui {
+ public:
+  explicit Gui(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains the callbacks installed before
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+  }
+  ~Gui() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  Gui(const Gui&) = delete;
+  Gui& operator=(const Gui&) = delete;
+};
+
+// GL timer queries, read one frame late so the CPU does not wait for the GPU.
+class FrameTimer {
+ public:
+  FrameTimer() { glGenQueries(2, queries_); }
+  ~FrameTimer() { glDeleteQueries(2, queries_); }
+  FrameTimer(const FrameTimer&) = delete;
+  FrameTimer& operator=(const FrameTimer&) = delete;
+  void begin() { glBeginQuery(GL_TIME_ELAPSED, queries_[frame_ % 2]); }
+  // Ends this frame's query; returns the previous frame's GPU time in ms (0 for the first frame).
+  double end() {
+    glEndQuery(GL_TIME_ELAPSED);
+    double ms = 0.0;
+    if (frame_ > 0) {
+      GLuint64 nanoseconds = 0;
+      glGetQueryObjectui64v(queries_[(frame_ + 1) % 2], GL_QUERY_RESULT, &nanoseconds);
+      ms = static_cast<double>(nanoseconds) * 1e-6;
+    }
+    ++frame_;
+    return ms;
+  }
+
+ private:
+  GLuint queries_[2] = {0, 0};
+  unsigned long frame_ = 0;
+};
+
+enum class Drag { none, camera, light, object };
+
+// What the GLFW callbacks reach through the window's user pointer.
+struct Session {
+  ViewerState state;
+  Drag drag = Drag::none;
+  double last_x = 0.0, last_y = 0.0;
+  bool quit = false;
+};
+
+Session* session_of(GLFWwindow* window) { return static_cast<Session*>(glfwGetWindowUserPointer(window)); }
+
+double wrap_degrees(double angle) { return std::remainder(angle, 360.0); }
+
+void on_mouse_button(GLFWwindow* window, int button, int action, int mods) {
+  if (session_of(window) == nullptr) return;
+  Session& s = *session_of(window);
+  if (action == GLFW_RELEASE) {
+    s.drag = Drag::none;
+    return;
+  }
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  glfwGetCursorPos(window, &s.last_x, &s.last_y);
+  if (button == GLFW_MOUSE_BUTTON_LEFT) {
+    s.drag = (mods & GLFW_MOD_SHIFT) ? Drag::light : (mods & GLFW_MOD_CONTROL) ? Drag::object : Drag::camera;
+  } else if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+    s.drag = Drag::light;
+  } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
+    s.drag = Drag::object;
+  }
+}
+
+void on_cursor(GLFWwindow* window, double x, double y) {
+  if (session_of(window) == nullptr) return;
+  Session& s = *session_of(window);
+  if (s.drag == Drag::none) return;
+  const double dx = (x - s.last_x) * kDragDegreesPerPixel, dy = (y - s.last_y) * kDragDegreesPerPixel;
+  s.last_x = x;
+  s.last_y = y;
+  ViewerState& state = s.state;
+  if (s.drag == Drag::camera) {
+    // The object follows the mouse: dragging right turns the camera the other way.
+    state.settings.camera.azimuth_degrees = wrap_degrees(state.settings.camera.azimuth_degrees - dx);
+    state.settings.camera.elevation_degrees += dy;
+  } else {
+    glm::dvec3& angles = s.drag == Drag::light ? state.light_angles : state.object_angles;
+    angles.x = wrap_degrees(angles.x + dx);
+    angles.y = wrap_degrees(angles.y + dy);
+  }
+  viewer_detail::sanitise(state);
+}
+
+void on_scroll(GLFWwindow* window, double, double y_offset) {
+  if (session_of(window) == nullptr || ImGui::GetIO().WantCaptureMouse) return;
+  Session& s = *session_of(window);
+  s.state.settings.camera.distance *= std::pow(kZoomPerNotch, y_offset);
+}
+
+void on_key(GLFWwindow* window, int key, int, int action, int mods) {
+  if (session_of(window) == nullptr || action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
+  Session& s = *session_of(window);
+  if (viewer_detail::apply_key(s.state, key, mods)) s.quit = true;
+}
+
+void on_drop(GLFWwindow* window, int count, const char** paths) {
+  if (session_of(window) == nullptr) return;
+  Session& s = *session_of(window);
+  for (int i = 0; i < count; ++i) s.state.dropped.emplace_back(paths[i]);
+}
+
+void save_image(const Renderer& renderer, const ViewerState& state, const std::string& path) {
+  const image::Image radiance = renderer.read_radiance();
+  if (image::is_display_format(path)) {
+    image::write(path, image::to_display(radiance, state.exposure, state.tone_map));
+  } else {
+    image::write(path, radiance);
+  }
+}
+
+std::string free_screenshot_stem() {
+  for (int n = 1;; ++n) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "prt-view-%03d", n);
+    std::error_code error;
+    if (!std::filesystem::exists(std::string(stem) + ".png", error) &&
+        !std::filesystem::exists(std::string(stem) + ".exr", error))
+      return stem;
+  }
+}
+
+// Applies requests collected since the last frame (drops, environment switches, resets, screenshots
+// are handled after drawing).
+void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera, const ViewerOptions& options) {
+  ViewerState& state = s.state;
+  for (const std::string& path : state.dropped) {
+    try {
+      state.environments.push_back(load_lighting(path, state.projection_bands));
+      state.environment = static_cast<int>(state.environments.size()) - 1;
+      state.environment_changed = true;
+      state.message = "loaded " + path;
+    } catch (const Error& e) {
+      state.message = e.what();
+      std::fprintf(stderr, "prt view: %s\n", e.what());
+    }
+  }
+  state.dropped.clear();
+  if (state.reset_requested) {
+    state.settings.camera = initial_camera;
+    state.light_angles = options.rotate;
+    state.object_angles = options.object_rotate;
+    state.reset_requested = false;
+  }
+  if (state.environment_changed) {
+    const Lighting& lighting = state.environments[static_cast<std::size_t>(state.environment)];
+    renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
+    state.environment_changed = false;
+  }
+  viewer_detail::sanitise(state);
+  state.settings.environment_rotation =
+      sh::rotation_from_yaw_pitch_roll(state.light_angles.x, state.light_angles.y, state.light_angles.z);
+  state.settings.object_rotation =
+      sh::rotation_from_yaw_pitch_roll(state.object_angles.x, state.object_angles.y, state.object_angles.z);
+}
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+  if (!options.screenshot.empty()) {
+    if (options.frames <= 0) fail("--screenshot needs --frames N (the frame to save)");
+    if (!image::is_display_format(options.screenshot) &&
+        std::filesystem::path(options.screenshot).extension() != ".exr")
+      fail_file(options.screenshot, "screenshot must be .png (tone mapped) or .exr (linear radiance)");
+  }
+  SceneInputs scene = load_scene(options.mesh_path, options.transfer_paths);
+  Session session;
+  ViewerState& state = session.state;
+  state.projection_bands = max_bands(scene);
+  for (const std::string& spec : options.environments)
+    state.environments.push_back(load_lighting(spec, state.projection_bands));
+  for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
+    const transfer::Header& h = scene.transfers[i].header;
+    state.transfer_names.push_back(std::filesystem::path(scene.transfer_paths[i]).filename().string() + " (" +
+                                   transfer::kind_name(h.kind) + ", " + std::to_string(h.bands) + " bands, " +
+                                   std::to_string(h.channels) + (h.channels == 1 ? " channel)" : " channels)"));
+    state.transfer_bands.push_back(static_cast<int>(h.bands));
+  }
+  state.vertex_count = scene.mesh.vertex_count();
+  state.triangle_count = scene.mesh.triangle_count();
+  state.settings.bands = options.bands;
+  state.settings.background = options.background.value_or(
+      state.environments[0].has_image ? Background::environment : Background::sh);
+  state.exposure = options.exposure;
+  state.tone_map = options.tone_map;
+  state.light_angles = options.rotate;
+  state.object_angles = options.object_rotate;
+  if (options.bands < 0 || options.bands > state.current_bands())
+    fail("--bands: must be between 1 and the transfer's " + std::to_string(state.current_bands()) + " bands");
+
+  const bool scripted = options.frames > 0;
+  Window window(options.width, options.height, !scripted);
+  glfwSetWindowUserPointer(window.get(), &session);
+  glfwSetMouseButtonCallback(window.get(), on_mouse_button);
+  glfwSetCursorPosCallback(window.get(), on_cursor);
+  glfwSetScrollCallback(window.get(), on_scroll);
+  glfwSetKeyCallback(window.get(), on_key);
+  glfwSetDropCallback(window.get(), on_drop);
+
+  Renderer renderer;
+  renderer.set_mesh(scene.mesh);
+  for (std::size_t i = 0; i < scene.transfers.size(); ++i)
+    renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+  const mesh::Bounds bounds = mesh::bounds(scene.mesh);
+  scene = SceneInputs();  // the GPU holds what is needed now
+  state.renderer_name = describe_current_context();
+
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window.get(), &width, &height);
+  Camera initial_camera = options.camera;
+  initial_camera.distance = orbit_view(options.camera, bounds, std::max(width, 1), std::max(height, 1)).distance;
+  state.settings.camera = initial_camera;
+
+  Gui gui(window.get());
+  FrameTimer timer;
+  int frames_drawn = 0;
+  auto last = std::chrono::steady_clock::now();
+  while (!glfwWindowShouldClose(window.get()) && !session.quit) {
+    glfwPollEvents();
+    glfwGetFramebufferSize(window.get(), &width, &height);
+    if (width <= 0 || height <= 0) {  // minimised
+      glfwWaitEvents();
+      continue;
+    }
+    apply_requests(session, renderer, initial_camera, options);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (state.show_panel) viewer_detail::draw_panel(state);
+    ImGui::Render();
+    apply_requests(session, renderer, initial_camera, options);  // the panel's edits, this frame
+
+    timer.begin();
+    renderer.render(state.settings, width, height);
+    const double gpu_ms = timer.end();
+    if (gpu_ms > 0.0) state.render_ms = gpu_ms;
+    renderer.present(0, state.exposure, state.tone_map);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    if (state.screenshot_requested) {
+      state.screenshot_requested = false;
+      const std::string stem = free_screenshot_stem();
+      save_image(renderer, state, stem + ".png");
+      save_image(renderer, state, stem + ".exr");
+      state.message = "saved " + stem + ".png and " + stem + ".exr";
+      std::fprintf(stderr, "prt view: %s\n", state.message.c_str());
+    }
+    ++frames_drawn;
+    if (scripted && frames_drawn >= options.frames) {
+      if (!options.screenshot.empty()) save_image(renderer, state, options.screenshot);
+      break;
+    }
+    glfwSwapBuffers(window.get());
+
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+    last = now;
+    state.frame_ms = state.frame_ms == 0.0 ? ms : 0.9 * state.frame_ms + 0.1 * ms;
+  }
+  glfwSetWindowUserPointer(window.get(), nullptr);
+  glFinish();
+}
+
+}  // namespace prt::render

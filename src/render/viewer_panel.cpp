@@ -1,0 +1,178 @@
+// The viewer's Dear ImGui panel and key bindings (see the CONTROLS list in viewer.h).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "render/viewer_state.h"
+
+namespace prt::render::viewer_detail {
+
+namespace {
+
+constexpr double kExposureStep = 0.5;
+constexpr double kMaxElevation = 89.0;
+
+// A slider over three doubles shown as floats (ImGui has no double3 slider).
+bool slider_angles(const char* label, glm::dvec3& angles) {
+  float values[3] = {static_cast<float>(angles.x), static_cast<float>(angles.y), static_cast<float>(angles.z)};
+  if (!ImGui::SliderFloat3(label, values, -180.0f, 180.0f, "%.1f")) return false;
+  angles = glm::dvec3(values[0], values[1], values[2]);
+  return true;
+}
+
+void cycle_background(ViewerState& state) {
+  Background& b = state.settings.background;
+  b = b == Background::environment ? Background::sh : b == Background::sh ? Background::black : Background::environment;
+}
+
+}  // namespace
+
+void sanitise(ViewerState& state) {
+  FrameSettings& s = state.settings;
+  s.transfer = std::clamp(s.transfer, 0, static_cast<int>(state.transfer_bands.size()) - 1);
+  s.bands = std::clamp(s.bands, 0, state.current_bands());
+  s.camera.elevation_degrees = std::clamp(s.camera.elevation_degrees, -kMaxElevation, kMaxElevation);
+  if (!(s.camera.distance > 1e-9)) s.camera.distance = 1e-9;
+  state.environment = std::clamp(state.environment, 0, static_cast<int>(state.environments.size()) - 1);
+  const bool has_image = state.environments[static_cast<std::size_t>(state.environment)].has_image;
+  if (s.background == Background::environment && !has_image) s.background = Background::sh;
+  state.exposure = std::clamp(state.exposure, -20.0, 20.0);
+}
+
+bool apply_key(ViewerState& state, int key, int mods) {
+  FrameSettings& s = state.settings;
+  const int bands = s.bands == 0 ? state.current_bands() : s.bands;
+  const int environment_count = static_cast<int>(state.environments.size());
+  switch (key) {
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q: return true;
+    case GLFW_KEY_H: state.show_panel = !state.show_panel; break;
+    case GLFW_KEY_LEFT_BRACKET: s.bands = std::max(1, bands - 1); break;
+    case GLFW_KEY_RIGHT_BRACKET: s.bands = std::min(state.current_bands(), bands + 1); break;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT: state.exposure -= kExposureStep; break;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD: state.exposure += kExposureStep; break;
+    case GLFW_KEY_E:
+      state.environment = (state.environment + ((mods & GLFW_MOD_SHIFT) ? environment_count - 1 : 1)) % environment_count;
+      state.environment_changed = true;
+      break;
+    case GLFW_KEY_B:
+      cycle_background(state);
+      if (s.background == Background::environment &&
+          !state.environments[static_cast<std::size_t>(state.environment)].has_image)
+        cycle_background(state);
+      break;
+    case GLFW_KEY_L: s.shading = s.shading == Shading::prt ? Shading::lambert : Shading::prt; break;
+    case GLFW_KEY_T:
+      state.tone_map = state.tone_map == image::ToneMap::aces ? image::ToneMap::clamp : image::ToneMap::aces;
+      break;
+    case GLFW_KEY_R: state.reset_requested = true; break;
+    case GLFW_KEY_S: state.screenshot_requested = true; break;
+    default:
+      if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < static_cast<int>(state.transfer_bands.size())) {
+        s.transfer = key - GLFW_KEY_1;
+        s.bands = 0;
+      }
+      break;
+  }
+  sanitise(state);
+  return false;
+}
+
+void draw_panel(ViewerState& state) {
+  FrameSettings& s = state.settings;
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("prt view (H hides)");
+  ImGui::Text("frame %.2f ms (%.0f fps), GPU render %.2f ms", state.frame_ms,
+              state.frame_ms > 0.0 ? 1000.0 / state.frame_ms : 0.0, state.render_ms);
+  ImGui::TextWrapped("%s", state.renderer_name.c_str());
+  ImGui::Text("%zu vertices, %zu triangles", state.vertex_count, state.triangle_count);
+  ImGui::Separator();
+
+  // Shading and transfer.
+  int shading = s.shading == Shading::prt ? 0 : 1;
+  ImGui::RadioButton("PRT", &shading, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("Lambert baseline (L)", &shading, 1);
+  s.shading = shading == 0 ? Shading::prt : Shading::lambert;
+  if (state.transfer_names.size() > 1) {
+    const char* current = state.transfer_names[static_cast<std::size_t>(s.transfer)].c_str();
+    if (ImGui::BeginCombo("transfer (1-9)", current)) {
+      for (std::size_t i = 0; i < state.transfer_names.size(); ++i) {
+        if (ImGui::Selectable(state.transfer_names[i].c_str(), static_cast<int>(i) == s.transfer)) {
+          s.transfer = static_cast<int>(i);
+          s.bands = 0;
+        }
+      }
+      ImGui::EndCombo();
+    }
+  } else {
+    ImGui::Text("transfer: %s", state.transfer_names[0].c_str());
+  }
+  int bands = s.bands == 0 ? state.current_bands() : s.bands;
+  if (ImGui::SliderInt("bands ([ ])", &bands, 1, state.current_bands())) s.bands = bands;
+
+  // Exposure and tone map.
+  float exposure = static_cast<float>(state.exposure);
+  if (ImGui::SliderFloat("exposure, stops (- =)", &exposure, -10.0f, 10.0f, "%.1f")) state.exposure = exposure;
+  int tone_map = state.tone_map == image::ToneMap::aces ? 0 : 1;
+  ImGui::RadioButton("ACES", &tone_map, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("clamp (T)", &tone_map, 1);
+  state.tone_map = tone_map == 0 ? image::ToneMap::aces : image::ToneMap::clamp;
+  ImGui::Separator();
+
+  // Lighting.
+  const char* environment_name = state.environments[static_cast<std::size_t>(state.environment)].source.c_str();
+  if (ImGui::BeginCombo("environment (E)", environment_name)) {
+    for (std::size_t i = 0; i < state.environments.size(); ++i) {
+      const std::string name = std::filesystem::path(state.environments[i].source).filename().string();
+      if (ImGui::Selectable((name + "##" + std::to_string(i)).c_str(), static_cast<int>(i) == state.environment)) {
+        state.environment = static_cast<int>(i);
+        state.environment_changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::TextDisabled("drop an image or SH .json on the window to add one");
+  slider_angles("lighting yaw pitch roll", state.light_angles);
+  ImGui::TextDisabled("Shift+drag or right drag rotates the lighting");
+  slider_angles("object yaw pitch roll", state.object_angles);
+  ImGui::TextDisabled("Ctrl+drag or middle drag rotates the object");
+  int background = static_cast<int>(s.background);
+  const bool has_image = state.environments[static_cast<std::size_t>(state.environment)].has_image;
+  ImGui::Text("background (B):");
+  ImGui::SameLine();
+  if (!has_image) ImGui::BeginDisabled();
+  ImGui::RadioButton("env", &background, static_cast<int>(Background::environment));
+  if (!has_image) ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::RadioButton("SH", &background, static_cast<int>(Background::sh));
+  ImGui::SameLine();
+  ImGui::RadioButton("black", &background, static_cast<int>(Background::black));
+  s.background = static_cast<Background>(background);
+  ImGui::Separator();
+
+  // Camera.
+  float camera[2] = {static_cast<float>(s.camera.azimuth_degrees), static_cast<float>(s.camera.elevation_degrees)};
+  if (ImGui::SliderFloat2("azimuth, elevation", camera, -180.0f, 180.0f, "%.1f")) {
+    s.camera.azimuth_degrees = camera[0];
+    s.camera.elevation_degrees = camera[1];
+  }
+  float distance = static_cast<float>(s.camera.distance);
+  if (ImGui::InputFloat("distance (scroll)", &distance, 0.0f, 0.0f, "%.3f")) s.camera.distance = distance;
+  if (ImGui::Button("screenshot (S)")) state.screenshot_requested = true;
+  ImGui::SameLine();
+  if (ImGui::Button("reset view (R)")) state.reset_requested = true;
+  if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
+  ImGui::End();
+  sanitise(state);
+}
+
+}  // namespace prt::render::viewer_detail

@@ -1,0 +1,56 @@
+#pragma once
+// Internal to the viewer (viewer.cpp, viewer_panel.cpp): its live state.
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/renderer.h"
+#include "render/scene_inputs.h"
+#include "render/viewer.h"
+
+namespace prt::render::viewer_detail {
+
+struct ViewerState {
+  // Inputs.
+  std::vector<std::string> transfer_names;  ///< one line per transfer for the panel
+  std::vector<int> transfer_bands;
+  std::vector<Lighting> environments;
+  int projection_bands = 1;                 ///< bands environments are projected to
+  std::string renderer_name;
+  std::size_t vertex_count = 0, triangle_count = 0;
+
+  // Live controls.
+  FrameSettings settings;
+  int environment = 0;
+  double exposure = 0.0;
+  image::ToneMap tone_map = image::ToneMap::aces;
+  glm::dvec3 light_angles{0.0};   ///< yaw, pitch, roll in degrees
+  glm::dvec3 object_angles{0.0};
+  bool show_panel = true;
+
+  // Requests from input or the panel, handled by the main loop.
+  bool environment_changed = true;
+  bool screenshot_requested = false;
+  bool reset_requested = false;
+  std::vector<std::string> dropped;
+
+  // Measurements and messages.
+  double frame_ms = 0.0;   ///< CPU time between frames, exponentially averaged
+  double render_ms = 0.0;  ///< GPU time of the scene passes (timer query)
+  std::string message;
+
+  /// Band count of the current transfer.
+  int current_bands() const { return transfer_bands[static_cast<std::size_t>(settings.transfer)]; }
+};
+
+/// Draws the Dear ImGui panel and applies its edits to the state. Between ImGui::NewFrame and Render.
+void draw_panel(ViewerState& state);
+
+/// Applies one key press (GLFW key code and modifier bits) to the state. Returns true to quit.
+bool apply_key(ViewerState& state, int key, int mods);
+
+/// Clamps and normalises the state after edits (bands range, elevation, background availability).
+void sanitise(ViewerState& state);
+
+}  // namespace prt::render::viewer_detail
