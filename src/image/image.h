@@ -1,5 +1,6 @@
 #pragma once
-// Float images and their files, through OpenImageIO. The only module that includes OpenImageIO.
+// Float images and their files, through OpenImageIO. The only module that includes OpenImageIO, and
+// only in its backend module libprt_image_oiio.so, loaded on first use (see backend.h).
 #include <string>
 #include <vector>
 

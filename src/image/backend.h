@@ -1,0 +1,36 @@
+#pragma once
+// Internal to prt_image: the interface between image.cpp and the OpenImageIO backend module.
+//
+// OpenImageIO drags in some 250 shared libraries (OpenVDB, GDAL, DCMTK, ...) whose static
+// initialisation alone costs ~120 MB of resident memory and most of a process's start-up time. prt
+// therefore keeps it in a separate module, libprt_image_oiio.so, loaded with dlopen() the first time an
+// image is read or written: `prt bake`, `prt shade --light`, `prt info`, ... never load it.
+#include <string>
+#include <vector>
+
+namespace prt::image::backend {
+
+/// Pixels as decoded from a file: `channels` interleaved floats per pixel, rows from the top.
+struct DecodedImage {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;
+  bool srgb_encoded = false;  ///< integer file in a display (sRGB) encoding
+};
+
+/// The module's entry points. Each returns an empty string on success, else a one-line problem
+/// (without the path, which the caller adds).
+struct Functions {
+  int abi_version;
+  std::string (*read)(const std::string& path, DecodedImage& out);
+  /// Writes width x height x channels floats to `file`; `display` selects 8-bit output, where values
+  /// are already display values in [0,1]. `format_path` names the format by its extension.
+  std::string (*write)(const std::string& file, const std::string& format_path, int width, int height, int channels,
+                       const std::vector<float>& pixels, bool display);
+};
+
+inline constexpr int kAbiVersion = 1;
+
+}  // namespace prt::image::backend
+
+/// Exported by the module: its function table.
+extern "C" const prt::image::backend::Functions* prt_image_backend_functions();

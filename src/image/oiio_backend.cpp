@@ -1,0 +1,92 @@
+// The OpenImageIO backend module (libprt_image_oiio.so): see backend.h for why it is separate.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include <OpenImageIO/imageio.h>
+
+#include "image/backend.h"
+
+namespace prt::image::backend {
+
+namespace {
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Integer-encoded files are display-referred unless they say otherwise: OpenImageIO reports
+// "oiio:ColorSpace" as "sRGB" for PNG/JPEG, and "Linear" only where the file declares it.
+bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
+  if (spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
+      spec.format.basetype == OIIO::TypeDesc::DOUBLE)
+    return false;
+  return lower(spec.get_string_attribute("oiio:ColorSpace")).find("linear") == std::string::npos;
+}
+
+std::string read(const std::string& path, DecodedImage& out) {
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) return "cannot read as an image: " + one_line(OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return "image has no pixels";
+  if (spec.depth > 1) return "volume images are not supported";
+  out.width = spec.width;
+  out.height = spec.height;
+  out.channels = spec.nchannels;
+  out.pixels.resize(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()))
+    return "cannot decode: " + one_line(input->geterror());
+  out.srgb_encoded = is_srgb_encoded(spec);
+  input->close();
+  return "";
+}
+
+std::string write(const std::string& file, const std::string& format_path, int width, int height, int channels,
+                  const std::vector<float>& pixels, bool display) {
+  auto output = OIIO::ImageOutput::create(format_path);
+  if (!output) return "unsupported image format (by extension): " + one_line(OIIO::geterror());
+  OIIO::ImageSpec spec(width, height, channels, display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  // No time stamp in the file: the same image must give the same bytes (determinism).
+  spec.attribute("DateTime", "");
+  if (display) {
+    spec.attribute("oiio:ColorSpace", "sRGB");
+  } else {
+    spec.attribute("oiio:ColorSpace", "Linear");
+    const std::string path = lower(format_path);
+    if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".exr") == 0) spec.attribute("compression", "zip");
+  }
+  if (!output->open(file, spec)) return "cannot open for writing: " + one_line(output->geterror());
+  bool ok;
+  if (display) {
+    std::vector<unsigned char> bytes(pixels.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      float v = pixels[i];
+      v = std::isnan(v) ? 0.0f : std::min(1.0f, std::max(0.0f, v));
+      bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+    }
+    ok = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  } else {
+    ok = output->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
+  }
+  if (!ok) return "write failed: " + one_line(output->geterror());
+  if (!output->close()) return "write failed: " + one_line(output->geterror());
+  return "";
+}
+
+const Functions kFunctions{kAbiVersion, &read, &write};
+
+}  // namespace
+
+}  // namespace prt::image::backend
+
+extern "C" __attribute__((visibility("default"))) const prt::image::backend::Functions* prt_image_backend_functions() {
+  return &prt::image::backend::kFunctions;
+}
