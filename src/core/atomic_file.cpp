@@ -30,7 +30,9 @@ extern "C" void remove_temporaries_and_exit(int sig) {
   _exit(128 + sig);
 }
 
-void install_handlers_once() {
+}  // namespace
+
+void install_cleanup_signal_handlers() {
   static bool installed = [] {
     struct sigaction sa;
     std::memset(&sa, 0, sizeof sa);
@@ -42,6 +44,8 @@ void install_handlers_once() {
   }();
   (void)installed;
 }
+
+namespace {
 
 int register_temporary(const std::string& temp) {
   std::lock_guard<std::mutex> lock(g_register_mutex);
@@ -73,7 +77,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   name << "." << target.stem().string() << ".tmp-" << getpid() << "-" << g_counter.fetch_add(1)
        << target.extension().string();
   temp_ = (dir / name.str()).string();
-  install_handlers_once();
+  install_cleanup_signal_handlers();
   slot_ = register_temporary(temp_);
 }
 

@@ -36,6 +36,10 @@ class AtomicFile {
   int slot_ = -1;
 };
 
+/// Installs the SIGINT/SIGTERM handler that removes live temporaries and exits with 128+signal.
+/// Called by the CLI at startup (and by every AtomicFile); idempotent.
+void install_cleanup_signal_handlers();
+
 /// Writes `bytes` to `path` through an AtomicFile.
 void write_file_atomically(const std::string& path, const std::string& bytes);
 

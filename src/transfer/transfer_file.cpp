@@ -1,5 +1,6 @@
 #include "transfer/transfer_file.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -176,29 +177,48 @@ std::uint64_t Header::values_per_vertex() const {
   return static_cast<std::uint64_t>(channels) * in;
 }
 
+namespace {
+
+// Encodes values [first, first + count) as the file's scalar type, little-endian, into `out`.
+void encode_values(const std::vector<float>& values, std::size_t first, std::size_t count, Scalar scalar, std::string& out) {
+  out.resize(count * scalar_bytes(scalar));
+  auto* o = reinterpret_cast<unsigned char*>(out.data());
+  for (std::size_t i = 0; i < count; ++i) {
+    if (scalar == Scalar::float16) {
+      std::uint16_t v = float_to_half(values[first + i]);
+      o[2 * i] = static_cast<unsigned char>(v & 0xffu);
+      o[2 * i + 1] = static_cast<unsigned char>(v >> 8);
+    } else {
+      std::uint32_t v;
+      std::memcpy(&v, &values[first + i], 4);
+      for (int b = 0; b < 4; ++b) o[4 * i + b] = static_cast<unsigned char>((v >> (8 * b)) & 0xffu);
+    }
+  }
+}
+
+}  // namespace
+
 void write_transfer(const std::string& path, const TransferData& data) {
   const Header& h = data.header;
   validate(path, h);
   if (data.values.size() != h.vertex_count * h.values_per_vertex())
     fail_file(path, "internal: value count does not match the header");
-  std::string payload;
-  payload.resize(data.values.size() * scalar_bytes(h.scalar));
-  auto* out = reinterpret_cast<unsigned char*>(payload.data());
-  for (std::size_t i = 0; i < data.values.size(); ++i) {
-    if (h.scalar == Scalar::float16) {
-      std::uint16_t v = float_to_half(data.values[i]);
-      out[2 * i] = static_cast<unsigned char>(v & 0xffu);
-      out[2 * i + 1] = static_cast<unsigned char>(v >> 8);
-    } else {
-      std::uint32_t v;
-      std::memcpy(&v, &data.values[i], 4);
-      for (int b = 0; b < 4; ++b) out[4 * i + b] = static_cast<unsigned char>((v >> (8 * b)) & 0xffu);
-    }
+  // The payload is encoded twice in chunks (checksum, then write) so that no full copy of a large
+  // transfer is ever held in memory.
+  constexpr std::size_t kChunk = 1 << 16;
+  std::string chunk;
+  std::uint64_t checksum = kFnvOffset;
+  for (std::size_t first = 0; first < data.values.size(); first += kChunk) {
+    encode_values(data.values, first, std::min(kChunk, data.values.size() - first), h.scalar, chunk);
+    checksum = fnv1a64(chunk.data(), chunk.size(), checksum);
   }
-  std::string header = encode_header(h, payload.size(), fnv1a64(payload.data(), payload.size()));
+  const std::string header = encode_header(h, data.values.size() * scalar_bytes(h.scalar), checksum);
   AtomicFile file(path);
   file.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
-  file.stream().write(payload.data(), static_cast<std::streamsize>(payload.size()));
+  for (std::size_t first = 0; first < data.values.size(); first += kChunk) {
+    encode_values(data.values, first, std::min(kChunk, data.values.size() - first), h.scalar, chunk);
+    file.stream().write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+  }
   file.commit();
 }
 

@@ -1,0 +1,174 @@
+#include "bake/bake.h"
+
+#include <chrono>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/passes.h"
+#include "bake/vertex_samples.h"
+#include "core/error.h"
+#include "sh/basis.h"
+#include "trace/scene.h"
+
+namespace prt::bake {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void validate_options(const BakeOptions& o) {
+  if (transfer::is_glossy(o.kind)) fail(std::string("bake: ") + transfer::kind_name(o.kind) + " needs a BRDF (glossy bake)");
+  if (o.bands < 1 || o.bands > sh::kMaxBands)
+    fail("--bands " + std::to_string(o.bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
+  if (o.samples < 1 || o.samples > (1 << 20)) fail("--samples " + std::to_string(o.samples) + " is out of range 1..1048576");
+  if (o.bounces < -1 || o.bounces > 64) fail("--bounces " + std::to_string(o.bounces) + " is out of range 0..64");
+  for (int c = 0; c < 3; ++c)
+    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
+}
+
+namespace {
+
+bool all_grey(const std::vector<glm::vec3>& albedo) {
+  for (const glm::vec3& a : albedo)
+    if (a.r != a.g || a.r != a.b) return false;
+  return true;
+}
+
+double pass_energy(const std::vector<float>& values, std::size_t vertex_stride, std::size_t channel_stride, int channels) {
+  double sum = 0.0;
+  for (std::size_t base = 0; base < values.size(); base += vertex_stride)
+    for (int c = 0; c < channels; ++c) sum += values[base + c * channel_stride];
+  return sum;
+}
+
+std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bounces_done, float ray_offset) {
+  nlohmann::ordered_json j;
+  j["tool"] = "prt 0.1.0";
+  j["kind"] = transfer::kind_name(o.kind);
+  j["bands"] = o.bands;
+  if (o.kind != transfer::Kind::unshadowed) {
+    j["samples"] = o.samples;
+    j["seed"] = o.seed;
+    j["sample_set"] = "owen-scrambled sobol, cosine-weighted hemisphere, per-vertex hashed rotation";
+    j["ray_offset"] = ray_offset;
+  }
+  if (o.kind == transfer::Kind::interreflected) {
+    j["bounces_requested"] = o.bounces < 0 ? std::string("auto") : std::to_string(o.bounces);
+    j["bounces"] = bounces_done;
+  }
+  if (mesh.albedo.empty())
+    j["albedo"] = {o.albedo.r, o.albedo.g, o.albedo.b};
+  else
+    j["albedo"] = "mesh";
+  return j.dump();
+}
+
+}  // namespace
+
+std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback) {
+  if (!mesh.albedo.empty()) return mesh.albedo;
+  return std::vector<glm::vec3>(mesh.positions.size(), fallback);
+}
+
+transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
+  validate_options(options);
+  BakeReport local_report;
+  BakeReport& rep = report ? *report : local_report;
+  rep = BakeReport{};
+
+  const std::vector<glm::vec3> albedo = effective_albedo(mesh, options.albedo);
+  const int channels = all_grey(albedo) ? 1 : 3;
+  const std::size_t n = static_cast<std::size_t>(options.bands) * options.bands;
+  const std::size_t vertices = mesh.positions.size();
+  const std::size_t stride = n * static_cast<std::size_t>(channels);
+
+  transfer::TransferData data;
+  transfer::Header& h = data.header;
+  h.kind = options.kind;
+  h.bands = static_cast<std::uint32_t>(options.bands);
+  h.channels = static_cast<std::uint32_t>(channels);
+  h.vertex_count = vertices;
+  h.triangle_count = mesh.indices.size() / 3;
+  h.mesh_fingerprint = mesh::fingerprint(mesh);
+
+  // Albedo-free transfer of the direct pass, then albedo applied per channel.
+  std::vector<float> geometric;
+  float ray_offset = 0.0f;
+  if (options.kind == transfer::Kind::unshadowed) {
+    auto start = std::chrono::steady_clock::now();
+    unshadowed_geometric(mesh, options.bands, options.threads, geometric);
+    rep.seconds_visibility = seconds_since(start);
+  }
+
+  std::unique_ptr<trace::Scene> scene;
+  LocalSampleSet samples;
+  std::vector<std::uint32_t> order;
+  PassContext ctx;
+  if (options.kind != transfer::Kind::unshadowed) {
+    auto start = std::chrono::steady_clock::now();
+    scene = std::make_unique<trace::Scene>(mesh, trace::SceneOptions{options.threads, true});
+    rep.seconds_build = seconds_since(start);
+    ray_offset = scene->ray_offset();
+    samples = make_local_sample_set(options.samples, options.bands, options.seed);
+    order = trace::morton_order(mesh.positions);
+    ctx = PassContext{&mesh, scene.get(), &samples, &order, options.seed, options.threads, options.progress};
+    start = std::chrono::steady_clock::now();
+    rep.rays_traced += shadowed_geometric(ctx, geometric);
+    rep.seconds_visibility = seconds_since(start);
+  }
+
+  if (channels == 1) {
+    data.values = std::move(geometric);
+    for (std::size_t v = 0; v < vertices; ++v)
+      for (std::size_t i = 0; i < n; ++i) data.values[v * n + i] *= albedo[v].r;
+  } else {
+    data.values.assign(vertices * stride, 0.0f);
+    for (std::size_t v = 0; v < vertices; ++v)
+      for (int c = 0; c < 3; ++c)
+        for (std::size_t i = 0; i < n; ++i) data.values[v * stride + c * n + i] = albedo[v][c] * geometric[v * n + i];
+    std::vector<float>().swap(geometric);
+  }
+  rep.pass_energy.push_back(pass_energy(data.values, stride, n, channels));
+
+  if (options.kind == transfer::Kind::interreflected) {
+    auto start = std::chrono::steady_clock::now();
+    const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
+    std::vector<float> prev = data.values, next;
+    for (int b = 1; b <= max_passes; ++b) {
+      const std::string label = "bake bounce " + std::to_string(b);
+      rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
+      for (std::size_t i = 0; i < next.size(); ++i) data.values[i] += next[i];
+      const double energy = pass_energy(next, stride, n, channels);
+      rep.pass_energy.push_back(energy);
+      rep.bounces_done = b;
+      prev.swap(next);
+      if (options.bounces < 0 && !(energy >= kBounceEnergyThreshold * rep.pass_energy.front())) break;
+    }
+    rep.seconds_bounces = seconds_since(start);
+  }
+
+  h.parameters_json = parameters_json(options, mesh, rep.bounces_done, ray_offset);
+  return data;
+}
+
+std::vector<mesh::VertexAttribute> pack_transfer_attributes(const transfer::TransferData& transfer) {
+  const transfer::Header& h = transfer.header;
+  if (transfer::is_glossy(h.kind)) fail("glTF export of glossy transfer matrices is not supported; use the .prt file");
+  const std::size_t per_vertex = h.values_per_vertex();
+  const std::size_t attributes = (per_vertex + 3) / 4;
+  std::vector<mesh::VertexAttribute> out(attributes);
+  for (std::size_t a = 0; a < attributes; ++a) {
+    out[a].name = "_PRT_T" + std::to_string(a);
+    out[a].values.assign(h.vertex_count, glm::vec4(0.0f));
+  }
+  for (std::size_t v = 0; v < h.vertex_count; ++v)
+    for (std::size_t k = 0; k < per_vertex; ++k) out[k / 4].values[v][static_cast<int>(k % 4)] = transfer.values[v * per_vertex + k];
+  return out;
+}
+
+}  // namespace prt::bake

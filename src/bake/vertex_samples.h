@@ -1,0 +1,26 @@
+#pragma once
+// Internal to prt_bake: the hemisphere sample set every vertex traces, and per-vertex frames.
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+namespace prt::bake {
+
+/// S cosine-distributed directions about +z (local frame) and the SH basis at each of them.
+struct LocalSampleSet {
+  int bands = 0;
+  std::vector<glm::vec3> directions;  ///< S unit vectors, z >= 0
+  std::vector<float> basis;           ///< S x bands^2, sample-major: basis[s * bands^2 + i] = Y_i(directions[s])
+};
+
+/// Builds the set for (samples, seed): sh::hemisphere_directions_cosine, basis in float.
+LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed);
+
+/// Rotation (columns t, b, n) taking the local frame to the world frame at a vertex with unit normal n.
+/// The tangent is Duff et al. 2017's branchless basis turned about n by an angle hashed from
+/// (seed, vertex), so the sample pattern differs from vertex to vertex but not from run to run.
+glm::mat3 vertex_frame(const glm::vec3& normal, std::uint32_t seed, std::uint64_t vertex);
+
+}  // namespace prt::bake

@@ -1,0 +1,146 @@
+// `prt bake`, `prt shade`, `prt info`, `prt compare` through the real binary: outputs, one-line errors,
+// no partial files, SIGINT, byte-identical files for any thread count.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/atomic_file.h"
+#include "mesh/writers.h"
+#include "support/run_prt.h"
+#include "support/shapes.h"
+
+using namespace prt;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string write_torus(const std::string& dir, int major, int minor) {
+  const mesh::Mesh m = test::torus(1.0f, 0.45f, major, minor);
+  const std::string path = dir + "/torus.ply";
+  mesh::write_ply(path, m.positions, {}, m.indices);
+  return path;
+}
+
+std::string write_constant_light(const std::string& dir) {
+  const std::string path = dir + "/white.json";
+  std::ofstream f(path);
+  f << R"({"bands": 1, "basis": "real-orthonormal-condon-shortley", "index": "l*(l+1)+m",
+           "frame": "right-handed, +Y up", "coefficients": [[3.5449077018, 3.5449077018, 3.5449077018]]})";
+  return path;
+}
+
+// True once `pid` runs the prt binary (after exec) and has installed its SIGINT handler.
+bool catches_sigint(pid_t pid) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+  if (ec || exe.filename() != "prt") return false;
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("SigCgt:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) & (1ull << (SIGINT - 1))) != 0;
+  return false;
+}
+
+bool contains(const std::string& haystack, const std::string& needle) { return haystack.find(needle) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("prt bake writes identical files for 1 and 2 threads and prt info reads them", "[bake][cli]") {
+  const std::string dir = test::fresh_temp_dir("bake_threads");
+  const std::string mesh = write_torus(dir, 32, 16);
+  auto r1 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads 1 -q -o " + dir + "/one.prt");
+  REQUIRE(r1.exit_code == 0);
+  auto r2 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads 2 -q -o " + dir + "/two.prt");
+  REQUIRE(r2.exit_code == 0);
+  CHECK(read_file(dir + "/one.prt") == read_file(dir + "/two.prt"));
+  auto info = test::run_prt("info " + dir + "/one.prt");
+  CHECK(info.exit_code == 0);
+  CHECK(contains(info.output, "kind: interreflected"));
+  CHECK(contains(info.output, "bands: 4 (16 coefficients)"));
+}
+
+TEST_CASE("prt shade under a white light equals the furnace radiance and compare of a file with itself is 0", "[bake][cli]") {
+  const std::string dir = test::fresh_temp_dir("shade_white");
+  const std::string mesh = write_torus(dir, 24, 12);
+  REQUIRE(test::run_prt("bake " + mesh + " --transfer unshadowed --bands 3 --albedo 0.5,0.5,0.5 -q -o " + dir + "/t.prt").exit_code == 0);
+  auto shade = test::run_prt("shade " + mesh + " " + dir + "/t.prt --light " + write_constant_light(dir) + " -o " + dir + "/out.ply");
+  REQUIRE(shade.exit_code == 0);
+  const mesh::ColourPly ply = mesh::read_ply_colours(dir + "/out.ply");
+  // Unshadowed Lambert under constant radiance 1 (c_0 = 2 sqrt(pi)): exit radiance = albedo.
+  for (const glm::vec3& c : ply.colours) REQUIRE(c.r == Approx(0.5f).epsilon(1e-5));
+  auto same = test::run_prt("compare " + dir + "/out.ply " + dir + "/out.ply");
+  CHECK(same.exit_code == 0);
+  CHECK(contains(same.output, "rms=0 rel_rms=0 max_abs=0 max_rel=0 vertices=" + std::to_string(ply.colours.size())));
+}
+
+TEST_CASE("prt bake and shade refuse bad input with one line and leave no file", "[bake][cli]") {
+  const std::string dir = test::fresh_temp_dir("bake_errors");
+  const std::string mesh = write_torus(dir, 12, 6);
+  std::ofstream(dir + "/mesh.xyz") << "not a mesh";
+  const std::size_t before = test::entries_in(dir);
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"bake " + dir + "/missing.obj -o " + dir + "/o.prt", "missing.obj"},
+      {"bake " + dir + "/mesh.xyz -o " + dir + "/o.prt", "mesh.xyz"},
+      {"bake " + mesh + " --transfer glossy -o " + dir + "/o.prt", "unknown transfer kind 'glossy'"},
+      {"bake " + mesh + " --bands 40 -o " + dir + "/o.prt", "--bands 40 is out of range"},
+      {"bake " + mesh + " --albedo 1,2 -o " + dir + "/o.prt", "--albedo: expected R,G,B"},
+      {"bake " + mesh + " -o " + dir + "/no/such/dir/o.prt", "output folder does not exist"},
+      {"shade " + mesh + " " + dir + "/missing.prt --light x.json -o " + dir + "/o.ply", "missing.prt"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    auto r = test::run_prt(c.args);
+    CHECK(r.exit_code != 0);
+    CHECK(contains(r.output, c.message));
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    CHECK(r.output.rfind("prt: ", 0) == 0);
+  }
+  CHECK(test::entries_in(dir) == before);
+
+  // A transfer baked for another mesh is refused by shade.
+  const std::string other = dir + "/other.ply";
+  const mesh::Mesh m = test::torus(1.0f, 0.45f, 13, 6);
+  mesh::write_ply(other, m.positions, {}, m.indices);
+  REQUIRE(test::run_prt("bake " + other + " --transfer unshadowed -q -o " + dir + "/other.prt").exit_code == 0);
+  auto mismatch = test::run_prt("shade " + mesh + " " + dir + "/other.prt --light " + write_constant_light(dir) + " -o " + dir + "/o.ply");
+  CHECK(mismatch.exit_code != 0);
+  CHECK(contains(mismatch.output, "transfer was baked for a different mesh"));
+  CHECK_FALSE(fs::exists(dir + "/o.ply"));
+}
+
+TEST_CASE("SIGINT during a bake leaves no output and no temporary", "[bake][cli]") {
+  const std::string dir = test::fresh_temp_dir("bake_sigint");
+  const std::string mesh = write_torus(dir, 200, 100);
+  const std::size_t before = test::entries_in(dir);
+  const std::string out = dir + "/o.prt";
+  pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    execl(test::prt_binary().c_str(), "prt", "bake", mesh.c_str(), "--transfer", "interreflected", "--samples", "2048",
+          "--bounces", "8", "-q", "-o", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Wait until prt has installed its SIGINT handler (bit 1 of SigCgt in /proc/<pid>/status), then
+  // give it a moment to be inside the bake.
+  for (int tries = 0; tries < 600 && !catches_sigint(pid); ++tries) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  REQUIRE(catches_sigint(pid));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  INFO("status " << status << " signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0));
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK_FALSE(fs::exists(out));
+  CHECK(test::entries_in(dir) == before);
+}

@@ -1,0 +1,43 @@
+#include "support/run_prt.h"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+
+#include <sys/wait.h>
+
+namespace prt::test {
+
+std::string prt_binary() { return std::string(PRT_BINARY_DIR) + "/src/cli/prt"; }
+
+RunResult run_prt(const std::string& arguments) {
+  RunResult result;
+  const std::string command = prt_binary() + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  std::size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return result;
+}
+
+std::string fresh_temp_dir(const std::string& name) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / "prt_tests" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+std::size_t entries_in(const std::string& dir) {
+  std::size_t count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    (void)entry;
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace prt::test

@@ -1,0 +1,24 @@
+#pragma once
+// Runs the real `prt` binary from tests and captures what it printed.
+#include <string>
+
+namespace prt::test {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs "<build>/src/cli/prt <arguments>" through the shell (arguments are not quoted for you).
+RunResult run_prt(const std::string& arguments);
+
+/// Path of the prt binary in the build tree.
+std::string prt_binary();
+
+/// A fresh empty folder under the system temp dir, named after `name`.
+std::string fresh_temp_dir(const std::string& name);
+
+/// Number of entries in a folder (to check that nothing, not even a temporary, was left behind).
+std::size_t entries_in(const std::string& dir);
+
+}  // namespace prt::test

@@ -1,0 +1,90 @@
+#include "support/shapes.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace prt::test {
+
+mesh::Mesh uv_sphere(int rings, int segments) {
+  mesh::Mesh m;
+  m.positions.push_back({0, 1, 0});
+  for (int i = 1; i < rings; ++i) {
+    const double theta = M_PI * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2 * M_PI * j / segments;
+      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+    }
+  }
+  m.positions.push_back({0, -1, 0});
+  const auto ring = [&](int i, int j) { return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments)); };
+  const std::uint32_t bottom = static_cast<std::uint32_t>(m.positions.size() - 1);
+  for (int j = 0; j < segments; ++j) {
+    m.indices.insert(m.indices.end(), {0u, ring(1, j + 1), ring(1, j)});
+    m.indices.insert(m.indices.end(), {bottom, ring(rings - 1, j), ring(rings - 1, j + 1)});
+  }
+  for (int i = 1; i < rings - 1; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.indices.insert(m.indices.end(), {ring(i, j), ring(i, j + 1), ring(i + 1, j)});
+      m.indices.insert(m.indices.end(), {ring(i, j + 1), ring(i + 1, j + 1), ring(i + 1, j)});
+    }
+  for (const glm::vec3& p : m.positions) m.normals.push_back(glm::normalize(p));
+  return m;
+}
+
+mesh::Mesh torus(float major_radius, float minor_radius, int major_segments, int minor_segments) {
+  mesh::Mesh m;
+  for (int i = 0; i < major_segments; ++i) {
+    const double u = 2 * M_PI * i / major_segments;
+    const glm::dvec3 centre(major_radius * std::cos(u), 0, major_radius * std::sin(u));
+    const glm::dvec3 radial(std::cos(u), 0, std::sin(u));
+    for (int j = 0; j < minor_segments; ++j) {
+      const double v = 2 * M_PI * j / minor_segments;
+      const glm::dvec3 n = radial * std::cos(v) + glm::dvec3(0, 1, 0) * std::sin(v);
+      m.positions.push_back(glm::vec3(centre + n * static_cast<double>(minor_radius)));
+      m.normals.push_back(glm::vec3(n));
+    }
+  }
+  const auto at = [&](int i, int j) {
+    return static_cast<std::uint32_t>((i % major_segments) * minor_segments + (j % minor_segments));
+  };
+  for (int i = 0; i < major_segments; ++i)
+    for (int j = 0; j < minor_segments; ++j) {
+      // Orientation: (d/dv) x (d/du) points along +n for this parametrisation.
+      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)});
+      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  return m;
+}
+
+namespace {
+// Appends a grid quad face: corner origin, edge vectors a and b (cells x cells), normal = a x b.
+void add_face(mesh::Mesh& m, const glm::vec3& origin, const glm::vec3& a, const glm::vec3& b, int cells) {
+  const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
+  const glm::vec3 n = glm::normalize(glm::cross(a, b));
+  for (int i = 0; i <= cells; ++i)
+    for (int j = 0; j <= cells; ++j) {
+      m.positions.push_back(origin + a * (static_cast<float>(i) / cells) + b * (static_cast<float>(j) / cells));
+      m.normals.push_back(n);
+    }
+  const auto at = [&](int i, int j) { return base + static_cast<std::uint32_t>(i * (cells + 1) + j); };
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+}
+}  // namespace
+
+mesh::Mesh open_box(float height, int cells) {
+  mesh::Mesh m;
+  const float h = height;
+  add_face(m, {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, cells);   // floor, normal +Y
+  add_face(m, {-1, 0, -1}, {2, 0, 0}, {0, h, 0}, cells);   // wall z = -1, normal +Z
+  add_face(m, {1, 0, 1}, {-2, 0, 0}, {0, h, 0}, cells);    // wall z = +1, normal -Z
+  add_face(m, {-1, 0, 1}, {0, 0, -2}, {0, h, 0}, cells);   // wall x = -1, normal +X
+  add_face(m, {1, 0, -1}, {0, 0, 2}, {0, h, 0}, cells);    // wall x = +1, normal -X
+  return m;
+}
+
+}  // namespace prt::test

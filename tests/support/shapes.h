@@ -1,0 +1,21 @@
+#pragma once
+// Meshes generated in code for tests: shapes whose geometry gives known answers.
+// All are counter-clockwise seen from the side their normals point to.
+#include "mesh/mesh.h"
+
+namespace prt::test {
+
+/// Unit sphere (UV sphere, `rings` x `segments`, poles without degenerate triangles), outward normals.
+mesh::Mesh uv_sphere(int rings, int segments);
+
+/// Torus about +Y with major radius R and minor radius r, outward normals (closed, concave inside).
+mesh::Mesh torus(float major_radius, float minor_radius, int major_segments, int minor_segments);
+
+/// Open box: floor y = 0 and four walls up to y = height over [-1,1]^2 in x,z, normals pointing inward
+/// (into the box), each face a grid of cells x cells quads. No lid: concave, open to the sky.
+mesh::Mesh open_box(float height, int cells);
+
+/// A closed mesh seen from inside is not something the baker handles (single-sided); these shapes
+/// are all meant to be seen from the side of their normals.
+
+}  // namespace prt::test
