@@ -1,1 +1,294 @@
-// placeholder: filled by the module's work
+#include "trace/scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <glm/common.hpp>
+#include <mutex>
+#include <numeric>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace prt::trace {
+
+// The batch storage is handed to Embree as RTCRay / RTCRayHit arrays: the layouts must match exactly.
+static_assert(sizeof(Ray) == sizeof(RTCRay) && alignof(Ray) == alignof(RTCRay));
+static_assert(offsetof(Ray, org_x) == offsetof(RTCRay, org_x) && offsetof(Ray, tnear) == offsetof(RTCRay, tnear));
+static_assert(offsetof(Ray, dir_x) == offsetof(RTCRay, dir_x) && offsetof(Ray, time) == offsetof(RTCRay, time));
+static_assert(offsetof(Ray, tfar) == offsetof(RTCRay, tfar) && offsetof(Ray, mask) == offsetof(RTCRay, mask));
+static_assert(offsetof(Ray, id) == offsetof(RTCRay, id) && offsetof(Ray, flags) == offsetof(RTCRay, flags));
+static_assert(sizeof(Hit) == sizeof(RTCHit) && alignof(Hit) == alignof(RTCHit));
+static_assert(offsetof(Hit, ng_x) == offsetof(RTCHit, Ng_x) && offsetof(Hit, u) == offsetof(RTCHit, u));
+static_assert(offsetof(Hit, v) == offsetof(RTCHit, v) && offsetof(Hit, prim_id) == offsetof(RTCHit, primID));
+static_assert(offsetof(Hit, geom_id) == offsetof(RTCHit, geomID) && offsetof(Hit, inst_id) == offsetof(RTCHit, instID));
+static_assert(RTC_MAX_INSTANCE_LEVEL_COUNT == 1);
+static_assert(sizeof(RayHit) == sizeof(RTCRayHit) && offsetof(RayHit, hit) == offsetof(RTCRayHit, hit));
+static_assert(kNoHit == RTC_INVALID_GEOMETRY_ID);
+
+namespace {
+
+const char* error_name(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_UNKNOWN:
+      return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
+  }
+  return "error";
+}
+
+// Bytes Embree holds, tracked by the device's memory monitor (called from Embree's build threads).
+struct MemoryCounter {
+  std::atomic<std::int64_t> now{0};
+  std::atomic<std::int64_t> peak{0};
+};
+
+bool monitor_memory(void* user, ssize_t bytes, bool post) {
+  auto* counter = static_cast<MemoryCounter*>(user);
+  // Allocations are reported before they happen (post == false) and frees after; count both once.
+  std::int64_t now = counter->now.fetch_add(bytes) + bytes;
+  std::int64_t peak = counter->peak.load();
+  while (now > peak && !counter->peak.compare_exchange_weak(peak, now)) {
+  }
+  return true;
+}
+
+// Message of the device's first error, recorded by Embree's error callback.
+struct ErrorLog {
+  std::mutex mutex;
+  std::string message;
+};
+
+void record_error(void* user, RTCError code, const char* text) {
+  auto* log = static_cast<ErrorLog*>(user);
+  std::lock_guard<std::mutex> lock(log->mutex);
+  if (log->message.empty())
+    log->message = std::string(error_name(code)) + (text && *text ? std::string(": ") + text : "");
+}
+
+}  // namespace
+
+struct Scene::Impl {
+  ErrorLog errors;
+  MemoryCounter memory;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<float> padded_positions;  // x,y,z per vertex + 1 float of padding; empty when shared
+  SceneStats stats;
+  BatchCall batch_call = BatchCall::stream;
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  // Throws prt::Error if Embree reported an error since the last check.
+  void check(const char* step) {
+    RTCError code = device ? rtcGetDeviceError(device) : rtcGetDeviceError(nullptr);
+    if (code == RTC_ERROR_NONE) return;
+    std::string message;
+    {
+      std::lock_guard<std::mutex> lock(errors.mutex);
+      message = errors.message.empty() ? error_name(code) : errors.message;
+    }
+    fail(std::string("trace: Embree ") + step + " failed: " + message);
+  }
+};
+
+RayBatch::RayBatch(std::size_t capacity) : rays_(std::max<std::size_t>(capacity, 1)) {}
+
+std::size_t RayBatch::occluded_count() const {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < size_; ++i) count += is_occluded(i) ? 1 : 0;
+  return count;
+}
+
+HitResult RayBatch::hit(std::size_t i) const {
+  const RayHit& r = rays_[i];
+  HitResult result;
+  if (r.hit.geom_id == kNoHit) return result;
+  result.prim_id = r.hit.prim_id;
+  result.t = r.ray.tfar;
+  result.u = r.hit.u;
+  result.v = r.hit.v;
+  result.ng = glm::vec3(r.hit.ng_x, r.hit.ng_y, r.hit.ng_z);
+  return result;
+}
+
+float ray_offset_for(const std::vector<glm::vec3>& positions) {
+  float max_abs = 0.0f;
+  for (const glm::vec3& p : positions) max_abs = std::max({max_abs, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  return std::ldexp(max_abs, -18);
+}
+
+Scene::Scene(const mesh::Mesh& mesh, const SceneOptions& options) : impl_(std::make_unique<Impl>()) {
+  const auto& positions = mesh.positions;
+  const auto& indices = mesh.indices;
+  if (indices.size() % 3 != 0) fail("trace: index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= positions.size())
+      fail("trace: triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(indices[i]) + " of " +
+           std::to_string(positions.size()));
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
+      fail("trace: vertex " + std::to_string(i) + " has a non-finite position");
+  if (positions.size() > 0xFFFFFFFFu) fail("trace: more than 2^32 vertices");
+
+  triangle_count_ = indices.size() / 3;
+  ray_offset_ = ray_offset_for(positions);
+  if (!positions.empty()) {
+    lo_ = hi_ = positions[0];
+    for (const glm::vec3& p : positions) {
+      lo_ = glm::min(lo_, p);
+      hi_ = glm::max(hi_, p);
+    }
+  }
+
+  Impl& im = *impl_;
+  im.batch_call = options.batch_call;
+  const std::string config = "threads=" + std::to_string(std::max(options.build_threads, 0));
+  im.device = rtcNewDevice(config.c_str());
+  if (!im.device) im.check("device creation");
+  rtcSetDeviceErrorFunction(im.device, record_error, &im.errors);
+  rtcSetDeviceMemoryMonitorFunction(im.device, monitor_memory, &im.memory);
+
+  im.scene = rtcNewScene(im.device);
+  im.check("scene creation");
+  rtcSetSceneFlags(im.scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+  rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_MEDIUM);
+
+  if (triangle_count_ > 0) {
+    RTCGeometry geometry = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    im.check("geometry creation");
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+    // Embree loads the last vertex with a 16-byte read: share the mesh's storage only if the vector's
+    // allocation extends past it.
+    im.stats.shares_positions = positions.capacity() > positions.size();
+    const void* vertex_data = positions.data();
+    if (!im.stats.shares_positions) {
+      im.padded_positions.assign(3 * positions.size() + 1, 0.0f);
+      std::memcpy(im.padded_positions.data(), positions.data(), positions.size() * sizeof(glm::vec3));
+      vertex_data = im.padded_positions.data();
+    }
+    im.stats.geometry_bytes = im.padded_positions.size() * sizeof(float);
+    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertex_data, 0,
+                               sizeof(glm::vec3), positions.size());
+    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices.data(), 0,
+                               3 * sizeof(std::uint32_t), triangle_count_);
+    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(im.scene, geometry, 0);
+    rtcReleaseGeometry(geometry);
+    im.check("geometry setup");
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  {
+    ScopedFlushDenormals ftz;
+    rtcCommitScene(im.scene);
+  }
+  im.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  im.check("BVH build");
+  im.stats.embree_bytes = static_cast<std::size_t>(std::max<std::int64_t>(im.memory.now.load(), 0));
+  im.stats.embree_peak_bytes = static_cast<std::size_t>(std::max<std::int64_t>(im.memory.peak.load(), 0));
+}
+
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+const SceneStats& Scene::stats() const { return impl_->stats; }
+
+void Scene::occluded(RayBatch& batch) const {
+  if (batch.empty()) return;
+  ScopedFlushDenormals ftz;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  if (impl_->batch_call == BatchCall::stream) {
+    rtcOccluded1M(impl_->scene, &context, reinterpret_cast<RTCRay*>(batch.data()), static_cast<unsigned>(batch.size()),
+                  sizeof(RayHit));
+  } else {
+    for (std::size_t i = 0; i < batch.size(); ++i)
+      rtcOccluded1(impl_->scene, &context, reinterpret_cast<RTCRay*>(&batch.data()[i].ray));
+  }
+}
+
+void Scene::intersect(RayBatch& batch) const {
+  if (batch.empty()) return;
+  ScopedFlushDenormals ftz;
+  RayHit* rays = batch.data();
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    rays[i].hit.geom_id = kNoHit;
+    rays[i].hit.prim_id = kNoHit;
+    rays[i].hit.inst_id = kNoHit;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  if (impl_->batch_call == BatchCall::stream) {
+    rtcIntersect1M(impl_->scene, &context, reinterpret_cast<RTCRayHit*>(rays), static_cast<unsigned>(batch.size()),
+                   sizeof(RayHit));
+  } else {
+    for (std::size_t i = 0; i < batch.size(); ++i)
+      rtcIntersect1(impl_->scene, &context, reinterpret_cast<RTCRayHit*>(&rays[i]));
+  }
+}
+
+// Spreads the low 10 bits of v to every third bit.
+static std::uint32_t spread_bits_10(std::uint32_t v) {
+  v &= 0x3FFu;
+  v = (v | (v << 16)) & 0x030000FFu;
+  v = (v | (v << 8)) & 0x0300F00Fu;
+  v = (v | (v << 4)) & 0x030C30C3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+std::uint32_t morton_code(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
+  std::uint32_t q[3];
+  for (int a = 0; a < 3; ++a) {
+    const float extent = hi[a] - lo[a];
+    const float unit = extent > 0.0f ? (p[a] - lo[a]) / extent : 0.0f;
+    const float scaled = std::clamp(unit, 0.0f, 1.0f) * 1024.0f;  // a NaN stays NaN and maps to 0 below
+    q[a] = scaled >= 1023.0f ? 1023u : (scaled > 0.0f ? static_cast<std::uint32_t>(scaled) : 0u);
+  }
+  return (spread_bits_10(q[0]) << 2) | (spread_bits_10(q[1]) << 1) | spread_bits_10(q[2]);
+}
+
+std::vector<std::uint32_t> morton_order(const std::vector<glm::vec3>& positions) {
+  std::vector<std::uint32_t> order(positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  if (positions.empty()) return order;
+  glm::vec3 lo = positions[0], hi = positions[0];
+  for (const glm::vec3& p : positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  // Sort (code, index) pairs: equal codes keep index order, the sort is stable by construction.
+  std::vector<std::uint64_t> keyed(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    keyed[i] = (std::uint64_t(morton_code(positions[i], lo, hi)) << 32) | i;
+  std::sort(keyed.begin(), keyed.end());
+  for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = static_cast<std::uint32_t>(keyed[i]);
+  return order;
+}
+
+}  // namespace prt::trace

@@ -1,0 +1,279 @@
+#pragma once
+// Ray queries on a triangle mesh: occlusion ("does anything lie on this segment?") and closest hit
+// (which triangle, where, how far), in batches, on Embree 3. This is the only module that includes
+// Embree; its types stay in scene.cpp.
+//
+// HOW TO TRACE (the baker's loop):
+//   Scene scene(mesh, options);                         // BVH build, once
+//   parallel_for(order.size(), 64, threads, [&](size_t begin, size_t end) {
+//     RayBatch batch;                                   // 256 rays, one per chunk, reused: no per-ray allocation
+//     for vertex i in order[begin, end):
+//       glm::vec3 o = scene.offset_origin(positions[i], normals[i]);
+//       for each group of 256 directions d:
+//         batch.clear(); for each d: batch.push(o, d);  // tnear 0, tfar infinity
+//         scene.occluded(batch);                        // rtcOccluded1M, INCOHERENT
+//         ... batch.is_occluded(k) ...
+//   });
+// `occluded` and `intersect` are const and may run concurrently from any number of threads, each with
+// its own batch. They set flush-to-zero / denormals-are-zero for the duration of the call.
+//
+// RAY OFFSET (self-intersection rule). A ray that starts on the surface must not hit the triangles it
+// starts on, and must still hit every triangle that really blocks it. prt lifts the origin off the
+// surface along the vertex (shading) normal n and does not skip any part of the ray:
+//     origin = p + n * eps,   eps = Scene::ray_offset() = 2^-18 * M,   tnear = 0,
+// where M is the largest |coordinate| of any vertex of the mesh (eps = 32..64 float ulps of M).
+// Derivation. (1) Float rounding: Embree intersects in float, and the origin p + n eps is itself rounded
+// to ~ulp(M)/2 per coordinate; a lift of a few ulps of M keeps it strictly above the planes of the
+// triangles around p. Without any lift (origin = p, tnear = 0) 99.5% of hemisphere rays from the
+// vertices of a tessellated sphere report a hit at t ~ 0 on their own triangles. (2) Convex surfaces:
+// the lifted origin lies above each adjacent face plane with normal n_f by eps (n.n_f) > 0, and any
+// direction d with d.n > 0 rises above at least one such plane (n is a positive combination of the
+// n_f), so on a convex mesh a lifted ray never re-enters: zero self-hits for every d.n > 0, down to
+// grazing d.n = 1e-3. (3) Concave creases: a ray leaving a crease vertex below the plane of an
+// adjacent face f must hit f. Lifted by eps, it meets f's plane at distance eps (n.n_f) / |d.n_f|; when
+// d nearly lies in that plane that point is beyond f's far edge and the ray may escape through the
+// opening. The fraction of such leaks is proportional to eps / (edge length), so eps must be as small
+// as float rounding allows, and independent of the mesh's size. (4) Why not tnear = eps with
+// origin = p instead: it still self-hits (2e-4 of sphere rays at eps = 1e-6 D), and in thin-shell
+// creases (a cup or room whose walls meet at shared, smooth-shaded vertices) it lets ~10% of rays pass
+// through the adjacent wall, which it skips together with the start of the ray.
+// Measured with RTC_SCENE_FLAG_ROBUST, 64 + 8 grazing hemisphere rays per vertex, against the exact
+// answer (double-precision brute force from p + n 1e-9 D); reproduced by `test_trace "[.sweep]"`, the
+// chosen rule checked in tests/trace/test_offset.cpp:
+//   rule                      sphere self-hits    bench blob (1.3M tris, 11808 rays)   cup creases
+//   origin p, tnear 0         99.5%               81% self-hits                        21% self-hits
+//   origin p, tnear 1e-5 D    0.002%              0                                    10.5% leak
+//   lift 1e-4 D               0                   1.0% leak                            0
+//   lift 1e-5 D               0                   0.12% leak                           0
+//   lift 2^-18 M (prt)        0                   0.008% leak (1 ray)                  0
+//   lift 2^-21 M              0                   0                                    0
+// with D the bounding-box diagonal (a unit-radius sphere centred at the origin or at x = 100: the
+// smallest safe lift there is ~5 ulps of M, which is why the rule scales with M rather than with D).
+// 2^-18 M keeps an 8x margin over the smallest lift measured safe, for normals that meet adjacent faces
+// at grazing angles (n.n_f down to ~0.1) and for meshes far from the origin.
+// Preconditions of the rule: n is unit length and points to the side the rays leave from (the front).
+//
+// DETERMINISM. For a fixed mesh, rays and options, every result (occluded flags, prim_id, t, u, v) is
+// bit-identical across runs, across the number of threads that trace, across the order in which
+// batches are traced, and across SceneOptions::build_threads: tests/trace/test_determinism.cpp traces
+// 327,696 rays (half from a bumpy sphere's vertices, half through its volume) against scenes built with
+// 1, 2 and all threads and twice with 2, traced by 1 or 2 threads, and compares every bit. This holds
+// because Embree 3's MEDIUM-quality builder (used here) is deterministic for any thread count since
+// Embree 2.5 (RenderKit/embree#20; the HIGH-quality spatial-split builder is not, and is not used).
+// Were a future Embree to build a different BVH per thread count, occlusion flags would still agree
+// except for rays that cross a shared edge exactly, while closest hit could name the other triangle of
+// such an edge (the same t); callers needing thread-independent output would then fix build_threads.
+//
+// BATCH SIZE AND CALLS. Measured on the bench mesh (bench::detailed_blob, 1.3M triangles, 1024
+// hemisphere rays per vertex, Morton order, 1 thread, whole passes including ray setup, Mrays per CPU
+// second on a shared 2-core Zen 5, mean of 3 interleaved runs, +-5% noise; RTC_SCENE_FLAG_ROBUST off):
+//   occlusion:   rtcOccluded1M batch 64: 8.3   128: 9.1   256: 9.8   512: 9.8   1024: 9.5
+//                loop of rtcOccluded1: 5.4                      -> rtcOccluded1M, 1.8x
+//   closest hit: rtcIntersect1M batch 64..1024: 5.2-5.4
+//                loop of rtcIntersect1: 5.1                     -> rtcIntersect1M (never slower)
+//   RTC_SCENE_FLAG_ROBUST (on by default, see SceneOptions::robust): 7.5 occlusion, 4.4 closest hit.
+// kDefaultBatchCapacity = 256 rays (20 KiB, stays in L1 while Embree reads it): 256 and 1024 are within
+// noise of each other (256 ahead in 4 of 6 comparisons, by 4% on average); 64-ray batches are 8-15%
+// slower. A baker with 1024 rays per vertex makes 4 calls per vertex. The COHERENT flag and ray packets gain nothing
+// (toolchain.md). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
+// array.
+#include <cassert>
+#include <cstddef>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace prt::trace {
+
+/// +infinity, the tfar of a ray without an end.
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+/// prim_id of a ray that hit nothing (Embree's RTC_INVALID_GEOMETRY_ID).
+inline constexpr std::uint32_t kNoHit = 0xFFFFFFFFu;
+/// Rays per RayBatch unless a capacity is given (see BATCH SIZE AND CALLS).
+inline constexpr std::size_t kDefaultBatchCapacity = 256;
+
+/// One ray, laid out exactly as Embree's RTCRay (48 bytes, 16-byte aligned; checked in scene.cpp).
+/// The ray is the segment origin + t * dir, t in [tnear, tfar]; dir need not be unit length (t is then
+/// in units of |dir|).
+struct alignas(16) Ray {
+  float org_x, org_y, org_z, tnear;
+  float dir_x, dir_y, dir_z, time;  ///< time: motion blur time, always 0 here
+  float tfar;                       ///< after Scene::occluded: -infinity if occluded
+  std::uint32_t mask, id, flags;    ///< mask: all bits; id: the ray's index; flags: 0
+};
+
+/// One hit record, laid out exactly as Embree's RTCHit (32 bytes).
+struct alignas(16) Hit {
+  float ng_x, ng_y, ng_z;  ///< geometric normal: towards the front (counter-clockwise) side, |ng| = 2 area
+  float u, v;              ///< barycentrics: point = (1-u-v) p0 + u p1 + v p2 of the triangle's indices
+  std::uint32_t prim_id;   ///< triangle index (indices[3 prim_id ..]), kNoHit if nothing was hit
+  std::uint32_t geom_id;   ///< 0 if hit, kNoHit if not
+  std::uint32_t inst_id;   ///< always kNoHit (no instancing)
+};
+
+/// Embree's RTCRayHit (80 bytes): a ray followed by its hit record.
+struct alignas(16) RayHit {
+  Ray ray;
+  Hit hit;
+};
+
+/// Closest-hit result of one ray.
+struct HitResult {
+  std::uint32_t prim_id = kNoHit;  ///< triangle index or kNoHit
+  float t = kInfinity;             ///< distance along the ray in units of |dir|; kInfinity if no hit
+  float u = 0.0f, v = 0.0f;        ///< barycentrics of the hit point (see Hit)
+  glm::vec3 ng{0.0f};              ///< geometric normal of the hit triangle (see Hit), unnormalised
+  bool hit() const { return prim_id != kNoHit; }
+};
+
+/// A reusable, fixed-capacity array of rays whose storage is handed to Embree as is. Keep one per
+/// worker (or per parallel_for chunk) and refill it for every query: a query overwrites tfar and the hit
+/// records. Not thread-safe; cheap to construct (one allocation of 80 bytes per ray of capacity).
+class RayBatch {
+ public:
+  /// Capacity in rays, >= 1.
+  explicit RayBatch(std::size_t capacity = kDefaultBatchCapacity);
+
+  std::size_t capacity() const { return rays_.size(); }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  bool full() const { return size_ == rays_.size(); }
+  /// Forgets all rays (capacity is kept).
+  void clear() { size_ = 0; }
+
+  /// Appends the ray origin + t dir, t in [tnear, tfar] (0 <= tnear <= tfar, tfar may be kInfinity) and
+  /// returns its index. Precondition: !full() (checked with assert only: this is the hot loop).
+  std::size_t push(const glm::vec3& origin, const glm::vec3& dir, float tnear = 0.0f, float tfar = kInfinity);
+
+  /// After Scene::occluded: whether ray i met any triangle within [tnear, tfar].
+  bool is_occluded(std::size_t i) const { return !(rays_[i].ray.tfar >= 0.0f); }
+  /// After Scene::occluded: how many of the size() rays were occluded.
+  std::size_t occluded_count() const;
+  /// After Scene::intersect: the closest hit of ray i.
+  HitResult hit(std::size_t i) const;
+
+  /// Raw Embree-layout records [0, size()) (for Scene and for callers that fill rays themselves).
+  RayHit* data() { return rays_.data(); }
+  const RayHit* data() const { return rays_.data(); }
+
+ private:
+  std::vector<RayHit> rays_;  // capacity() records, all 16-byte aligned
+  std::size_t size_ = 0;
+};
+
+inline std::size_t RayBatch::push(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {
+  assert(size_ < rays_.size());
+  RayHit& r = rays_[size_];
+  r.ray = Ray{origin.x,
+              origin.y,
+              origin.z,
+              tnear,
+              dir.x,
+              dir.y,
+              dir.z,
+              0.0f,
+              tfar,
+              0xFFFFFFFFu,
+              static_cast<std::uint32_t>(size_),
+              0u};
+  return size_++;
+}
+
+/// How Scene::occluded / intersect hand a batch to Embree.
+enum class BatchCall {
+  stream,  ///< one rtcOccluded1M / rtcIntersect1M call per batch (INCOHERENT): the fastest, the default
+  single,  ///< a loop of rtcOccluded1 / rtcIntersect1 over the batch (kept to measure the difference)
+};
+
+/// How a Scene is built.
+struct SceneOptions {
+  /// Threads for the BVH build (Embree device "threads="); 0 = all hardware threads. Queries run on the
+  /// calling threads whatever this is.
+  int build_threads = 0;
+  /// RTC_SCENE_FLAG_ROBUST: watertight triangle tests that also count hits at exactly t = tnear, 20%
+  /// slower. On by default for contacts: where a vertex lies exactly on another surface (a
+  /// block standing on a floor, both at y = 0), its rays into that surface start exactly in its plane
+  /// and hit it at t = 0; without the flag Embree misses them (Cornell box: 3-5% of all vertex rays,
+  /// half the lower hemisphere of every contact vertex, leak under the blocks). On a mesh without exact
+  /// contacts it changes almost nothing (1 of 84M bench rays) and may be turned off for speed.
+  bool robust = true;
+  /// How batches are traced (see BatchCall); the results are bit-identical either way (tested).
+  BatchCall batch_call = BatchCall::stream;
+};
+
+/// What building the scene measured.
+struct SceneStats {
+  double build_seconds = 0.0;         ///< wall time of the BVH build (rtcCommitScene)
+  std::size_t embree_bytes = 0;       ///< bytes Embree holds now (BVH + its own buffers)
+  std::size_t embree_peak_bytes = 0;  ///< most bytes Embree held at once (during the build)
+  std::size_t geometry_bytes = 0;     ///< bytes of vertex/index data held by the Scene itself
+  bool shares_positions = false;      ///< vertex buffer is the Mesh's own storage (no copy)
+};
+
+/// An Embree device and a scene with one static triangle geometry built from a mesh.
+///
+/// Buffers: the index buffer is always the mesh's own `indices` storage; the vertex buffer is the mesh's
+/// `positions` storage when its capacity exceeds its size (Embree reads 16 bytes at the last vertex, so
+/// 4 bytes of slack must follow it; `positions.reserve(size + 1)` guarantees that), else a padded copy.
+/// Therefore the Mesh must outlive the Scene and its positions/indices must not change or reallocate
+/// while the Scene exists.
+class Scene {
+ public:
+  /// Builds the BVH. Throws prt::Error("trace: <problem>") for: index count not a multiple of 3, an
+  /// index >= positions.size(), a non-finite position, or any Embree error (its message included).
+  /// A mesh without triangles gives a scene where every ray misses.
+  explicit Scene(const mesh::Mesh& mesh, const SceneOptions& options = {});
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+  Scene(Scene&&) noexcept;
+  Scene& operator=(Scene&&) noexcept;
+
+  /// Any-hit query for batch rays [0, size()) with one rtcOccluded1M call (INCOHERENT; see BatchCall):
+  /// afterwards batch.is_occluded(i) tells whether ray i meets a triangle (either side) within
+  /// [tnear, tfar].
+  void occluded(RayBatch& batch) const;
+
+  /// Closest-hit query for batch rays [0, size()) with one rtcIntersect1M call (INCOHERENT; see
+  /// BatchCall): afterwards batch.hit(i) gives the nearest triangle in [tnear, tfar] (either side).
+  void intersect(RayBatch& batch) const;
+
+  /// eps of the ray offset rule (see the top of this header), in mesh units.
+  float ray_offset() const { return ray_offset_; }
+  /// p + n * ray_offset(): where a ray leaving the surface point p with unit normal n starts.
+  glm::vec3 offset_origin(const glm::vec3& p, const glm::vec3& n) const { return p + n * ray_offset_; }
+
+  /// Bounding box of the mesh's referenced and unreferenced vertices (zero box for an empty mesh).
+  glm::vec3 bounds_lo() const { return lo_; }
+  glm::vec3 bounds_hi() const { return hi_; }
+  std::size_t triangle_count() const { return triangle_count_; }
+  const SceneStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  float ray_offset_ = 0.0f;
+  glm::vec3 lo_{0.0f}, hi_{0.0f};
+  std::size_t triangle_count_ = 0;
+};
+
+/// eps of the ray offset rule for vertices `positions`: 2^-18 * the largest |coordinate| of any vertex (0
+/// for no vertices). Scene::ray_offset() is this value for the mesh's positions.
+float ray_offset_for(const std::vector<glm::vec3>& positions);
+
+/// A permutation of [0, positions.size()) visiting the vertices in Morton (Z-curve) order: each
+/// coordinate is quantised to 10 bits over the bounding box, the 30-bit interleaved codes are sorted
+/// stably (equal codes keep index order). Deterministic. Tracing vertices in this order keeps
+/// consecutive vertices' rays in the same BVH nodes: 1.25x faster than file order on the Stanford
+/// dragon (toolchain.md), 1.05-1.15x on the bench blob, whose subdivision order is already coherent.
+std::vector<std::uint32_t> morton_order(const std::vector<glm::vec3>& positions);
+
+/// The 30-bit Morton code of p quantised over [lo, hi] (10 bits per axis, x in the highest bit of each
+/// triple). Points outside the box are clamped to it.
+std::uint32_t morton_code(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);
+
+}  // namespace prt::trace

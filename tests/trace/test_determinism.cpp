@@ -1,0 +1,124 @@
+// Results of occluded / intersect are bit-identical across BVH build thread counts, repeated builds and
+// the number of threads that trace.
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <cstring>
+#include <glm/geometric.hpp>
+#include <random>
+#include <vector>
+
+#include "bench_meshes.h"
+#include "core/parallel.h"
+#include "trace/scene.h"
+
+using namespace prt;
+
+namespace {
+
+// Every result bit of a pass: occlusion flags and closest-hit (prim_id, t, u, v) per ray.
+struct Results {
+  std::vector<std::uint8_t> occluded;
+  std::vector<std::uint32_t> prim_id;
+  std::vector<float> t, u, v;
+};
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+// Rays: from every vertex (offset origin) 4 directions in the upper hemisphere, and as many through
+// the mesh's bounds in random directions; rays/1024 batches traced by `threads` workers.
+Results trace_all(const trace::Scene& scene, const mesh::Mesh& m, int threads) {
+  const std::size_t per_vertex = 4;
+  const std::size_t count = m.positions.size() * per_vertex * 2;
+  Results r;
+  r.occluded.resize(count);
+  r.prim_id.resize(count);
+  r.t.resize(count);
+  r.u.resize(count);
+  r.v.resize(count);
+  const auto dirs = bench::hemisphere_directions(per_vertex);
+  const std::size_t batch_size = 1024;
+  parallel_for((count + batch_size - 1) / batch_size, 1, threads, [&](std::size_t b0, std::size_t b1) {
+    trace::RayBatch occlusion(batch_size), closest(batch_size);
+    for (std::size_t b = b0; b < b1; ++b) {
+      occlusion.clear();
+      closest.clear();
+      const std::size_t begin = b * batch_size, end = std::min(count, begin + batch_size);
+      for (std::size_t i = begin; i < end; ++i) {
+        glm::vec3 o, d;
+        const std::size_t v = (i / per_vertex) % m.positions.size();
+        if (i < count / 2) {
+          glm::vec3 t, bt;
+          bench::orthonormal_frame(m.normals[v], t, bt);
+          const glm::vec3& l = dirs[i % per_vertex];
+          o = scene.offset_origin(m.positions[v], m.normals[v]);
+          d = t * l.x + bt * l.y + m.normals[v] * l.z;
+        } else {
+          // Counter-based random ray i: independent of which thread builds it.
+          std::mt19937 rng(static_cast<std::uint32_t>(i));
+          std::uniform_real_distribution<float> unit(-1.5f, 1.5f);
+          o = glm::vec3(unit(rng), unit(rng), unit(rng));
+          d = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)) + glm::vec3(1e-3f));
+        }
+        occlusion.push(o, d);
+        closest.push(o, d);
+      }
+      scene.occluded(occlusion);
+      scene.intersect(closest);
+      for (std::size_t i = begin; i < end; ++i) {
+        r.occluded[i] = occlusion.is_occluded(i - begin);
+        const trace::HitResult h = closest.hit(i - begin);
+        r.prim_id[i] = h.prim_id;
+        r.t[i] = h.t;
+        r.u[i] = h.u;
+        r.v[i] = h.v;
+      }
+    }
+  });
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("results are identical for 1 and 2 build threads, repeated builds and 1 or 2 tracing threads", "[trace]") {
+  // 40,962 vertices, 81,920 triangles, 327,696 rays (half from the surface, half through the volume).
+  const mesh::Mesh m = bench::bumpy_icosphere(6, 0.35f);
+  trace::SceneOptions one, two;
+  one.build_threads = 1;
+  two.build_threads = 2;
+  const trace::Scene scene1(m, one);
+  const Results reference = trace_all(scene1, m, 1);
+  std::size_t occluded = 0, hits = 0;
+  for (std::size_t i = 0; i < reference.occluded.size(); ++i) {
+    occluded += reference.occluded[i];
+    hits += reference.prim_id[i] != trace::kNoHit;
+  }
+  CHECK(occluded == hits);  // occlusion and closest hit see the same triangles
+  CHECK(occluded > reference.occluded.size() / 5);
+
+  auto check_same = [&](const Results& r) {
+    CHECK(r.occluded == reference.occluded);
+    CHECK(r.prim_id == reference.prim_id);
+    CHECK(same_bits(r.t, reference.t));
+    CHECK(same_bits(r.u, reference.u));
+    CHECK(same_bits(r.v, reference.v));
+  };
+  INFO("1 build thread, traced by 2 threads");
+  check_same(trace_all(scene1, m, 2));
+  {
+    INFO("2 build threads, traced by 2 threads");
+    const trace::Scene scene2(m, two);
+    check_same(trace_all(scene2, m, 2));
+  }
+  {
+    INFO("2 build threads, built again, traced by 1 thread");
+    const trace::Scene scene2_again(m, two);
+    check_same(trace_all(scene2_again, m, 1));
+  }
+  {
+    INFO("all hardware threads");
+    const trace::Scene scene_all(m);
+    check_same(trace_all(scene_all, m, 2));
+  }
+}
