@@ -210,6 +210,7 @@ struct Loader {
   RawMesh raw;
   std::vector<std::uint8_t> visited;  // the hierarchy must be a forest: each node reached once
   bool any_albedo_source = false, any_texture = false, any_skin_or_morph = false;
+  bool any_emission = false, any_emissive_texture = false;
   std::size_t primitives_without_normals = 0, primitives_with_bad_normals = 0, skipped_modes = 0;
 
   void visit(int node_index, const glm::dmat4& parent, int depth) {
@@ -301,6 +302,25 @@ struct Loader {
 
     add_normals(prim, linear, count, what);
     add_albedo(prim, count, what);
+    add_emission(prim, count);
+  }
+
+  // emissiveFactor times KHR_materials_emissive_strength.emissiveStrength (glTF spec and the extension's).
+  void add_emission(const tinygltf::Primitive& prim, std::size_t count) {
+    glm::dvec3 emission(0.0);
+    if (prim.material >= 0 && std::size_t(prim.material) < model.materials.size()) {
+      const tinygltf::Material& material = model.materials[std::size_t(prim.material)];
+      if (material.emissiveFactor.size() >= 3)
+        emission = glm::dvec3(material.emissiveFactor[0], material.emissiveFactor[1], material.emissiveFactor[2]);
+      const auto ext = material.extensions.find("KHR_materials_emissive_strength");
+      if (ext != material.extensions.end() && ext->second.IsObject() && ext->second.Has("emissiveStrength")) {
+        const tinygltf::Value& strength = ext->second.Get("emissiveStrength");
+        if (strength.IsNumber()) emission *= strength.GetNumberAsDouble();
+      }
+      if (material.emissiveTexture.index >= 0) any_emissive_texture = true;
+    }
+    if (emission != glm::dvec3(0.0)) any_emission = true;
+    raw.emission.insert(raw.emission.end(), count, glm::vec3(emission));
   }
 
   void add_normals(const tinygltf::Primitive& prim, const glm::dmat3& linear, std::size_t count,
@@ -411,6 +431,8 @@ RawMesh load_gltf(const std::string& path, bool binary) {
     notes.notes.push_back("base colour textures are ignored; albedo uses baseColorFactor and COLOR_0");
   if (loader.any_skin_or_morph) notes.notes.push_back("skins and morph targets are ignored (the bind pose is used)");
   if (!loader.any_albedo_source) raw.albedo.clear();
+  if (!loader.any_emission) raw.emission.clear();
+  if (loader.any_emissive_texture) notes.notes.push_back("emissive textures are ignored; emission uses emissiveFactor");
   std::string reason;
   if (loader.primitives_without_normals > 0)
     reason = std::to_string(loader.primitives_without_normals) + " primitives have no normals";

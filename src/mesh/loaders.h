@@ -21,6 +21,7 @@ struct RawMesh {
   /// Why some normals are computed, for the stderr note (e.g. "the file has no normals").
   std::string computed_normals_reason;
   std::vector<glm::vec3> albedo;       ///< empty or one per position (linear, not yet clamped)
+  std::vector<glm::vec3> emission;     ///< empty or one per position (linear radiance, not yet clamped)
   std::vector<std::uint32_t> indices;  ///< 3 per triangle; each loader has range-checked them
   std::size_t skipped_polygons = 0;    ///< faces of fewer than 3 vertices, counted as degenerate
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives

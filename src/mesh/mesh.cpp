@@ -159,6 +159,20 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
     result.albedo_from_file = true;
   }
 
+  // Emission: NaN and negative values -> 0; empty if nothing emits.
+  if (!raw.emission.empty()) {
+    bool any = false;
+    for (glm::vec3& e : raw.emission)
+      for (int c = 0; c < 3; ++c) {
+        if (!(e[c] > 0.0f)) e[c] = 0.0f;
+        any = any || e[c] > 0.0f;
+      }
+    if (any) {
+      mesh.emission = std::move(raw.emission);
+      result.emission_from_file = true;
+    }
+  }
+
   if (!quiet)
     for (const std::string& note : result.notes) std::cerr << path << ": " << note << "\n";
   if (report) *report = std::move(result);

@@ -37,6 +37,14 @@
 //   base colour 1. If no primitive has a material or COLOR_0, albedo is empty. Base colour textures
 //   are ignored (one note on stderr).
 // Albedo is empty when the file gives none; the caller then chooses a default.
+//
+// EMISSION (linear radiance leaving the front face, per vertex, >= 0; NaN and negative values become 0):
+// - OBJ: the MTL "Ke" of the faces' materials, averaged per vertex over its distinct materials as for
+//   Kd; faces without a material count as 0.
+// - glTF: the material's emissiveFactor times KHR_materials_emissive_strength's emissiveStrength (1 if
+//   absent); primitives without a material emit 0. Emissive textures are ignored.
+// - PLY: none.
+// Emission is empty when nothing in the file emits (every value 0).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -50,6 +58,7 @@ struct Mesh {
   std::vector<glm::vec3> positions;    ///< in the file's units and frame (glTF: node transforms applied)
   std::vector<glm::vec3> normals;      ///< unit length, one per vertex
   std::vector<glm::vec3> albedo;       ///< linear diffuse reflectance in [0,1] per vertex; empty if none given
+  std::vector<glm::vec3> emission;     ///< linear emitted radiance (>= 0) per vertex; empty if nothing emits
   std::vector<std::uint32_t> indices;  ///< 3 per triangle, counter-clockwise front faces; degenerate removed
 
   std::size_t vertex_count() const { return positions.size(); }
@@ -62,6 +71,7 @@ struct LoadReport {
   bool normals_computed = false;          ///< some vertices had no (usable) file normal: area-weighted ones computed
   std::size_t computed_normal_count = 0;  ///< how many vertices got computed normals
   bool albedo_from_file = false;          ///< albedo came from materials or vertex colours
+  bool emission_from_file = false;        ///< some material emits (OBJ Ke, glTF emissiveFactor)
   std::size_t skipped_primitives = 0;     ///< glTF primitives in point/line modes or without POSITION
   std::vector<std::string> notes;         ///< the one-line notes printed on stderr (also when quiet)
 };

@@ -220,6 +220,24 @@ RawMesh load_obj(const std::string& path) {
     for (std::size_t i = 0; i < vertex_count; ++i)
       if (counts[i] > 0) raw.albedo[i] = glm::vec3(sums[i] / double(counts[i]));
   }
+
+  // Emission: the mean Ke of the distinct materials of the faces using each position (0 without one).
+  bool any_emission = false;
+  for (const tinyobj::material_t& m : materials)
+    any_emission = any_emission || m.emission[0] != 0 || m.emission[1] != 0 || m.emission[2] != 0;
+  if (any_material && any_emission) {
+    std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
+    std::vector<int> counts(vertex_count, 0);
+    position_materials.for_each([&](std::uint32_t position, int material) {
+      if (material >= 0)
+        sums[position] += glm::dvec3(materials[material].emission[0], materials[material].emission[1],
+                                     materials[material].emission[2]);
+      counts[position] += 1;
+    });
+    raw.emission.assign(vertex_count, glm::vec3(0.0f));
+    for (std::size_t i = 0; i < vertex_count; ++i)
+      if (counts[i] > 0) raw.emission[i] = glm::vec3(sums[i] / double(counts[i]));
+  }
   return raw;
 }
 

@@ -1,0 +1,195 @@
+// Text exports: three.js Object JSON, Unity and Godot JSON, Filament sh.txt; and the dispatch.
+#include <cstdlib>
+#include <iomanip>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "probes/engine_sh.h"
+#include "probes/exporters.h"
+#include "probes/probe_file.h"
+
+namespace prt::probes {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json layout_json(const ProbeSet& p) {
+  if (p.layout == ProbeSet::Layout::grid)
+    return {{"type", "grid"},
+            {"counts", {p.grid.counts[0], p.grid.counts[1], p.grid.counts[2]}},
+            {"bounds", {{p.grid.lo.x, p.grid.lo.y, p.grid.lo.z}, {p.grid.hi.x, p.grid.hi.y, p.grid.hi.z}}},
+            {"order", "x fastest, then y, then z"},
+            {"position", "cell centres"}};
+  return {{"type", "points"}};
+}
+
+// Floats as written: the float value itself (shortest round-trip digits of the float).
+Json nine_flat(const Sh9& c) {
+  Json out = Json::array();
+  for (const glm::dvec3& v : c)
+    for (int k = 0; k < 3; ++k) out.push_back(static_cast<float>(v[k]));
+  return out;
+}
+
+Json channel_major(const Sh9& c) {
+  Json out = Json::array();
+  for (int k = 0; k < 3; ++k)
+    for (const glm::dvec3& v : c) out.push_back(static_cast<float>(v[k]));
+  return out;
+}
+
+std::vector<int> invalid_indices(const ProbeSet& p) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < p.count(); ++i)
+    if (!p.valid[i]) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+}  // namespace
+
+Format parse_format(const std::string& name) {
+  if (name == "prt") return Format::prt;
+  if (name == "threejs") return Format::threejs;
+  if (name == "unity") return Format::unity;
+  if (name == "godot") return Format::godot;
+  if (name == "filament") return Format::filament;
+  if (name == "gltf") return Format::gltf;
+  if (name == "bevy") return Format::bevy;
+  fail("--format: unknown format '" + name + "' (expected prt, threejs, unity, godot, filament, gltf or bevy)");
+}
+
+const char* format_name(Format format) {
+  switch (format) {
+    case Format::prt: return "prt";
+    case Format::threejs: return "threejs";
+    case Format::unity: return "unity";
+    case Format::godot: return "godot";
+    case Format::filament: return "filament";
+    case Format::gltf: return "gltf";
+    case Format::bevy: return "bevy";
+  }
+  return "?";
+}
+
+std::string format_threejs(const ProbeSet& p) {
+  check_probe_set(p, "three.js export");
+  Json children = Json::array();
+  for (std::size_t i = 0; i < p.count(); ++i) {
+    if (!p.valid[i]) continue;
+    const glm::vec3& x = p.positions[i];
+    Json probe;
+    probe["type"] = "LightProbe";
+    probe["name"] = "probe " + std::to_string(i);
+    probe["layers"] = 1;
+    probe["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x.x, x.y, x.z, 1};  // column-major translation
+    probe["up"] = {0, 1, 0};
+    probe["color"] = 16777215;
+    probe["intensity"] = 1;
+    probe["sh"] = nine_flat(threejs_coefficients(p.probe(i)));
+    probe["userData"] = {{"index", i}, {"backface_fraction", p.backface_fraction[i]}};
+    children.push_back(probe);
+  }
+  Json group;
+  group["type"] = "Group";
+  group["name"] = "prt probes";
+  group["layers"] = 1;
+  group["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  group["up"] = {0, 1, 0};
+  group["userData"] = {{"prt", {{"format", "prt-probes-threejs"},
+                                {"version", 1},
+                                {"count", p.count()},
+                                {"layout", layout_json(p)},
+                                {"invalid", invalid_indices(p)},
+                                {"sky", nine_flat(threejs_coefficients(p.sky))},
+                                {"note", "LightProbe lighting in three.js is global: add one probe (or a blend) at a time"}}}};
+  group["children"] = children;
+  Json doc;
+  doc["metadata"] = {{"version", 4.6}, {"type", "Object"}, {"generator", "prt probes"}};
+  doc["object"] = group;
+  return doc.dump(1) + "\n";
+}
+
+std::string format_unity(const ProbeSet& p) {
+  check_probe_set(p, "Unity export");
+  Json probes = Json::array();
+  for (std::size_t i = 0; i < p.count(); ++i) {
+    const glm::dvec3 u = to_unity_frame(glm::dvec3(p.positions[i]));
+    probes.push_back({{"index", i},
+                      {"position", {static_cast<float>(u.x), static_cast<float>(u.y), static_cast<float>(u.z)}},
+                      {"valid", p.valid[i] != 0},
+                      {"sh", channel_major(unity_coefficients(p.probe(i)))}});
+  }
+  Json doc;
+  doc["format"] = "prt-probes-unity";
+  doc["version"] = 1;
+  doc["frame"] = "Unity (left-handed, +Y up): x = -x of prt's right-handed frame, as UnityGLTF imports glTF";
+  doc["sh_layout"] = "SphericalHarmonicsL2: sh[channel * 9 + i], pre-scaled so that ShadeSH9 returns E/pi";
+  doc["count"] = p.count();
+  doc["probes"] = probes;
+  return doc.dump(1) + "\n";
+}
+
+std::string format_godot(const ProbeSet& p) {
+  check_probe_set(p, "Godot export");
+  Json probes = Json::array();
+  for (std::size_t i = 0; i < p.count(); ++i) {
+    const glm::vec3& x = p.positions[i];
+    probes.push_back({{"index", i},
+                      {"position", {x.x, x.y, x.z}},
+                      {"valid", p.valid[i] != 0},
+                      {"sh", nine_flat(godot_coefficients(p.probe(i)))}});
+  }
+  Json doc;
+  doc["format"] = "prt-probes-godot";
+  doc["version"] = 1;
+  doc["frame"] = "Godot (right-handed, +Y up), LightmapGI node with identity transform";
+  doc["sh_layout"] = "LightmapGIData probe_data[\"sh\"]: 9 Colors per point (r,g,b), radiance / pi, no Condon-Shortley phase";
+  doc["count"] = p.count();
+  doc["probes"] = probes;
+  return doc.dump(1) + "\n";
+}
+
+std::string format_filament(const ProbeSet& p, const std::string& probe) {
+  check_probe_set(p, "Filament export");
+  sh::RgbCoefficients chosen;
+  if (probe == "sky") {
+    chosen = p.sky;
+  } else {
+    char* end = nullptr;
+    const long index = std::strtol(probe.c_str(), &end, 10);
+    if (probe.empty() || *end != '\0' || index < 0 || static_cast<std::size_t>(index) >= p.count())
+      fail("--probe: expected 'sky' or a probe index in 0.." + std::to_string(p.count() - 1) + ", got '" + probe + "'");
+    if (!p.valid[static_cast<std::size_t>(index)])
+      fail("--probe: probe " + probe + " is invalid (inside geometry); choose another");
+    chosen = p.probe(static_cast<std::size_t>(index));
+  }
+  const Sh9 c = filament_coefficients(chosen);
+  std::ostringstream out;
+  int i = 0;
+  for (int l = 0; l < 3; ++l)
+    for (int m = -l; m <= l; ++m, ++i) {
+      out << "(";
+      for (int k = 0; k < 3; ++k)
+        out << (k ? ", " : "") << std::fixed << std::setprecision(15) << std::setw(18) << c[i][k];
+      out << "); // L" << l << m << ", irradiance, pre-scaled base\n";
+    }
+  return out.str();
+}
+
+void export_probes(const ProbeSet& probes, Format format, const std::string& path, const ExportOptions& options) {
+  switch (format) {
+    case Format::prt: write_probe_file(path, probes); return;
+    case Format::threejs: write_file_atomically(path, format_threejs(probes)); return;
+    case Format::unity: write_file_atomically(path, format_unity(probes)); return;
+    case Format::godot: write_file_atomically(path, format_godot(probes)); return;
+    case Format::filament: write_file_atomically(path, format_filament(probes, options.probe)); return;
+    case Format::bevy: write_file_atomically(path, format_bevy_ktx2(probes)); return;
+    case Format::gltf: write_gltf(probes, path, options); return;
+  }
+}
+
+}  // namespace prt::probes

@@ -1,0 +1,67 @@
+// prt's own render of the three.js example page's view (probes/threejs/index.html), for the browser
+// test: a unit sphere seen by an orthographic camera on +Z (+Y up) spanning [-1.1, 1.1]^2 of a
+// size x size image; each pixel centre inside the sphere gets albedo * E(n) / pi from the probe
+// (sh::irradiance of its 3-band truncation, what three.js evaluates), clamped to [0, 1] and encoded
+// with the sRGB transfer function (three.js's output encoding, no tone mapping), quantised to 8 bits.
+//
+// Usage: probe_sphere_reference FILE.prtprobes PROBE_INDEX ALBEDO SIZE OUT.rgba
+// Writes size * size RGBA bytes, rows from the top; alpha 255 marks pixels to compare (inside radius
+// 0.97 of the disc, away from the silhouette where rasterisation decides coverage), 0 the rest.
+// Prints the fraction of compared pixels whose value clipped at 1.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "probes/probe_file.h"
+#include "sh/zonal.h"
+
+int main(int argc, char** argv) {
+  if (argc != 6) {
+    std::fprintf(stderr, "usage: %s FILE.prtprobes PROBE_INDEX ALBEDO SIZE OUT.rgba\n", argv[0]);
+    return 2;
+  }
+  try {
+    const prt::probes::ProbeSet set = prt::probes::read_probe_file(argv[1]);
+    const std::size_t index = std::strtoul(argv[2], nullptr, 10);
+    const double albedo = std::strtod(argv[3], nullptr);
+    const int size = std::atoi(argv[4]);
+    if (index >= set.count()) prt::fail("probe index out of range");
+    prt::sh::RgbCoefficients c = set.probe(index);
+    if (c.bands > 3) c = c.truncated(3);
+    std::vector<unsigned char> out(static_cast<std::size_t>(size) * size * 4, 0);
+    std::size_t compared = 0, clipped = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const double u = -1.1 + 2.2 * (x + 0.5) / size, v = 1.1 - 2.2 * (y + 0.5) / size;
+        const double r2 = u * u + v * v;
+        if (r2 >= 1.0) continue;
+        const glm::dvec3 n(u, v, std::sqrt(1.0 - r2));
+        const glm::dvec3 e = prt::sh::irradiance(c, n) * (albedo / 3.14159265358979323846);
+        unsigned char* px = out.data() + 4 * (static_cast<std::size_t>(y) * size + x);
+        bool clip = false;
+        for (int k = 0; k < 3; ++k) {
+          double l = std::min(std::max(e[k], 0.0), 1.0);
+          clip = clip || e[k] > 1.0;
+          const double s = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+          px[k] = static_cast<unsigned char>(std::lround(s * 255.0));
+        }
+        if (r2 < 0.97 * 0.97) {
+          px[3] = 255;
+          ++compared;
+          clipped += clip ? 1 : 0;
+        }
+      }
+    std::ofstream file(argv[5], std::ios::binary);
+    file.write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
+    if (!file) prt::fail(std::string(argv[5]) + ": cannot write");
+    std::printf("compared %zu pixels, %.4f clipped\n", compared, compared ? static_cast<double>(clipped) / compared : 0.0);
+  } catch (const prt::Error& e) {
+    std::fprintf(stderr, "probe_sphere_reference: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
