@@ -1,5 +1,7 @@
 #pragma once
-// The renderer's camera: an orbit about the mesh's bounds centre, perspective projection.
+// The camera of every prt image (`prt render`, `prt view`, `prt reference --image`): an orbit about the
+// mesh's bounds centre, perspective projection. Pure maths (no GL), so the rasteriser (prt_render) and
+// the path tracer (prt_reference) share one definition and their images line up pixel for pixel.
 //
 // CAMERA CONVENTION (world right-handed, +Y up, as the rest of prt):
 //   c = centre of the mesh's axis-aligned bounds, r = half its diagonal (the bounding sphere's radius).
@@ -22,7 +24,7 @@
 
 #include "mesh/mesh.h"
 
-namespace prt::render {
+namespace prt::camera {
 
 /// Vertical field of view of every render, in degrees.
 inline constexpr double kVerticalFovDegrees = 40.0;
@@ -60,4 +62,17 @@ struct ViewMatrices {
 ViewMatrices orbit_view(const Camera& camera, const mesh::Bounds& bounds, int width, int height,
                         const glm::dmat3& object_rotation = glm::dmat3(1.0));
 
-}  // namespace prt::render
+/// The primary ray of pixel (x, y) of a width x height image of `view` (x right, y down from the top
+/// row; integers give pixel centres, as the rasteriser samples: no multisampling), in world coordinates:
+///   direction = normalize(camera_to_world * (ndc.x tan_half_fov_x, ndc.y tan_half_fov_y, -1)),
+///   ndc = ((x + 0.5) / width * 2 - 1, 1 - (y + 0.5) / height * 2)   (what background.frag computes),
+///   origin = the point of the ray on the near plane, eye + direction * near / (direction . forward),
+/// so that tracing from t = 0 sees what the rasteriser's near clipping keeps (the far plane clips
+/// nothing of the mesh by construction). Preconditions: width, height >= 1, view from orbit_view().
+struct PixelRay {
+  glm::dvec3 origin{0.0};
+  glm::dvec3 direction{0.0, 0.0, -1.0};  ///< unit
+};
+PixelRay pixel_ray(const ViewMatrices& view, int x, int y, int width, int height);
+
+}  // namespace prt::camera

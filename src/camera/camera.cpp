@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include "camera/camera.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -6,11 +6,12 @@
 #include <cstdlib>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
 
-namespace prt::render {
+namespace prt::camera {
 
 namespace {
 
@@ -92,4 +93,15 @@ ViewMatrices orbit_view(const Camera& camera, const mesh::Bounds& bounds, int wi
   return v;
 }
 
-}  // namespace prt::render
+PixelRay pixel_ray(const ViewMatrices& view, int x, int y, int width, int height) {
+  const double ndc_x = (x + 0.5) / width * 2.0 - 1.0;
+  const double ndc_y = 1.0 - (y + 0.5) / height * 2.0;
+  PixelRay ray;
+  ray.direction = glm::normalize(view.camera_to_world *
+                                 glm::dvec3(ndc_x * view.tan_half_fov_x, ndc_y * view.tan_half_fov_y, -1.0));
+  const glm::dvec3 forward = -view.camera_to_world[2];
+  ray.origin = view.eye + ray.direction * (view.near_plane / glm::dot(ray.direction, forward));
+  return ray;
+}
+
+}  // namespace prt::camera

@@ -1,0 +1,142 @@
+#include "reference/reference_image.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "reference/estimator.h"
+#include "trace/scene.h"
+
+namespace prt::reference {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+mesh::Mesh mesh_in_environment_frame(const mesh::Mesh& mesh, const glm::dmat3& environment_rotation,
+                                     const glm::dmat3& object_rotation) {
+  if (environment_rotation == glm::dmat3(1.0) && object_rotation == glm::dmat3(1.0)) return mesh;
+  const mesh::Bounds bounds = mesh::bounds(mesh);
+  const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
+  const glm::dmat3 to_environment = glm::transpose(environment_rotation);  // R_e^-1
+  const glm::dmat3 normal_rotation = to_environment * object_rotation;
+  mesh::Mesh out = mesh;
+  for (std::size_t v = 0; v < out.positions.size(); ++v) {
+    const glm::dvec3 world = centre + object_rotation * (glm::dvec3(mesh.positions[v]) - centre);
+    out.positions[v] = glm::vec3(to_environment * world);
+  }
+  for (std::size_t v = 0; v < out.normals.size(); ++v)
+    out.normals[v] = glm::vec3(glm::normalize(normal_rotation * glm::dvec3(mesh.normals[v])));
+  return out;
+}
+
+ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSampler& environment,
+                            const ImageOptions& options, const light::Environment* background) {
+  check_options(options.reference);
+  if (options.width < 1 || options.height < 1)
+    fail("--size: expected at least 1x1 pixels, got " + std::to_string(options.width) + "x" +
+         std::to_string(options.height));
+  if (original_mesh.indices.empty()) fail("the mesh has no triangles to render");
+  const int width = options.width, height = options.height;
+  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+
+  ReferenceImage out;
+  ReferenceReport& rep = out.report;
+  const camera::ViewMatrices view =
+      camera::orbit_view(options.camera, mesh::bounds(original_mesh), width, height, options.object_rotation);
+  const glm::dmat3 to_environment = glm::transpose(options.environment_rotation);
+  const light::Environment& behind = background ? *background : environment.environment();
+  const mesh::Mesh mesh =
+      mesh_in_environment_frame(original_mesh, options.environment_rotation, options.object_rotation);
+  const std::vector<glm::vec3> albedo = reference_albedo(mesh, options.reference.albedo);
+
+  auto start = std::chrono::steady_clock::now();
+  // One build thread: the BVH, and so closest-hit ties on shared edges, cannot depend on --threads.
+  const trace::Scene scene(mesh, trace::SceneOptions{1, true});
+  rep.seconds_build = seconds_since(start);
+  const PathTracer tracer(mesh, albedo, scene, environment, EstimatorOptions{options.reference.bounces});
+
+  out.radiance = image::Image(width, height, 3);
+  out.covered.assign(pixels, 0);
+  out.standard_error.assign(pixels, glm::vec3(0.0f));
+  std::atomic<std::uint64_t> rays{0}, paths{0};
+  Progress progress("reference", "rows", static_cast<std::size_t>(height), options.reference.progress);
+  start = std::chrono::steady_clock::now();
+  parallel_for(static_cast<std::size_t>(height), 1, options.reference.threads, [&](std::size_t begin, std::size_t end) {
+    PathWorkspace workspace;
+    trace::RayBatch primary(static_cast<std::size_t>(width));
+    std::vector<glm::dvec3> directions(static_cast<std::size_t>(width));
+    std::uint64_t traced = 0, row_paths = 0;
+    for (std::size_t row = begin; row < end; ++row) {
+      const int y = static_cast<int>(row);
+      // The row's primary rays, in the environment's frame, traced in one batch.
+      primary.clear();
+      for (int x = 0; x < width; ++x) {
+        const camera::PixelRay ray = camera::pixel_ray(view, x, y, width, height);
+        directions[x] = to_environment * ray.direction;
+        primary.push(glm::vec3(to_environment * ray.origin), glm::vec3(directions[x]));
+      }
+      scene.intersect(primary);
+      traced += static_cast<std::uint64_t>(width);
+      for (int x = 0; x < width; ++x) {
+        const std::size_t pixel = row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+        const trace::HitResult hit = primary.hit(static_cast<std::size_t>(x));
+        glm::dvec3 value(0.0);
+        if (!hit.hit()) {
+          if (!options.black_background) value = behind.radiance(directions[x]);
+        } else {
+          out.covered[pixel] = 1;
+          SurfacePoint point;
+          if (tracer.hit_point(hit, glm::vec3(directions[x]), point)) {
+            SampleStream stream(options.reference.seed, pixel);
+            const RadianceEstimate estimate =
+                tracer.outgoing_radiance(point, options.reference.samples, stream, workspace);
+            value = estimate.value;
+            out.standard_error[pixel] = glm::vec3(estimate.standard_error);
+            traced += estimate.rays;
+            row_paths += static_cast<std::uint64_t>(options.reference.samples);
+          }
+        }
+        for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = static_cast<float>(value[c]);
+      }
+    }
+    rays += traced;
+    paths += row_paths;
+    progress.advance(end - begin);
+  });
+  progress.finish();
+  rep.seconds_trace = seconds_since(start);
+  rep.rays = rays.load();
+  rep.paths = paths.load();
+
+  // Noise figure over the covered pixels that are not black (as vertex_radiance's).
+  double largest = 0.0;
+  for (std::size_t p = 0; p < pixels; ++p)
+    if (out.covered[p])
+      largest = std::max(largest, sampling_magnitude(glm::dvec3(out.radiance.pixels[3 * p], out.radiance.pixels[3 * p + 1],
+                                                                 out.radiance.pixels[3 * p + 2])));
+  double relative_sum = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    if (!out.covered[p]) continue;
+    const double magnitude = sampling_magnitude(
+        glm::dvec3(out.radiance.pixels[3 * p], out.radiance.pixels[3 * p + 1], out.radiance.pixels[3 * p + 2]));
+    if (magnitude <= 1e-6 * largest || magnitude == 0.0) continue;
+    relative_sum += sampling_magnitude(glm::dvec3(out.standard_error[p])) / magnitude;
+    ++counted;
+  }
+  rep.mean_relative_standard_error = counted ? relative_sum / static_cast<double>(counted) : 0.0;
+  return out;
+}
+
+}  // namespace prt::reference
