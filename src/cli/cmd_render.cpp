@@ -5,7 +5,6 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "image/image.h"
-#include "render/camera.h"
 #include "render/headless_render.h"
 
 namespace prt::cli {
@@ -14,17 +13,11 @@ namespace {
 
 struct RenderCommandOptions {
   std::string mesh_path, transfer_path, env, rotate, object_rotate, camera = "auto", size = "1024x1024", background,
-      tone_map = "aces", output;
+      tone_map = "aces", output, brdf;
   double exposure = 0.0;
   int bands = 0;
   bool quiet = false;
 };
-
-image::ToneMap parse_tone_map(const std::string& name) {
-  if (name == "aces") return image::ToneMap::aces;
-  if (name == "clamp") return image::ToneMap::clamp;
-  fail("--tone-map: expected aces or clamp, got '" + name + "'");
-}
 
 void run_render(const RenderCommandOptions& o) {
   render::RenderOptions options;
@@ -43,6 +36,7 @@ void run_render(const RenderCommandOptions& o) {
   if (o.bands < 0) fail("--bands: must be at least 1 (0 = all of the transfer's bands)");
   options.bands = o.bands;
   options.quiet = o.quiet;
+  options.brdf = o.brdf;
   render::render_to_file(options);
 }
 
@@ -53,7 +47,7 @@ void add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Render the relit mesh headless (OpenGL 4.5 through EGL; no display needed) to PNG or EXR");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfer was baked for")->required();
-  cmd->add_option("TRANSFER", options->transfer_path, "Diffuse transfer file (.prt)")->required();
+  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt): diffuse, or glossy (view-dependent)")->required();
   cmd->add_option("--env", options->env,
                   "Environment image (equirect 2:1, cross, or six faces; projected to the transfer's bands) or SH "
                   "lighting .json")
@@ -71,6 +65,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--background", options->background,
                   "env (the image), sh (its SH reconstruction) or black; default env, sh for a .json");
   cmd->add_option("--bands", options->bands, "Use only the first K bands of the transfer (0 = all)");
+  cmd->add_option("--brdf", options->brdf,
+                  "Glossy transfer: the BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");
   cmd->add_flag("-q,--quiet", options->quiet, "No summary line on stderr");
   cmd->add_option("-o,--output", options->output, "Output .png (tone mapped, sRGB) or .exr (linear radiance)")
       ->required();

@@ -4,7 +4,6 @@
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "core/error.h"
-#include "render/camera.h"
 #include "render/viewer.h"
 
 namespace prt::cli {
@@ -12,7 +11,7 @@ namespace prt::cli {
 namespace {
 
 struct ViewCommandOptions {
-  std::string mesh_path, rotate, object_rotate, camera = "auto", size = "1280x800", background, screenshot;
+  std::string mesh_path, rotate, object_rotate, camera = "auto", size = "1280x800", background, screenshot, brdf;
   std::vector<std::string> transfer_paths, environments;
   double exposure = 0.0;
   int bands = 0, frames = 0;
@@ -22,6 +21,7 @@ void run_view(const ViewCommandOptions& o) {
   render::ViewerOptions options;
   options.mesh_path = o.mesh_path;
   options.transfer_paths = o.transfer_paths;
+  options.brdf = o.brdf;
   options.environments = o.environments;
   if (!o.rotate.empty()) options.rotate = parse_angles(o.rotate, "--rotate");
   if (!o.object_rotate.empty()) options.object_rotate = parse_angles(o.object_rotate, "--object-rotate");
@@ -45,7 +45,7 @@ void add_view_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "view", "Interactive relighting viewer: drag orbits, Shift+drag rotates the lighting, scroll zooms, H for help");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfers were baked for")->required();
-  cmd->add_option("TRANSFER", options->transfer_paths, "One or more diffuse transfer files (.prt); keys 1-9 switch")
+  cmd->add_option("TRANSFER", options->transfer_paths, "One or more transfer files (.prt, diffuse or glossy); keys 1-9 switch")
       ->required();
   cmd->add_option("--env", options->environments,
                   "Environment image or SH lighting .json; repeat for several (E switches), or drop files on the window")
@@ -59,6 +59,9 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--exposure", options->exposure, "Initial exposure in stops")->capture_default_str();
   cmd->add_option("--background", options->background, "Initial background: env, sh or black");
   cmd->add_option("--bands", options->bands, "Initial band truncation (0 = all)");
+  cmd->add_option("--brdf", options->brdf,
+                  "Glossy transfers: the BRDF SPEC to shade with (default: each one's BRDF recorded at bake time); "
+                  "the panel edits it live, G toggles its diffuse lobes only");
   cmd->add_option("--frames", options->frames, "Render N frames and exit (scripted runs)");
   cmd->add_option("--screenshot", options->screenshot,
                   "With --frames: save the last frame here (.png tone mapped, .exr linear)");

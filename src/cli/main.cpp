@@ -6,13 +6,28 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  prt::install_cleanup_signal_handlers();
   CLI::App app{"prt: precomputed radiance transfer engine (SH lighting, transfer baking, relighting)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "prt 0.1.0");
   // Subcommands are registered here as the modules that implement them land.
+  prt::cli::add_bake_command(app);
+  prt::cli::add_shade_command(app);
+  prt::cli::add_info_command(app);
+  prt::cli::add_compare_command(app);
+  prt::cli::add_reference_command(app);
+  prt::cli::add_light_command(app);
+  prt::cli::add_brdf_command(app);
+  prt::cli::add_probes_command(app);
+  prt::cli::add_probes_relight_command(app);
+#ifdef PRT_WITH_GL
+  prt::cli::add_render_command(app);
+  prt::cli::add_view_command(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,41 @@
+#include "cli/arguments.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include <unistd.h>
+
+#include "core/error.h"
+
+namespace prt::cli {
+
+glm::dvec3 parse_triple(const std::string& text, const std::string& option, const std::string& what) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v))
+      fail(option + ": expected " + what + ", got '" + text + "'");
+    values.push_back(v);
+  }
+  if (values.size() != 3 || (!text.empty() && text.back() == ',')) fail(option + ": expected " + what + ", got '" + text + "'");
+  return {values[0], values[1], values[2]};
+}
+
+glm::dvec3 parse_angles(const std::string& text, const std::string& option) {
+  return parse_triple(text, option, "YAW,PITCH,ROLL in degrees");
+}
+
+image::ToneMap parse_tone_map(const std::string& name) {
+  if (name == "aces") return image::ToneMap::aces;
+  if (name == "clamp") return image::ToneMap::clamp;
+  fail("--tone-map: expected aces or clamp, got '" + name + "'");
+}
+
+bool want_progress(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
+
+}  // namespace prt::cli

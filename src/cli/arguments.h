@@ -1,0 +1,24 @@
+#pragma once
+// Parsing of the comma-separated option values shared by several subcommands.
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "image/image.h"
+
+namespace prt::cli {
+
+/// Parses "A,B,C" into three finite doubles. Throws prt::Error("<option>: expected <what>, got '<text>'").
+glm::dvec3 parse_triple(const std::string& text, const std::string& option, const std::string& what);
+
+/// Parses "YAW,PITCH,ROLL" (degrees) into the active rotation Ry(yaw) Rx(pitch) Rz(roll) angles.
+glm::dvec3 parse_angles(const std::string& text, const std::string& option);
+
+/// Parses --tone-map: "aces" or "clamp" (image::to_display's operators). Throws
+/// prt::Error("--tone-map: expected aces or clamp, got '<name>'").
+image::ToneMap parse_tone_map(const std::string& name);
+
+/// True if stderr is a terminal and `quiet` is not set: whether to draw progress bars.
+bool want_progress(bool quiet);
+
+}  // namespace prt::cli

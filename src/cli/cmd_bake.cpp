@@ -1,0 +1,111 @@
+// prt bake: bakes per-vertex transfer (src/bake: diffuse vectors, glossy matrices) and writes the .prt file (and a .glb).
+#include <chrono>
+#include <cstdio>
+
+#include "bake/bake.h"
+#include "brdf/brdf.h"
+#include "cli/arguments.h"
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "mesh/mesh.h"
+#include "mesh/writers.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::cli {
+
+namespace {
+
+struct BakeCommandOptions {
+  std::string mesh_path;
+  std::string output;
+  std::string gltf_output;
+  std::string kind = "shadowed";
+  std::string albedo;
+  std::string brdf;
+  int bands = 5;
+  int bands_out = 0;
+  int samples = 1024;
+  int bounces = -1;
+  unsigned seed = 1;
+  int threads = 0;
+  bool quiet = false;
+  bool float16 = false;
+};
+
+void run_bake(const BakeCommandOptions& o) {
+  bake::BakeOptions options;
+  options.kind = transfer::parse_kind(o.kind);
+  options.bands = o.bands;
+  options.samples = o.samples;
+  options.bounces = o.bounces;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  options.progress = want_progress(o.quiet);
+  if (!o.albedo.empty()) options.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
+  if (!o.brdf.empty()) {
+    if (!transfer::is_glossy(options.kind))
+      fail("--brdf applies to glossy transfer only (--transfer glossy-shadowed or glossy-interreflected)");
+    options.brdf = brdf::parse_brdf(o.brdf);
+  }
+  options.bands_out = o.bands_out;
+  bake::validate_options(options);
+  if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
+    fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
+  // Check the output folders before spending minutes baking.
+  { AtomicFile probe(o.output); }
+  if (!o.gltf_output.empty()) { AtomicFile probe(o.gltf_output); }
+
+  mesh::LoadReport load_report;
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  bake::BakeReport report;
+  transfer::TransferData data = bake::bake(mesh, options, &report);
+  if (o.float16) data.header.scalar = transfer::Scalar::float16;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  transfer::write_transfer(o.output, data);
+  if (!o.gltf_output.empty()) mesh::write_glb(o.gltf_output, mesh, bake::pack_transfer_attributes(data));
+
+  if (!o.quiet) {
+    std::fprintf(stderr, "prt bake: %s, %zu vertices, %u bands, %u channel(s)", transfer::kind_name(options.kind),
+                 mesh.positions.size(), data.header.bands, data.header.channels);
+    if (report.rays_traced > 0)
+      std::fprintf(stderr, ", %llu rays (%.2f Mrays/s)", static_cast<unsigned long long>(report.rays_traced),
+                   report.rays_traced / 1e6 / std::max(1e-9, report.seconds_visibility + report.seconds_bounces));
+    if (transfer::is_glossy(options.kind))
+      std::fprintf(stderr, ", %u x %u matrices", data.header.bands_out * data.header.bands_out, data.header.bands * data.header.bands);
+    if (options.kind == transfer::Kind::interreflected || options.kind == transfer::Kind::glossy_interreflected)
+      std::fprintf(stderr, ", %d bounce(s)", report.bounces_done);
+    std::fprintf(stderr, ", %.2f s -> %s\n", seconds, o.output.c_str());
+  }
+}
+
+}  // namespace
+
+void add_bake_command(CLI::App& app) {
+  auto options = std::make_shared<BakeCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("bake", "Bake per-vertex PRT transfer (diffuse vectors or glossy matrices) for a mesh (.obj, .ply, .gltf, .glb)");
+  cmd->add_option("MESH", options->mesh_path, "Input mesh")->required();
+  cmd->add_option("-o,--output", options->output, "Output transfer file (.prt)")->required();
+  cmd->add_option("--transfer", options->kind,
+                  "unshadowed | shadowed | interreflected | glossy-shadowed | glossy-interreflected")->capture_default_str();
+  cmd->add_option("--brdf", options->brdf,
+                  "Glossy kinds: the mesh's BRDF, e.g. phong:exponent=32,ks=0.5,kd=0.3 or ggx:roughness=0.3,f0=0.04,albedo=0.5 "
+                  "or a .json material (see prt brdf)");
+  cmd->add_option("--bands-out", options->bands_out,
+                  "Glossy kinds: bands of the transferred radiance (matrix rows), 1..--bands; default --bands");
+  cmd->add_option("--bands", options->bands, "SH bands of the lighting (1..32; 5 = 25 coefficients)")->capture_default_str();
+  cmd->add_option("--samples", options->samples, "Rays per vertex (shadowed, interreflected)")->capture_default_str();
+  cmd->add_option("--bounces", options->bounces,
+                  "Interreflection passes; default: until a pass adds < 1e-3 of the direct pass's energy (max 16)");
+  cmd->add_option("--albedo", options->albedo, "R,G,B linear albedo for meshes without colours (default 0.8,0.8,0.8)");
+  cmd->add_option("--seed", options->seed, "Seed of the sample set and per-vertex frames")->capture_default_str();
+  cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
+      ->capture_default_str();
+  cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");
+  cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
+  cmd->add_flag("-q,--quiet", options->quiet, "No progress bar or summary");
+  cmd->callback([options] { run_bake(*options); });
+}
+
+}  // namespace prt::cli

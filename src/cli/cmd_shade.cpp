@@ -1,0 +1,80 @@
+// prt shade: per-vertex outgoing radiance = transfer . lighting (glossy: toward an eye point), written as a
+// colour PLY or a .glb.
+#include <algorithm>
+
+#include "brdf/brdf.h"
+#include "brdf/projection.h"
+#include "cli/arguments.h"
+#include "cli/commands.h"
+#include "cli/lighting_input.h"
+#include "core/error.h"
+#include "mesh/mesh.h"
+#include "mesh/writers.h"
+#include "shade/glossy.h"
+#include "shade/shade.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::cli {
+
+namespace {
+
+struct ShadeCommandOptions {
+  std::string mesh_path, transfer_path, env, light, rotate, output, eye, brdf;
+  int threads = 0;
+};
+
+bool has_extension(const std::string& path, const std::string& ext) {
+  return path.size() >= ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+}
+
+void run_shade(const ShadeCommandOptions& o) {
+  if (o.env.empty() == o.light.empty()) fail("shade: give exactly one of --env ENV and --light LIGHT.json");
+  const bool glb = has_extension(o.output, ".glb");
+  if (!glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
+  const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, true);
+  const transfer::TransferData transfer = transfer::read_transfer(o.transfer_path);
+  transfer::check_mesh_match(o.transfer_path, transfer.header, mesh.positions.size(), mesh.indices.size() / 3,
+                             mesh::fingerprint(mesh));
+  const bool glossy = transfer::is_glossy(transfer.header.kind);
+  if (glossy && o.eye.empty()) fail_file(o.transfer_path, "glossy transfer needs --eye X,Y,Z (view-dependent shading)");
+  if (!glossy && (!o.eye.empty() || !o.brdf.empty()))
+    fail_file(o.transfer_path, std::string("--eye and --brdf apply to glossy transfer; this one is ") +
+                                   transfer::kind_name(transfer.header.kind));
+  const sh::RgbCoefficients lighting =
+      load_lighting(o.env.empty() ? o.light : o.env, static_cast<int>(transfer.header.bands), angles, o.threads);
+  std::vector<glm::vec3> radiance;
+  if (glossy) {
+    // The BRDF matrix at the transfer's output bands, from --brdf or the BRDF recorded at bake time.
+    const glm::vec3 eye(parse_triple(o.eye, "--eye", "X,Y,Z (mesh units)"));
+    const brdf::Brdf surface = o.brdf.empty() ? shade::baked_brdf(transfer.header, o.transfer_path) : brdf::parse_brdf(o.brdf);
+    const brdf::BrdfMatrix matrix = brdf::project(surface, static_cast<int>(transfer.header.bands_out));
+    radiance = shade::shade_glossy_eye(transfer, matrix, lighting, mesh.positions, mesh.normals, eye);
+  } else {
+    radiance = shade::shade_diffuse(transfer, lighting);
+  }
+  if (glb)
+    mesh::write_glb(o.output, mesh, {}, radiance);
+  else
+    mesh::write_ply(o.output, mesh.positions, radiance, mesh.indices);
+}
+
+}  // namespace
+
+void add_shade_command(CLI::App& app) {
+  auto options = std::make_shared<ShadeCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("shade", "Per-vertex outgoing radiance (transfer . lighting) as a colour PLY or .glb (COLOR_0)");
+  cmd->add_option("MESH", options->mesh_path, "The mesh the transfer was baked for")->required();
+  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt)")->required();
+  cmd->add_option("--env", options->env, "Environment image (equirect 2:1, cross, or six faces) projected to the transfer's bands");
+  cmd->add_option("--light", options->light, "SH lighting JSON written by `prt light`");
+  cmd->add_option("--rotate", options->rotate, "YAW,PITCH,ROLL degrees: rotate the lighting by Ry Rx Rz");
+  cmd->add_option("--threads", options->threads, "Threads for the projection (0 = all cores)");
+  cmd->add_option("--eye", options->eye, "Glossy transfer: X,Y,Z eye point (mesh units); radiance toward it per vertex");
+  cmd->add_option("--brdf", options->brdf,
+                  "Glossy transfer: BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");
+  cmd->add_option("-o,--output", options->output, "Output .ply (float x,y,z,red,green,blue) or .glb (COLOR_0)")->required();
+  cmd->callback([options] { run_shade(*options); });
+}
+
+}  // namespace prt::cli
