@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/glossy_passes.h"
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
 #include "core/error.h"
@@ -22,9 +23,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 void validate_options(const BakeOptions& o) {
-  if (transfer::is_glossy(o.kind)) fail(std::string("bake: ") + transfer::kind_name(o.kind) + " needs a BRDF (glossy bake)");
   if (o.bands < 1 || o.bands > sh::kMaxBands)
     fail("--bands " + std::to_string(o.bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
+  if (transfer::is_glossy(o.kind)) {
+    if (o.brdf.empty()) fail(std::string("--transfer ") + transfer::kind_name(o.kind) + " needs --brdf SPEC");
+    if (o.bands_out < 0 || o.bands_out > o.bands)
+      fail("--bands-out " + std::to_string(o.bands_out) + " is out of range 1..--bands (" + std::to_string(o.bands) + ")");
+  } else if (o.bands_out != 0) {
+    fail("--bands-out applies to glossy transfer only");
+  }
   if (o.samples < 1 || o.samples > (1 << 20)) fail("--samples " + std::to_string(o.samples) + " is out of range 1..1048576");
   if (o.bounces < -1 || o.bounces > 64) fail("--bounces " + std::to_string(o.bounces) + " is out of range 0..64");
   for (int c = 0; c < 3; ++c)
@@ -77,6 +84,7 @@ std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3&
 
 transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
   validate_options(options);
+  if (transfer::is_glossy(options.kind)) return bake_glossy(mesh, options, report);
   BakeReport local_report;
   BakeReport& rep = report ? *report : local_report;
   rep = BakeReport{};

@@ -26,12 +26,44 @@
 //
 // DETERMINISM. Each vertex's result depends only on the mesh, the options and its index; the traced
 // rays and every sum run in a fixed order. Output is byte-identical for any thread count.
+//
+// GLOSSY (kinds glossy-shadowed, glossy-interreflected; Sloan, Kautz and Snyder 2002, section 6). Per
+// vertex p a transfer MATRIX M_p (bands_out^2 x bands^2, row-major [out][in]) maps world lighting
+// coefficients L to the coefficients T_p = M_p L of the transferred incident radiance in the vertex's
+// LOCAL frame F_p = brdf::shading_frame(n_p) (brdf/frame.h). The surface's BRDF matrix B
+// (brdf/projection.h, bands_out bands) then gives the outgoing radiance toward a view direction v:
+//   L_o(p, v) = sum_k (B T_p)_k Y_k(F_p^T v)                     (shade/glossy.h).
+//   glossy-shadowed:  T_p(w) = V'(F_p w) L(F_p w), where V' is the binary visibility above the tangent
+//                     plane and 1 below it: the lower hemisphere is NOT masked, because B's factor
+//                     max(cos theta_i, 0) removes it exactly (masking it would only add truncation
+//                     ringing at the horizon). So an unoccluded vertex gets exactly M_p = Rot(F_p^T)
+//                     (the lighting rotated into its frame), and with a Lambert B the result equals
+//                     the diffuse bake's.
+//                     M_p = integral over S^2 of V'(F_p w) y_out(w) y_in(w)^T dw Rot(F_p^T)
+//                         = Rot(F_p^T) - (2 pi / S) Rot_out(F_p^T F_s) C Rot_in(F_s^T),
+//                     C = sum over OCCLUDED samples s of y_out(w_s) y_in(w_s)^T, with S directions w_s
+//                     uniform on the hemisphere (an Owen-scrambled Sobol set, pdf 1 / (2 pi)) in the
+//                     sample frame F_s = vertex_frame(n, seed, p) (the diffuse baker's hashed frame).
+//                     The exact unoccluded part is the control variate: zero noise where nothing is
+//                     occluded. C is summed in float, the rotations are applied in double.
+//   bounce b >= 1:    T^b_p(w) = radiance arriving from front-face hits q along F_p w, where q's
+//                     outgoing radiance toward p is sum_k (B M^(b-1)_q L)_k Y_k(F_q^T (-w)),
+//                     interpolated barycentrically over the hit triangle's corners (each corner
+//                     evaluated in its own frame); estimated with the same S uniform directions:
+//                     M^b_p = (2 pi / S) Rot_out(F_p^T F_s) sum over front hits of y_out(w_s) r_s^T,
+//                     r_s the hit's radiance row (world lighting -> radiance). Back faces are black.
+//   glossy-interreflected = M^0 + M^1 + ... (bounces as for diffuse: a fixed count, or until a pass's
+//                     energy sum_p,c M_p[0][0] falls below 1e-3 of the direct pass's).
+// One BRDF (options.brdf) for the whole mesh: the mesh's per-vertex albedo is not used. CHANNELS:
+// glossy-shadowed has 1 (geometry only; the BRDF is applied when shading); glossy-interreflected has 1
+// if the BRDF is grey, else 3 (the bounce light is coloured by the BRDF).
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "brdf/brdf.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
 #include "transfer/transfer_file.h"
@@ -39,14 +71,16 @@
 namespace prt::bake {
 
 struct BakeOptions {
-  transfer::Kind kind = transfer::Kind::shadowed;  ///< a diffuse kind
-  int bands = 5;                                   ///< 1..kMaxBands
+  transfer::Kind kind = transfer::Kind::shadowed;  ///< any kind; glossy kinds need `brdf`
+  int bands = 5;                                   ///< 1..kMaxBands (lighting, input side)
   int samples = 1024;                              ///< rays per vertex, >= 1 (shadowed, interreflected)
   int bounces = -1;       ///< interreflection passes; -1: until a pass adds < 1e-3 of the first pass's energy (cap 16)
   glm::vec3 albedo{0.8f}; ///< linear albedo in [0,1] for meshes that carry none
   std::uint32_t seed = 1; ///< sample-set scrambling and per-vertex frame rotations
   int threads = 0;        ///< worker threads; 0 = all cores. Does not change the output.
   bool progress = false;  ///< progress bar on stderr (only drawn when stderr is a terminal)
+  brdf::Brdf brdf;        ///< glossy kinds: the BRDF of the whole mesh (required); unused otherwise
+  int bands_out = 0;      ///< glossy kinds: transferred-radiance bands 1..bands; 0 = bands
 };
 
 /// What the bake did and measured (not stored in the file, which must not depend on timing).
@@ -66,7 +100,8 @@ void validate_options(const BakeOptions& options);
 
 /// Bakes `mesh` (vertices, normals, optional albedo; see mesh/mesh.h) into a transfer of
 /// options.kind. Throws prt::Error for invalid options (bands, samples, bounces out of range, a glossy
-/// kind). The header carries the mesh's counts and fingerprint and the bake parameters as JSON.
+/// kind without a BRDF, bands_out out of range). The header carries the mesh's counts and fingerprint
+/// and the bake parameters as JSON (glossy: also "bands_out", "brdf" (brdf::to_spec) and "frame").
 transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report = nullptr);
 
 /// Per-vertex albedo the bake uses: the mesh's own, or options.albedo for every vertex.

@@ -7,11 +7,12 @@
 
 namespace prt::bake {
 
-LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed) {
+namespace {
+
+LocalSampleSet sample_set_from(const std::vector<glm::dvec3>& dirs, int bands) {
   LocalSampleSet set;
   set.bands = bands;
   const int n = bands * bands;
-  std::vector<glm::dvec3> dirs = sh::hemisphere_directions_cosine(static_cast<std::size_t>(samples), seed);
   set.directions.resize(dirs.size());
   set.basis.resize(dirs.size() * static_cast<std::size_t>(n));
   std::vector<double> y(static_cast<std::size_t>(n));
@@ -21,6 +22,16 @@ LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed)
     for (int i = 0; i < n; ++i) set.basis[s * n + i] = static_cast<float>(y[i]);
   }
   return set;
+}
+
+}  // namespace
+
+LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed) {
+  return sample_set_from(sh::hemisphere_directions_cosine(static_cast<std::size_t>(samples), seed), bands);
+}
+
+LocalSampleSet make_uniform_sample_set(int samples, int bands, std::uint32_t seed) {
+  return sample_set_from(sh::hemisphere_directions_uniform(static_cast<std::size_t>(samples), seed), bands);
 }
 
 namespace {

@@ -8,7 +8,7 @@
 
 namespace prt::bake {
 
-/// S cosine-distributed directions about +z (local frame) and the SH basis at each of them.
+/// S hemisphere directions about +z (local frame) and the SH basis at each of them.
 struct LocalSampleSet {
   int bands = 0;
   std::vector<glm::vec3> directions;  ///< S unit vectors, z >= 0
@@ -17,6 +17,10 @@ struct LocalSampleSet {
 
 /// Builds the set for (samples, seed): sh::hemisphere_directions_cosine, basis in float.
 LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed);
+
+/// S directions uniform on the hemisphere about +z (sh::hemisphere_directions_uniform) and the SH
+/// basis of `bands` bands at each (the glossy passes, which weight by the BRDF rather than the cosine).
+LocalSampleSet make_uniform_sample_set(int samples, int bands, std::uint32_t seed);
 
 /// Rotation (columns t, b, n) taking the local frame to the world frame at a vertex with unit normal n.
 /// The tangent is Duff et al. 2017's branchless basis turned about n by an angle hashed from

@@ -108,6 +108,18 @@ bool PathTracer::hit_point(const trace::HitResult& hit, const glm::vec3& directi
   return true;
 }
 
+RadianceEstimate mean_estimate(const glm::dvec3& sum, const glm::dvec3& sum_sq, int paths, std::uint64_t rays) {
+  RadianceEstimate estimate;
+  const double n = static_cast<double>(paths);
+  estimate.value = sum / n;
+  if (paths > 1) {
+    const glm::dvec3 variance = glm::max(sum_sq - sum * sum / n, glm::dvec3(0.0)) / (n - 1.0);
+    estimate.standard_error = glm::sqrt(variance / n);
+  }
+  estimate.rays = rays;
+  return estimate;
+}
+
 RadianceEstimate PathTracer::outgoing_radiance(const SurfacePoint& start, int paths, SampleStream& stream,
                                                PathWorkspace& workspace) const {
   PathWorkspace::Buffers& ws = workspace.buffers();
@@ -205,15 +217,7 @@ RadianceEstimate PathTracer::outgoing_radiance(const SurfacePoint& start, int pa
     }
   }
 
-  RadianceEstimate estimate;
-  const double n = static_cast<double>(paths);
-  estimate.value = sum / n;
-  if (paths > 1) {
-    const glm::dvec3 variance = glm::max(sum_sq - sum * sum / n, glm::dvec3(0.0)) / (n - 1.0);
-    estimate.standard_error = glm::sqrt(variance / n);
-  }
-  estimate.rays = rays;
-  return estimate;
+  return mean_estimate(sum, sum_sq, paths, rays);
 }
 
 RadianceEstimate PathTracer::incoming_radiance(const glm::dvec3& origin, const glm::dvec3& direction, int paths,

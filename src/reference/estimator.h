@@ -102,6 +102,10 @@ struct RadianceEstimate {
   std::uint64_t rays = 0;  ///< rays traced for it
 };
 
+/// The mean of `paths` (>= 1) path values from their sum and sum of squares, with its i.i.d. standard
+/// error (0 for one path), carrying `rays` along.
+RadianceEstimate mean_estimate(const glm::dvec3& sum, const glm::dvec3& sum_sq, int paths, std::uint64_t rays);
+
 struct EstimatorOptions {
   int bounces = 0;  ///< interreflection bounces after the point estimated; 0 = direct lighting only
 };

@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "light/projection.h"
 #include "reference/estimator.h"
+#include "reference/vertex_driver.h"
 #include "sh/basis.h"
 #include "trace/scene.h"
 
@@ -22,10 +23,30 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Vertices per parallel chunk: each vertex costs `samples` paths, so small chunks balance well.
-constexpr std::size_t kVerticesPerChunk = 8;
-
 }  // namespace
+
+namespace detail {
+
+void summarise_noise(const std::vector<glm::vec3>& radiance, const std::vector<glm::dvec3>& error,
+                     ReferenceReport& rep, std::vector<glm::vec3>* standard_error) {
+  double largest = 0.0;
+  for (const glm::vec3& r : radiance) largest = std::max(largest, sampling_magnitude(glm::dvec3(r)));
+  double relative_sum = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t v = 0; v < radiance.size(); ++v) {
+    const double magnitude = sampling_magnitude(glm::dvec3(radiance[v]));
+    if (magnitude <= 1e-6 * largest || magnitude == 0.0) continue;
+    relative_sum += sampling_magnitude(error[v]) / magnitude;
+    ++counted;
+  }
+  rep.mean_relative_standard_error = counted ? relative_sum / static_cast<double>(counted) : 0.0;
+  if (standard_error) {
+    standard_error->resize(radiance.size());
+    for (std::size_t v = 0; v < radiance.size(); ++v) (*standard_error)[v] = glm::vec3(error[v]);
+  }
+}
+
+}  // namespace detail
 
 std::vector<glm::vec3> reference_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback) {
   if (!mesh.albedo.empty()) return mesh.albedo;
@@ -49,56 +70,17 @@ std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const Environment
   ReferenceReport& rep = report ? *report : local_report;
   rep = ReferenceReport{};
   const std::vector<glm::vec3> albedo = reference_albedo(mesh, options.albedo);
-  const std::size_t vertices = mesh.positions.size();
 
   auto start = std::chrono::steady_clock::now();
   // One build thread: the BVH, and so closest-hit ties on shared edges, cannot depend on --threads.
   const trace::Scene scene(mesh, trace::SceneOptions{1, true});
   rep.seconds_build = seconds_since(start);
   const PathTracer tracer(mesh, albedo, scene, environment, EstimatorOptions{options.bounces});
-  const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
-
-  std::vector<glm::vec3> radiance(vertices);
-  std::vector<glm::dvec3> error(vertices);
-  std::atomic<std::uint64_t> rays{0};
-  Progress progress("reference", "vertices", std::max<std::size_t>(vertices, 1), options.progress);
-  start = std::chrono::steady_clock::now();
-  parallel_for(order.size(), kVerticesPerChunk, options.threads, [&](std::size_t begin, std::size_t end) {
-    PathWorkspace workspace;
-    std::uint64_t traced = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      const std::uint32_t v = order[k];
-      SampleStream stream(options.seed, v);
-      const RadianceEstimate estimate = tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
-      radiance[v] = glm::vec3(estimate.value);
-      error[v] = estimate.standard_error;
-      traced += estimate.rays;
-    }
-    rays += traced;
-    progress.advance(end - begin);
-  });
-  progress.finish();
-  rep.seconds_trace = seconds_since(start);
-  rep.rays = rays.load();
-  rep.paths = static_cast<std::uint64_t>(vertices) * static_cast<std::uint64_t>(options.samples);
-
-  // Noise figure: mean relative standard error over vertices that are not black.
-  double largest = 0.0;
-  for (const glm::vec3& r : radiance) largest = std::max(largest, sampling_magnitude(glm::dvec3(r)));
-  double relative_sum = 0.0;
-  std::size_t counted = 0;
-  for (std::size_t v = 0; v < vertices; ++v) {
-    const double magnitude = sampling_magnitude(glm::dvec3(radiance[v]));
-    if (magnitude <= 1e-6 * largest || magnitude == 0.0) continue;
-    relative_sum += sampling_magnitude(error[v]) / magnitude;
-    ++counted;
-  }
-  rep.mean_relative_standard_error = counted ? relative_sum / static_cast<double>(counted) : 0.0;
-  if (standard_error) {
-    standard_error->resize(vertices);
-    for (std::size_t v = 0; v < vertices; ++v) (*standard_error)[v] = glm::vec3(error[v]);
-  }
-  return radiance;
+  return detail::trace_every_vertex<PathWorkspace>(
+      mesh, "reference", options.seed, options.samples, options.threads, options.progress, rep, standard_error,
+      [&](std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
+        return tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
+      });
 }
 
 int band_limited_height(int bands) { return std::max(256, 16 * bands); }

@@ -9,9 +9,14 @@
 // it matches a bake with N bands exactly in expectation, so any difference is the baker's error (its
 // noise, interpolation at bounce hits) plus this estimate's noise.
 //
+// `prt reference --image` renders the same estimate per pixel, seen by the camera of `prt render`
+// (reference_image.h).
+//
 // Shared with the baker: only the mesh loader (prt::mesh) and the ray queries (prt::trace, with the
 // same ray offset rule and the same front-face test). No transfer code; SH appears only in
-// band_limited_environment, never in the estimator.
+// band_limited_environment, never in the estimator. Glossy surfaces (`--brdf SPEC --eye X,Y,Z`) have
+// their own estimator, glossy_estimator.h, which uses prt::brdf's BRDFs and, for the band-limited BRDF
+// only, its SH matrix.
 #include <cstdint>
 #include <vector>
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "core/error.h"
 #include "render/headless_context.h"
@@ -47,10 +48,19 @@ void render_to_file(const RenderOptions& options) {
   if (background == Background::environment && !lighting.has_image)
     fail_file(options.environment, "--background env needs an environment image, this is an SH lighting file");
 
+  // Glossy transfer: the BRDF matrix, before any GL work.
+  std::optional<brdf::BrdfMatrix> glossy;
+  if (transfer::is_glossy(scene.transfers[0].header.kind))
+    glossy = glossy_brdf_matrix(scene.transfers[0], scene.transfer_paths[0], options.brdf);
+  else if (!options.brdf.empty())
+    fail_file(scene.transfer_paths[0], "--brdf applies to glossy transfer; this one is " +
+                                           std::string(transfer::kind_name(scene.transfers[0].header.kind)));
+
   HeadlessContext context;
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
-  renderer.add_transfer(scene.transfers[0], scene.transfer_paths[0]);
+  const int index = renderer.add_transfer(scene.transfers[0], scene.transfer_paths[0]);
+  if (glossy) renderer.set_brdf(index, *glossy);
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
 
   FrameSettings settings;

@@ -6,7 +6,6 @@
 #include <glm/vec3.hpp>
 
 #include "image/image.h"
-#include "render/camera.h"
 #include "render/renderer.h"
 
 namespace prt::render {
@@ -24,6 +23,7 @@ struct RenderOptions {
   image::ToneMap tone_map = image::ToneMap::aces;  ///< PNG only
   std::optional<Background> background; ///< default: env for an image, sh for an SH lighting file
   int bands = 0;                        ///< use the first `bands` bands; 0 = all the transfer has
+  std::string brdf;                     ///< glossy transfer: BRDF SPEC; empty = the one recorded at bake time
   bool quiet = false;                   ///< no summary line on stderr
 };
 

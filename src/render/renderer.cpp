@@ -84,9 +84,6 @@ void lambert_light(const sh::RgbCoefficients& lighting, glm::dvec3& direction, g
 TransferBuffer::TransferBuffer(const transfer::TransferData& transfer, const std::string& origin,
                                std::size_t max_range_bytes)
     : header_(transfer.header) {
-  if (transfer::is_glossy(header_.kind))
-    fail_file(origin, std::string("the renderer draws diffuse transfer only, this is ") +
-                          transfer::kind_name(header_.kind));
   if (transfer.values.size() != header_.vertex_count * header_.values_per_vertex())
     fail_file(origin, "transfer value count does not match its header");
   GLint64 max_texels = 0, alignment = 0;
@@ -151,6 +148,8 @@ Renderer::Renderer()
 
 Renderer::~Renderer() {
   transfers_.clear();
+  for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
+  delete_buffer(outgoing_);
   delete_buffer(positions_);
   delete_buffer(normals_);
   delete_buffer(albedo_);
@@ -168,6 +167,9 @@ Renderer::~Renderer() {
 
 void Renderer::set_mesh(const mesh::Mesh& mesh) {
   transfers_.clear();
+  for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
+  brdf_buffers_.clear();
+  brdf_bands_.clear();
   delete_buffer(positions_);
   delete_buffer(normals_);
   delete_buffer(albedo_);
@@ -209,6 +211,8 @@ int Renderer::add_transfer(const transfer::TransferData& transfer, const std::st
     fail_file(origin, "transfer has " + std::to_string(transfer.header.vertex_count) + " vertices, the mesh " +
                           std::to_string(vertex_count_));
   transfers_.push_back(std::make_unique<TransferBuffer>(transfer, origin, max_range_bytes));
+  brdf_buffers_.push_back(0);
+  brdf_bands_.push_back(0);
   return static_cast<int>(transfers_.size()) - 1;
 }
 
@@ -322,7 +326,10 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
   glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &far_depth);
 
   draw_background(settings, bands);
-  draw_mesh(settings, bands);
+  if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))
+    draw_glossy(settings, bands);
+  else
+    draw_mesh(settings, bands);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("rendering a frame");
 }

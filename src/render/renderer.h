@@ -13,6 +13,16 @@
 //               prt::sh::rotate_rgb and uploads it; the vertex shader takes, per channel, the dot product
 //               of the first k^2 transfer coefficients with the lighting (prt::shade::shade_diffuse), and
 //               the rasteriser interpolates that radiance (perspective-correct).
+//   prt_glossy  glossy PRT, for a glossy transfer (prt::bake GLOSSY): a COMPUTE pass, prt_glossy.comp,
+//               computes per frame for every vertex O_p = B (M_p L) (the transfer matrices through the
+//               same buffer-texture views, the lighting in the object's frame, the BRDF matrix B from
+//               set_brdf) into a storage buffer; then prt_glossy.vert + prt_glossy.frag draw the mesh and
+//               each fragment evaluates, for each corner of its triangle, sum_k O_k Y_k(F^T v) in that
+//               corner's local frame F (brdf::shading_frame of its normal) toward the fragment's own view
+//               direction v (eye - fragment position, mesh coordinates), and blends the three with the
+//               fragment's barycentrics. At a vertex this is prt::shade::shade_glossy exactly; the
+//               per-corner frames avoid interpolating coefficients between different frames (the frame's
+//               singularity at n = +-Y, brdf/frame.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
@@ -31,15 +41,25 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "brdf/projection.h"
+#include "camera/camera.h"
 #include "image/image.h"
 #include "mesh/mesh.h"
-#include "render/camera.h"
 #include "render/gl.h"
 #include "render/shader_program.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::render {
+
+// The camera is prt::camera (src/camera, no GL), shared with `prt reference --image`; the renderer's
+// API keeps its names.
+using camera::Camera;
+using camera::kVerticalFovDegrees;
+using camera::orbit_view;
+using camera::parse_camera;
+using camera::parse_size;
+using camera::ViewMatrices;
 
 /// Triangle index of pixels the mesh does not cover.
 inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
@@ -56,7 +76,7 @@ enum class Shading { prt, lambert };
 /// Most ranges one transfer is split into (buffer textures the vertex shader samples).
 inline constexpr int kMaxTransferChunks = 8;
 
-/// A diffuse transfer on the GPU: one buffer holding the vertex-major floats exactly as
+/// A diffuse or glossy transfer on the GPU: one buffer holding the vertex-major floats exactly as
 /// TransferData::values, uploaded once, read by the vertex shader through GL_R32F buffer-texture views
 /// (texelFetch). Views rather than a shader storage block: on llvmpipe the 75 texelFetches of a 5-band
 /// RGB vertex cost about half as much as 75 storage-buffer loads, and a view may be larger (Mesa:
@@ -66,7 +86,7 @@ inline constexpr int kMaxTransferChunks = 8;
 class TransferBuffer {
  public:
   /// Uploads the values once (immutable storage) and creates the views. Throws prt::Error("<origin>:
-  /// ...") if the transfer is glossy, its value count does not match its header, or it needs more than
+  /// ...") if its value count does not match its header, or it needs more than
   /// kMaxTransferChunks views. `max_range_bytes` > 0 lowers the per-view limit below the
   /// implementation's (tests use it to exercise several ranges).
   TransferBuffer(const transfer::TransferData& transfer, const std::string& origin, std::size_t max_range_bytes = 0);
@@ -118,10 +138,15 @@ class Renderer {
   /// Uploads positions, normals, albedo (0.8 grey where the mesh has none) and indices; drops the
   /// transfers of a previous mesh.
   void set_mesh(const mesh::Mesh& mesh);
-  /// Uploads a diffuse transfer for the current mesh (see TransferBuffer, also for max_range_bytes);
-  /// returns its index. Throws prt::Error("<origin>: ...") if its vertex count differs from the mesh's
-  /// or it is not diffuse. (Callers check the mesh fingerprint with transfer::check_mesh_match first.)
+  /// Uploads a diffuse or glossy transfer for the current mesh (see TransferBuffer, also for
+  /// max_range_bytes); returns its index. Throws prt::Error("<origin>: ...") if its vertex count differs
+  /// from the mesh's. (Callers check the mesh fingerprint with transfer::check_mesh_match first.) A glossy
+  /// transfer needs set_brdf before it is rendered.
   int add_transfer(const transfer::TransferData& transfer, const std::string& origin, std::size_t max_range_bytes = 0);
+  /// Uploads the BRDF matrix a glossy transfer is shaded with (replacing the previous one: live BRDF
+  /// edits re-project B on the CPU and call this). Throws prt::Error unless `transfer` is a glossy
+  /// transfer's index and matrix.bands equals its bands_out.
+  void set_brdf(int transfer, const brdf::BrdfMatrix& matrix);
   int transfer_count() const { return static_cast<int>(transfers_.size()); }
   const transfer::Header& transfer_header(int index) const;
 
@@ -163,9 +188,21 @@ class Renderer {
   /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks), compiled
   /// on first use and kept.
   const Program& prt_program(int channels, int coefficient_count, int used_count, int chunks);
+  /// prt_glossy's compute program for (channels, in coefficients, used, out coefficients, chunks) and
+  /// its draw program for the output bands; compiled on first use and kept.
+  const Program& glossy_compute_program(int channels, int in_count, int used_count, int out_count, int chunks);
+  const Program& glossy_draw_program(int out_bands);
+  /// The glossy pass (renderer_glossy.cpp): compute O for every vertex, then draw.
+  void draw_glossy(const FrameSettings& settings, int bands);
 
   Program background_, lambert_, tonemap_;
   std::map<std::tuple<int, int, int, int>, Program> prt_programs_;
+  std::map<std::tuple<int, int, int, int, int>, Program> glossy_compute_programs_;
+  std::map<int, Program> glossy_draw_programs_;
+  std::vector<GLuint> brdf_buffers_;         // per transfer: B as vec4 per entry (0 until set_brdf)
+  std::vector<int> brdf_bands_;              // per transfer: bands of the uploaded B
+  GLuint outgoing_ = 0;                      // glossy: O of every vertex, vec4 per coefficient
+  std::size_t outgoing_bytes_ = 0;
   GLuint empty_vao_ = 0, mesh_vao_ = 0;
   GLuint positions_ = 0, normals_ = 0, albedo_ = 0, indices_ = 0;
   GLsizei index_count_ = 0;

@@ -8,6 +8,7 @@
 #include "light/environment.h"
 #include "light/light_file.h"
 #include "light/projection.h"
+#include "shade/glossy.h"
 
 namespace prt::render {
 
@@ -42,9 +43,6 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
     transfer::TransferData data = transfer::read_transfer(path);
     transfer::check_mesh_match(path, data.header, scene.mesh.vertex_count(), scene.mesh.triangle_count(),
                                fingerprint);
-    if (transfer::is_glossy(data.header.kind))
-      fail_file(path, std::string("the renderer draws diffuse transfer only, this is ") +
-                          transfer::kind_name(data.header.kind));
     scene.transfers.push_back(std::move(data));
     scene.transfer_paths.push_back(path);
   }
@@ -65,6 +63,11 @@ Lighting load_lighting(const std::string& spec, int bands) {
                           ? std::move(environment.equirect)
                           : equirect_from_cube(environment);
   return lighting;
+}
+
+brdf::BrdfMatrix glossy_brdf_matrix(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec) {
+  const brdf::Brdf surface = spec.empty() ? shade::baked_brdf(transfer.header, origin) : brdf::parse_brdf(spec);
+  return brdf::project(surface, static_cast<int>(transfer.header.bands_out));
 }
 
 int max_bands(const SceneInputs& scene) {

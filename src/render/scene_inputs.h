@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "brdf/projection.h"
 #include "image/image.h"
 #include "mesh/mesh.h"
 #include "sh/coefficients.h"
@@ -11,7 +12,7 @@
 
 namespace prt::render {
 
-/// A mesh and the diffuse transfers baked for it.
+/// A mesh and the transfers baked for it (diffuse or glossy).
 struct SceneInputs {
   mesh::Mesh mesh;
   std::vector<transfer::TransferData> transfers;
@@ -19,8 +20,8 @@ struct SceneInputs {
 };
 
 /// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer, checks every transfer against the mesh
-/// (transfer::check_mesh_match with mesh::fingerprint) and that it is a diffuse kind. Throws
-/// prt::Error("<file>: <problem>") for the first file that fails.
+/// (transfer::check_mesh_match with mesh::fingerprint). Throws prt::Error("<file>: <problem>") for the
+/// first file that fails.
 SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths);
 
 /// Distant lighting for the renderer.
@@ -40,5 +41,10 @@ Lighting load_lighting(const std::string& spec, int bands);
 
 /// Largest band count among the transfers (the bands lighting is projected to).
 int max_bands(const SceneInputs& scene);
+
+/// The BRDF matrix a glossy transfer is shaded with: `spec` (a --brdf SPEC or material file) if not
+/// empty, else the BRDF recorded in the transfer at bake time (shade::baked_brdf), projected to the
+/// transfer's output bands. Throws prt::Error naming `origin` if the transfer records none.
+brdf::BrdfMatrix glossy_brdf_matrix(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec);
 
 }  // namespace prt::render

@@ -12,7 +12,9 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include "brdf/projection.h"
 #include "core/error.h"
+#include "shade/glossy.h"
 #include "render/viewer_state.h"
 #include "sh/rotation.h"
 
@@ -221,6 +223,21 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
     state.object_angles = options.object_rotate;
     state.reset_requested = false;
   }
+  if (state.brdf_changed) {
+    state.brdf_changed = false;
+    if (state.current_glossy()) {
+      // Live BRDF edits: re-project B on the CPU (tens of ms at 5 bands) and upload it.
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        renderer.set_brdf(state.settings.transfer,
+                          brdf::project(viewer_detail::shown_brdf(state),
+                                        state.transfer_bands_out[static_cast<std::size_t>(state.settings.transfer)]));
+      } catch (const Error& e) {
+        state.message = e.what();
+      }
+      state.projection_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+  }
   if (state.environment_changed) {
     const Lighting& lighting = state.environments[static_cast<std::size_t>(state.environment)];
     renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
@@ -254,6 +271,11 @@ void run_viewer(const ViewerOptions& options) {
                                    transfer::kind_name(h.kind) + ", " + std::to_string(h.bands) + " bands, " +
                                    std::to_string(h.channels) + (h.channels == 1 ? " channel)" : " channels)"));
     state.transfer_bands.push_back(static_cast<int>(h.bands));
+    const bool glossy = transfer::is_glossy(h.kind);
+    state.transfer_brdfs.push_back(glossy ? (options.brdf.empty() ? shade::baked_brdf(h, scene.transfer_paths[i])
+                                                                  : brdf::parse_brdf(options.brdf))
+                                          : brdf::Brdf{});
+    state.transfer_bands_out.push_back(glossy ? static_cast<int>(h.bands_out) : 0);
   }
   state.vertex_count = scene.mesh.vertex_count();
   state.triangle_count = scene.mesh.triangle_count();
@@ -278,8 +300,11 @@ void run_viewer(const ViewerOptions& options) {
 
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
-  for (std::size_t i = 0; i < scene.transfers.size(); ++i)
-    renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+  for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
+    const int index = renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+    if (!state.transfer_brdfs[i].empty())
+      renderer.set_brdf(index, brdf::project(state.transfer_brdfs[i], state.transfer_bands_out[i]));
+  }
   const mesh::Bounds bounds = mesh::bounds(scene.mesh);
   scene = SceneInputs();  // the GPU holds what is needed now
   state.renderer_name = describe_current_context();

@@ -14,6 +14,8 @@
 //   E, Shift + E            next / previous environment
 //   B                       background: env -> sh -> black
 //   L                       shading: PRT <-> Lambert baseline
+//   G                       glossy transfer: the full BRDF <-> its diffuse (lambert) lobes only; the
+//                           panel also edits each lobe's parameters live (B re-projected on the CPU)
 //   T                       tone map: ACES <-> clamp
 //   R                       reset camera, lighting rotation and object rotation
 //   S                       screenshot: prt-view-NNN.png (as shown, without the panel) and prt-view-NNN.exr
@@ -29,14 +31,14 @@
 #include <glm/vec3.hpp>
 
 #include "image/image.h"
-#include "render/camera.h"
 #include "render/renderer.h"
 
 namespace prt::render {
 
 struct ViewerOptions {
   std::string mesh_path;
-  std::vector<std::string> transfer_paths;  ///< one or more, all for the mesh
+  std::vector<std::string> transfer_paths;  ///< one or more, all for the mesh (diffuse or glossy)
+  std::string brdf;                         ///< glossy transfers: BRDF SPEC; empty = each one's baked BRDF
   std::vector<std::string> environments;    ///< one or more (images or SH lighting .json)
   Camera camera;
   glm::dvec3 rotate{0.0};         ///< initial environment yaw, pitch, roll (degrees)

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <glm/common.hpp>
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -24,12 +26,75 @@ bool slider_angles(const char* label, glm::dvec3& angles) {
   return true;
 }
 
+// Colour editor over a dvec3 with components in [0, 1].
+bool edit_colour(const char* label, glm::dvec3& colour) {
+  float values[3] = {static_cast<float>(colour.r), static_cast<float>(colour.g), static_cast<float>(colour.b)};
+  if (!ImGui::ColorEdit3(label, values, ImGuiColorEditFlags_Float)) return false;
+  colour = glm::clamp(glm::dvec3(values[0], values[1], values[2]), glm::dvec3(0.0), glm::dvec3(1.0));
+  return true;
+}
+
+// The glossy transfer's BRDF: full or diffuse lobes (G), and each lobe's parameters, edited live.
+void draw_brdf_controls(ViewerState& state) {
+  brdf::Brdf& brdf = state.transfer_brdfs[static_cast<std::size_t>(state.settings.transfer)];
+  ImGui::TextWrapped("BRDF: %s", brdf::to_spec(brdf).c_str());
+  int diffuse = state.diffuse_lobes_only ? 1 : 0;
+  ImGui::RadioButton("glossy", &diffuse, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("diffuse lobes only (G)", &diffuse, 1);
+  if ((diffuse == 1) != state.diffuse_lobes_only) {
+    state.diffuse_lobes_only = diffuse == 1;
+    state.brdf_changed = true;
+  }
+  for (std::size_t i = 0; i < brdf.lobes.size(); ++i) {
+    brdf::Lobe& lobe = brdf.lobes[i];
+    ImGui::PushID(static_cast<int>(i));
+    bool changed = false;
+    switch (lobe.type) {
+      case brdf::LobeType::lambert: changed = edit_colour("lambert albedo", lobe.weight); break;
+      case brdf::LobeType::phong:
+      case brdf::LobeType::blinn_phong: {
+        float exponent = static_cast<float>(lobe.exponent);
+        if (ImGui::SliderFloat(lobe.type == brdf::LobeType::phong ? "phong exponent" : "blinn exponent", &exponent, 0.0f, 10000.0f,
+                               "%.1f", ImGuiSliderFlags_Logarithmic)) {
+          lobe.exponent = std::clamp(static_cast<double>(exponent), 0.0, 100000.0);
+          changed = true;
+        }
+        changed = edit_colour("ks", lobe.weight) || changed;
+        break;
+      }
+      case brdf::LobeType::ggx: {
+        float roughness = static_cast<float>(lobe.roughness);
+        if (ImGui::SliderFloat("ggx roughness", &roughness, 0.01f, 1.0f, "%.3f")) {
+          lobe.roughness = std::clamp(static_cast<double>(roughness), 0.01, 1.0);
+          changed = true;
+        }
+        changed = edit_colour("F0", lobe.weight) || changed;
+        break;
+      }
+    }
+    ImGui::PopID();
+    if (changed) state.brdf_changed = true;
+  }
+  ImGui::TextDisabled("B re-projected on the CPU in %.1f ms", state.projection_ms);
+}
+
 void cycle_background(ViewerState& state) {
   Background& b = state.settings.background;
   b = b == Background::environment ? Background::sh : b == Background::sh ? Background::black : Background::environment;
 }
 
 }  // namespace
+
+brdf::Brdf shown_brdf(const ViewerState& state) {
+  const brdf::Brdf& full = state.transfer_brdfs[static_cast<std::size_t>(state.settings.transfer)];
+  if (!state.diffuse_lobes_only) return full;
+  brdf::Brdf diffuse;
+  for (const brdf::Lobe& lobe : full.lobes)
+    if (lobe.type == brdf::LobeType::lambert) diffuse.lobes.push_back(lobe);
+  if (diffuse.lobes.empty()) diffuse.lobes.push_back(brdf::Lobe{brdf::LobeType::lambert, glm::dvec3(0.8), 0.0, 0.0});
+  return diffuse;
+}
 
 void sanitise(ViewerState& state) {
   FrameSettings& s = state.settings;
@@ -68,6 +133,12 @@ bool apply_key(ViewerState& state, int key, int mods) {
         cycle_background(state);
       break;
     case GLFW_KEY_L: s.shading = s.shading == Shading::prt ? Shading::lambert : Shading::prt; break;
+    case GLFW_KEY_G:
+      if (state.current_glossy()) {
+        state.diffuse_lobes_only = !state.diffuse_lobes_only;
+        state.brdf_changed = true;
+      }
+      break;
     case GLFW_KEY_T:
       state.tone_map = state.tone_map == image::ToneMap::aces ? image::ToneMap::clamp : image::ToneMap::aces;
       break;
@@ -77,6 +148,7 @@ bool apply_key(ViewerState& state, int key, int mods) {
       if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < static_cast<int>(state.transfer_bands.size())) {
         s.transfer = key - GLFW_KEY_1;
         s.bands = 0;
+        state.brdf_changed = true;  // the G toggle applies to the newly chosen glossy transfer too
       }
       break;
   }
@@ -108,6 +180,7 @@ void draw_panel(ViewerState& state) {
         if (ImGui::Selectable(state.transfer_names[i].c_str(), static_cast<int>(i) == s.transfer)) {
           s.transfer = static_cast<int>(i);
           s.bands = 0;
+          state.brdf_changed = true;
         }
       }
       ImGui::EndCombo();
@@ -117,6 +190,7 @@ void draw_panel(ViewerState& state) {
   }
   int bands = s.bands == 0 ? state.current_bands() : s.bands;
   if (ImGui::SliderInt("bands ([ ])", &bands, 1, state.current_bands())) s.bands = bands;
+  if (state.current_glossy()) draw_brdf_controls(state);
 
   // Exposure and tone map.
   float exposure = static_cast<float>(state.exposure);

@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "brdf/brdf.h"
 #include "render/renderer.h"
 #include "render/scene_inputs.h"
 #include "render/viewer.h"
@@ -15,6 +16,8 @@ struct ViewerState {
   // Inputs.
   std::vector<std::string> transfer_names;  ///< one line per transfer for the panel
   std::vector<int> transfer_bands;
+  std::vector<brdf::Brdf> transfer_brdfs;   ///< per transfer: its BRDF (empty for diffuse transfers)
+  std::vector<int> transfer_bands_out;      ///< per transfer: output bands (0 for diffuse transfers)
   std::vector<Lighting> environments;
   int projection_bands = 1;                 ///< bands environments are projected to
   std::string renderer_name;
@@ -28,9 +31,11 @@ struct ViewerState {
   glm::dvec3 light_angles{0.0};   ///< yaw, pitch, roll in degrees
   glm::dvec3 object_angles{0.0};
   bool show_panel = true;
+  bool diffuse_lobes_only = false;  ///< glossy: shade with the BRDF's lambert lobes only (G)
 
   // Requests from input or the panel, handled by the main loop.
   bool environment_changed = true;
+  bool brdf_changed = false;        ///< the current glossy transfer's BRDF (or the G toggle) was edited
   bool screenshot_requested = false;
   bool reset_requested = false;
   std::vector<std::string> dropped;
@@ -38,10 +43,13 @@ struct ViewerState {
   // Measurements and messages.
   double frame_ms = 0.0;   ///< CPU time between frames, exponentially averaged
   double render_ms = 0.0;  ///< GPU time of the scene passes (timer query)
+  double projection_ms = 0.0;  ///< CPU time of the last BRDF re-projection
   std::string message;
 
   /// Band count of the current transfer.
   int current_bands() const { return transfer_bands[static_cast<std::size_t>(settings.transfer)]; }
+  /// Whether the current transfer is glossy.
+  bool current_glossy() const { return !transfer_brdfs[static_cast<std::size_t>(settings.transfer)].empty(); }
 };
 
 /// Draws the Dear ImGui panel and applies its edits to the state. Between ImGui::NewFrame and Render.
@@ -52,5 +60,9 @@ bool apply_key(ViewerState& state, int key, int mods);
 
 /// Clamps and normalises the state after edits (bands range, elevation, background availability).
 void sanitise(ViewerState& state);
+
+/// The BRDF the current glossy transfer is drawn with: its BRDF, or (diffuse_lobes_only) only its
+/// lambert lobes (a lambert lobe of albedo 0.8 if it has none).
+brdf::Brdf shown_brdf(const ViewerState& state);
 
 }  // namespace prt::render::viewer_detail

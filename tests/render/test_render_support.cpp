@@ -1,4 +1,5 @@
-// Shader embedding and PRT_SHADER_DIR, argument parsing, and the image comparison of `prt compare`.
+// Shader embedding and PRT_SHADER_DIR, and argument parsing (the image comparison of `prt compare` is
+// tested in tests/reference/test_compare.cpp).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -11,9 +12,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "render/camera.h"
+#include "camera/camera.h"
 #include "render/headless_context.h"
-#include "render/image_compare.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
 
@@ -92,40 +92,4 @@ TEST_CASE("camera, size and background arguments are parsed or refused with the 
   CHECK(render::parse_background("sh") == render::Background::sh);
   CHECK(render::parse_background("black") == render::Background::black);
   CHECK_THROWS_WITH(render::parse_background("white"), Catch::StartsWith("--background: "));
-}
-
-TEST_CASE("image comparison: rms, rel_rms, max and the heatmap", "[render][compare]") {
-  image::Image reference(4, 2, 3), test(4, 2, 3);
-  for (std::size_t i = 0; i < reference.pixels.size(); ++i) reference.pixels[i] = 2.0f;
-  test = reference;
-  render::ImageDifference same = render::compare_images(test, reference);
-  CHECK(same.rms == 0.0);
-  CHECK(same.rel_rms == 0.0);
-  CHECK(same.max_abs == 0.0);
-  CHECK(same.compared == 24);
-
-  test.at(3, 1, 2) = 3.0f;  // one value off by 1
-  const render::ImageDifference d = render::compare_images(test, reference);
-  CHECK(d.rms == Approx(std::sqrt(1.0 / 24.0)));
-  CHECK(d.reference_rms == Approx(2.0));
-  CHECK(d.rel_rms == Approx(std::sqrt(1.0 / 24.0) / 2.0));
-  CHECK(d.max_abs == Approx(1.0));
-  CHECK(d.max_x == 3);
-  CHECK(d.max_y == 1);
-
-  test.at(0, 0, 0) = std::nanf("");
-  const render::ImageDifference with_nan = render::compare_images(test, reference);
-  CHECK(with_nan.non_finite == 1);
-  CHECK(with_nan.compared == 23);
-
-  const image::Image heat = render::difference_heatmap(test, reference);
-  CHECK(heat.at(3, 1, 0) == 1.0f);  // the largest error is white
-  CHECK(heat.at(3, 1, 1) == 1.0f);
-  CHECK(heat.at(3, 1, 2) == 1.0f);
-  CHECK(heat.at(1, 0, 0) == 0.0f);  // no error is black
-  CHECK(heat.at(0, 0, 2) == 1.0f);  // non-finite is blue
-  CHECK(heat.at(0, 0, 0) == 0.0f);
-
-  CHECK_THROWS_WITH(render::compare_images(image::Image(4, 3, 3), reference, "a.exr", "b.exr"),
-                    Catch::Contains("a.exr: image is 4x3x3, b.exr is 4x2x3"));
 }

@@ -1,0 +1,115 @@
+// Glossy bakes (bake.h, GLOSSY): the direct pass, interreflection passes and the file header.
+#include <chrono>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/glossy_passes.h"
+#include "brdf/frame.h"
+#include "brdf/projection.h"
+#include "trace/scene.h"
+
+namespace prt::bake {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Sum over vertices and channels of M[0][0]: the DC response of the transferred radiance to constant
+// lighting (1 - occluded fraction of the sphere for the direct pass).
+double pass_energy(const std::vector<float>& values, std::size_t matrix_size, std::size_t matrices) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < matrices; ++i) sum += values[i * matrix_size];
+  return sum;
+}
+
+std::string parameters_json(const BakeOptions& o, int bands_out, int bounces_done, float ray_offset) {
+  nlohmann::ordered_json j;
+  j["tool"] = "prt 0.1.0";
+  j["kind"] = transfer::kind_name(o.kind);
+  j["bands"] = o.bands;
+  j["bands_out"] = bands_out;
+  j["brdf"] = brdf::to_spec(o.brdf);
+  j["samples"] = o.samples;
+  j["seed"] = o.seed;
+  j["sample_set"] = "owen-scrambled sobol, uniform hemisphere, per-vertex hashed rotation";
+  j["frame"] = "local: t = normalize(+Y x n) (+X at the poles), b = n x t, z = n";
+  j["ray_offset"] = ray_offset;
+  if (o.kind == transfer::Kind::glossy_interreflected) {
+    j["bounces_requested"] = o.bounces < 0 ? std::string("auto") : std::to_string(o.bounces);
+    j["bounces"] = bounces_done;
+  }
+  return j.dump();
+}
+
+}  // namespace
+
+transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
+  BakeReport local_report;
+  BakeReport& rep = report ? *report : local_report;
+  rep = BakeReport{};
+  const int bands_out = options.bands_out > 0 ? options.bands_out : options.bands;
+  const bool interreflected = options.kind == transfer::Kind::glossy_interreflected;
+  const int channels = interreflected && !options.brdf.is_grey() ? 3 : 1;
+  const std::size_t vertices = mesh.positions.size();
+  const std::size_t matrix_size = static_cast<std::size_t>(bands_out) * bands_out * options.bands * options.bands;
+
+  transfer::TransferData data;
+  transfer::Header& h = data.header;
+  h.kind = options.kind;
+  h.bands = static_cast<std::uint32_t>(options.bands);
+  h.bands_out = static_cast<std::uint32_t>(bands_out);
+  h.channels = static_cast<std::uint32_t>(channels);
+  h.vertex_count = vertices;
+  h.triangle_count = mesh.indices.size() / 3;
+  h.mesh_fingerprint = mesh::fingerprint(mesh);
+
+  auto start = std::chrono::steady_clock::now();
+  const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
+  rep.seconds_build = seconds_since(start);
+  const LocalSampleSet samples = make_uniform_sample_set(options.samples, options.bands, options.seed);
+  const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
+  std::vector<glm::mat3> frames(vertices);
+  for (std::size_t v = 0; v < vertices; ++v) frames[v] = brdf::shading_frame(mesh.normals[v]);
+  const GlossyContext ctx{&mesh, &scene, &samples, &order, &frames, options.bands, bands_out,
+                          options.seed, options.threads, options.progress};
+
+  start = std::chrono::steady_clock::now();
+  std::vector<float> direct;
+  rep.rays_traced += glossy_direct_pass(ctx, direct);
+  rep.seconds_visibility = seconds_since(start);
+  if (channels == 1) {
+    data.values = std::move(direct);
+  } else {
+    data.values.resize(vertices * 3 * matrix_size);
+    for (std::size_t v = 0; v < vertices; ++v)
+      for (int c = 0; c < 3; ++c)
+        std::copy(direct.begin() + v * matrix_size, direct.begin() + (v + 1) * matrix_size,
+                  data.values.begin() + (v * 3 + c) * matrix_size);
+  }
+  rep.pass_energy.push_back(pass_energy(data.values, matrix_size, vertices * channels));
+
+  if (interreflected) {
+    start = std::chrono::steady_clock::now();
+    const brdf::BrdfMatrix brdf_matrix = brdf::project(options.brdf, bands_out);
+    const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
+    std::vector<float> prev = data.values, next;
+    for (int b = 1; b <= max_passes; ++b) {
+      const std::string label = "bake glossy bounce " + std::to_string(b);
+      rep.rays_traced += glossy_bounce_pass(ctx, brdf_matrix, channels, prev, next, label.c_str());
+      for (std::size_t i = 0; i < next.size(); ++i) data.values[i] += next[i];
+      const double energy = pass_energy(next, matrix_size, vertices * channels);
+      rep.pass_energy.push_back(energy);
+      rep.bounces_done = b;
+      prev.swap(next);
+      if (options.bounces < 0 && !(std::abs(energy) >= kBounceEnergyThreshold * std::abs(rep.pass_energy.front()))) break;
+    }
+    rep.seconds_bounces = seconds_since(start);
+  }
+  h.parameters_json = parameters_json(options, bands_out, rep.bounces_done, scene.ray_offset());
+  return data;
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,68 @@
+// Internal to prt_reference: the per-vertex loop shared by the diffuse (reference.cpp) and glossy
+// (glossy_reference.cpp) references. It owns what makes the result independent of --threads: Morton
+// order of work, one SampleStream(seed, v) per vertex, per-vertex results written in place, and the
+// noise figure computed afterwards in vertex order.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "mesh/mesh.h"
+#include "reference/estimator.h"
+#include "reference/reference.h"
+#include "trace/scene.h"
+
+namespace prt::reference::detail {
+
+/// Vertices per parallel chunk: each vertex costs `samples` paths, so small chunks balance well.
+constexpr std::size_t kVerticesPerChunk = 8;
+
+/// Fills rep.mean_relative_standard_error from per-vertex values and standard errors (vertices darker
+/// than 1e-6 of the brightest are left out), and copies the errors to `standard_error` if given.
+void summarise_noise(const std::vector<glm::vec3>& radiance, const std::vector<glm::dvec3>& error,
+                     ReferenceReport& rep, std::vector<glm::vec3>* standard_error);
+
+/// Runs `estimate(v, stream, workspace) -> RadianceEstimate` for every vertex of `mesh` in Morton
+/// order on `threads` threads, each vertex with SampleStream(seed, v). Fills rep.seconds_trace, rays,
+/// paths (= vertices * samples) and the noise figure; returns per-vertex radiance.
+template <class Workspace, class Estimate>
+std::vector<glm::vec3> trace_every_vertex(const mesh::Mesh& mesh, const char* label, std::uint32_t seed,
+                                          int samples, int threads, bool show_progress, ReferenceReport& rep,
+                                          std::vector<glm::vec3>* standard_error, const Estimate& estimate) {
+  const std::size_t vertices = mesh.positions.size();
+  const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
+  std::vector<glm::vec3> radiance(vertices);
+  std::vector<glm::dvec3> error(vertices);
+  std::atomic<std::uint64_t> rays{0};
+  Progress progress(label, "vertices", std::max<std::size_t>(vertices, 1), show_progress);
+  const auto start = std::chrono::steady_clock::now();
+  parallel_for(order.size(), kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+    Workspace workspace;
+    std::uint64_t traced = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t v = order[k];
+      SampleStream stream(seed, v);
+      const RadianceEstimate e = estimate(v, stream, workspace);
+      radiance[v] = glm::vec3(e.value);
+      error[v] = e.standard_error;
+      traced += e.rays;
+    }
+    rays += traced;
+    progress.advance(end - begin);
+  });
+  progress.finish();
+  rep.seconds_trace = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.rays = rays.load();
+  rep.paths = static_cast<std::uint64_t>(vertices) * static_cast<std::uint64_t>(samples);
+  summarise_noise(radiance, error, rep, standard_error);
+  return radiance;
+}
+
+}  // namespace prt::reference::detail
