@@ -69,7 +69,7 @@ TEST_CASE("8-bit files are display values: quantised with rounding, read back li
   CHECK_FALSE(image::is_display_format("x.hdr"));
 }
 
-TEST_CASE("grey images become RGB; alpha is dropped", "[image]") {
+TEST_CASE("grey images become RGB, alpha is dropped", "[image]") {
   test::TempDir dir("image_channels");
   image::Image grey(3, 2, 1), rgba(3, 2, 4);
   for (std::size_t i = 0; i < grey.pixels.size(); ++i) grey.pixels[i] = 0.25f * i;

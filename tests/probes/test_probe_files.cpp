@@ -119,7 +119,7 @@ TEST_CASE("probe files round-trip exactly and name their damage", "[probes][file
   }
 }
 
-TEST_CASE("grids put probes at cell centres, x fastest; bad grids and point lists are one-line errors", "[probes][file]") {
+TEST_CASE("grids put probes at cell centres, x fastest, bad grids and point lists are one-line errors", "[probes][file]") {
   probes::Grid g;
   g.counts = {{2, 3, 1}};
   g.lo = {0, 0, 0};
@@ -197,7 +197,7 @@ TEST_CASE("prt probes: bad inputs give one-line errors and leave nothing behind"
   CHECK(test::entries_in(dir) == left.size());
 }
 
-TEST_CASE("prt probes bakes every format; probes-relight applies a rotated sky", "[probes][cli]") {
+TEST_CASE("prt probes bakes every format, probes-relight applies a rotated sky", "[probes][cli]") {
   const std::string dir = test::fresh_temp_dir("probe_cli_formats");
   const std::string scene = write_scene(dir);
   const std::string base = "probes " + scene + " --env " + sky() + " --grid 3,2,3 --rays 256 --surface-samples 64 -q ";

@@ -324,7 +324,7 @@ TEST_CASE("RGB sets rotate channel by channel", "[sh][rotation]") {
   CHECK_THROWS_AS(rotation.apply(prt::sh::RgbCoefficients(bands + 1)), prt::Error);
 }
 
-TEST_CASE("invalid input is reported; small drift from orthonormality is tolerated", "[sh][rotation]") {
+TEST_CASE("invalid input is reported, small drift from orthonormality is tolerated", "[sh][rotation]") {
   CHECK_THROWS_AS(Rotation(0, glm::dmat3(1.0)), prt::Error);
   CHECK_THROWS_AS(Rotation(prt::sh::kMaxBands + 1, glm::dmat3(1.0)), prt::Error);
   CHECK_THROWS_AS(Rotation(3, glm::dmat3(2.0)), prt::Error);                                // scaling

@@ -242,7 +242,7 @@ TEST_CASE("tnear and tfar bound the segment", "[trace]") {
   CHECK(closest.hit(1).ng.z == Approx(4.0));
 }
 
-TEST_CASE("the vertex buffer is shared when the positions have slack, else copied; results agree", "[trace]") {
+TEST_CASE("the vertex buffer is shared when the positions have slack, else copied, results agree", "[trace]") {
   mesh::Mesh exact = bench::icosphere(2);
   exact.positions.shrink_to_fit();
   mesh::Mesh slack = exact;
@@ -269,7 +269,7 @@ TEST_CASE("the vertex buffer is shared when the positions have slack, else copie
   }
 }
 
-TEST_CASE("invalid meshes are rejected with prt::Error; an empty mesh misses everything", "[trace]") {
+TEST_CASE("invalid meshes are rejected with prt::Error, an empty mesh misses everything", "[trace]") {
   mesh::Mesh m = bench::icosphere(0);
   mesh::Mesh bad_index = m;
   bad_index.indices[5] = 12;
