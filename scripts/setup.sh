@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs prt's Debian packages (idempotently: `apt-get update` runs once, and only if something is
 # missing), then configures a Release build with Ninja in build/ and builds everything.
-# Usage: scripts/setup.sh [--no-build] [extra cmake -D options...]
+# Usage: scripts/setup.sh [--tests] [--no-build] [extra cmake -D options...]
+#   --tests     also install what the tests need beyond the build: Xvfb (viewer smoke test), Chromium,
+#               Node.js and the npm packages of probes/threejs (the three.js browser test).
+#   --no-build  install only.
 # Environment: PRT_BUILD_DIR (default build), PRT_EXTRA_PACKAGES (more packages to install).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,8 +13,23 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libglm-dev libembree-dev libglfw3-dev libopenimageio-dev openimageio-tools catch2 libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libimgui-dev
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
+with_tests=0
+build=1
+cmake_args=()
+for arg in "$@"; do
+  case "$arg" in
+    --tests) with_tests=1 ;;
+    --no-build) build=0 ;;
+    *) cmake_args+=("$arg") ;;
+  esac
+done
+if ((with_tests)); then
+  packages+=(xvfb xauth chromium)
+  command -v node >/dev/null || packages+=(nodejs)
+  command -v npm >/dev/null || packages+=(npm)
+fi
 # shellcheck disable=SC2206
 packages+=(${PRT_EXTRA_PACKAGES:-})
 
@@ -29,8 +47,13 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-if [ "${1:-}" = "--no-build" ]; then exit 0; fi
+if ((with_tests)) && [ ! -d probes/threejs/node_modules ]; then
+  echo "setup: installing the npm packages of probes/threejs (npm ci)" >&2
+  (cd probes/threejs && npm ci --no-audit --no-fund --loglevel=error) >&2
+fi
+
+if ((build == 0)); then exit 0; fi
 build_dir="${PRT_BUILD_DIR:-build}"
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" 2>&1 | grep -v -e PyImath -e '^$' >&2 || true
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" 2>&1 | grep -v -e PyImath -e '^$' >&2 || true
 test -f "$build_dir/build.ninja"
 cmake --build "$build_dir"

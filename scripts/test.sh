@@ -2,6 +2,6 @@
 # Installs, builds and runs every test (ctest). Usage: scripts/test.sh [ctest options...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh --tests
 cd build
 ctest --output-on-failure -j"$(nproc)" "$@"
