@@ -26,14 +26,16 @@ void add_counts(PixelRepairCounts& total, const PixelRepairCounts& more) {
   total.negative += more.negative;
 }
 
-glm::dvec3 bilinear(const image::Image& im, double x, double y, bool wrap_x) {
+// T = double for Environment::radiance, float for radiance_float (same texels and filter).
+template <class T>
+glm::vec<3, T> bilinear(const image::Image& im, T x, T y, bool wrap_x) {
   // (x, y) in pixel units with texel centres at integer + 0.5.
-  x -= 0.5;
-  y -= 0.5;
-  y = std::min(std::max(y, 0.0), static_cast<double>(im.height - 1));
-  if (!wrap_x) x = std::min(std::max(x, 0.0), static_cast<double>(im.width - 1));
-  const double x_floor = std::floor(x), y_floor = std::floor(y);
-  const double fx = x - x_floor, fy = y - y_floor;
+  x -= T(0.5);
+  y -= T(0.5);
+  y = std::min(std::max(y, T(0)), static_cast<T>(im.height - 1));
+  if (!wrap_x) x = std::min(std::max(x, T(0)), static_cast<T>(im.width - 1));
+  const T x_floor = std::floor(x), y_floor = std::floor(y);
+  const T fx = x - x_floor, fy = y - y_floor;
   int x0 = static_cast<int>(x_floor), y0 = static_cast<int>(y_floor);
   int x1 = x0 + 1, y1 = std::min(y0 + 1, im.height - 1);
   if (wrap_x) {
@@ -49,11 +51,11 @@ glm::dvec3 bilinear(const image::Image& im, double x, double y, bool wrap_x) {
   } else {
     x1 = std::min(x1, im.width - 1);
   }
-  glm::dvec3 out(0.0);
+  glm::vec<3, T> out(T(0));
   for (int c = 0; c < 3; ++c) {
     const int cc = std::min(c, im.channels - 1);
-    const double top = (1 - fx) * im.at(x0, y0, cc) + fx * im.at(x1, y0, cc);
-    const double bottom = (1 - fx) * im.at(x0, y1, cc) + fx * im.at(x1, y1, cc);
+    const T top = (1 - fx) * im.at(x0, y0, cc) + fx * im.at(x1, y0, cc);
+    const T bottom = (1 - fx) * im.at(x0, y1, cc) + fx * im.at(x1, y1, cc);
     out[c] = (1 - fy) * top + fy * bottom;
   }
   return out;
@@ -88,12 +90,19 @@ glm::dvec3 equirect_direction(double u, double v) {
   return {s * std::cos(phi), std::cos(theta), s * std::sin(phi)};
 }
 
-void equirect_uv(const glm::dvec3& direction, double& u, double& v) {
-  const double phi = std::atan2(direction.z, direction.x);  // (-pi, pi]
-  u = phi / (2.0 * kPi) + 0.5;
-  if (u >= 1.0) u -= 1.0;
-  v = std::acos(std::min(1.0, std::max(-1.0, direction.y))) / kPi;
+namespace {
+
+template <class T>
+void equirect_uv_t(const glm::vec<3, T>& direction, T& u, T& v) {
+  const T phi = std::atan2(direction.z, direction.x);  // (-pi, pi]
+  u = phi / static_cast<T>(2.0 * kPi) + T(0.5);
+  if (u >= T(1)) u -= T(1);
+  v = std::acos(std::min(T(1), std::max(T(-1), direction.y))) / static_cast<T>(kPi);
 }
+
+}  // namespace
+
+void equirect_uv(const glm::dvec3& direction, double& u, double& v) { equirect_uv_t(direction, u, v); }
 
 glm::dvec3 cube_direction(int face, double s, double t) {
   const double sc = 2.0 * s - 1.0, tc = 2.0 * t - 1.0;
@@ -197,6 +206,15 @@ glm::dvec3 Environment::radiance(const glm::dvec3& direction) const {
   cube_face_st(direction, face, s, t);
   const image::Image& im = faces[face];
   return bilinear(im, s * im.width, t * im.height, false);
+}
+
+glm::vec3 Environment::radiance_float(const glm::vec3& direction) const {
+  if (layout == Layout::equirect) {
+    float u, v;
+    equirect_uv_t(direction, u, v);
+    return bilinear(equirect, u * static_cast<float>(equirect.width), v * static_cast<float>(equirect.height), true);
+  }
+  return glm::vec3(radiance(glm::dvec3(direction)));
 }
 
 Environment load_environment(const std::string& spec) {

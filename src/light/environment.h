@@ -85,6 +85,10 @@ struct Environment {
   /// phi and clamps at the top and bottom rows; cube faces clamp at their own edges (no filtering
   /// across faces).
   glm::dvec3 radiance(const glm::dvec3& direction) const;
+
+  /// As radiance(), in single precision for hot loops (the probe pass): the same texels and filter,
+  /// float trigonometry (equirect; about 1e-6 relative from radiance()). Cube maps use radiance().
+  glm::vec3 radiance_float(const glm::vec3& direction) const;
 };
 
 /// Loads `spec`, any format OpenImageIO reads (.exr, .hdr, .tif, .pfm, ...; 8-bit files are

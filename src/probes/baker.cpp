@@ -230,7 +230,7 @@ ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std:
           const float* y = basis.data() + (first + i) * n;
           if (!hit.hit()) {
             if (plain && environment) {
-              const glm::vec3 value(environment->radiance(glm::dvec3(dir)));
+              const glm::vec3 value(environment->radiance_float(dir));
               for (int k = 0; k < n; ++k) batch_sum[k] += value * y[k];
             }
             continue;
@@ -242,7 +242,7 @@ ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std:
           const trace::Hit& h = batch.data()[i].hit;
           const bool front = h.ng_x * dir.x + h.ng_y * dir.y + h.ng_z * dir.z < 0.0f;
           glm::vec3 value(0.0f);
-          if (!plain && environment) value = -glm::vec3(environment->radiance(glm::dvec3(dir)));
+          if (!plain && environment) value = -environment->radiance_float(dir);
           if (front) {
             const glm::vec3* corner = corner_radiance.data() + 3 * static_cast<std::size_t>(hit.prim_id);
             value += (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];

@@ -196,6 +196,30 @@ TEST_CASE("radiance() filters bilinearly between texel centres", "[environment]"
   CHECK(env.radiance(light::cube_direction(3, 0.75, 0.25)).x == Approx(31.0).margin(1e-9));
 }
 
+TEST_CASE("radiance_float() is radiance() in single precision, including the wrap seam and the poles", "[environment]") {
+  light::Environment env;
+  env.equirect = image::Image(64, 32, 3);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c)
+        env.equirect.at(x, y, c) = static_cast<float>(1.0 + 0.5 * std::sin(0.3 * x + c) * std::cos(0.7 * y));
+  double worst = 0.0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    // A Fibonacci sphere, plus directions exactly on the seam (-X) and at the poles.
+    const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+    glm::dvec3 d(r * std::cos(phi), z, r * std::sin(phi));
+    if (i == 0) d = {-1.0, 0.0, 0.0};
+    if (i == 1) d = {0.0, 1.0, 0.0};
+    if (i == 2) d = {0.0, -1.0, 0.0};
+    const glm::dvec3 exact = env.radiance(d);
+    const glm::dvec3 fast(env.radiance_float(glm::vec3(d)));
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(fast[c] - exact[c]) / std::abs(exact[c]));
+  }
+  INFO("worst relative difference " << worst);
+  CHECK(worst < 2e-5);
+}
+
 TEST_CASE("load_environment reads equirect maps, crosses and six faces", "[environment]") {
   test::TempDir dir("env_load");
   const auto faces = smooth_faces(16);
