@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/little_endian.h"
 #include "sh/basis.h"
 
 namespace prt::brdf {
@@ -28,28 +29,10 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-void put_u32(std::string& out, std::uint32_t v) {
-  for (int b = 0; b < 4; ++b) out.push_back(static_cast<char>((v >> (8 * b)) & 0xFF));
-}
-
-std::uint32_t get_u32(const unsigned char* p) {
-  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
-}
-
-void put_f64(std::string& out, double v) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &v, 8);
-  for (int b = 0; b < 8; ++b) out.push_back(static_cast<char>((bits >> (8 * b)) & 0xFF));
-}
-
-double get_f64(const unsigned char* p) {
-  std::uint64_t bits = 0;
-  for (int b = 0; b < 8; ++b) bits |= static_cast<std::uint64_t>(p[b]) << (8 * b);
-  double v;
-  std::memcpy(&v, &bits, 8);
-  return v;
-}
+using le::get_f64;
+using le::get_u32;
+using le::put_f64;
+using le::put_u32;
 
 void check_shape(const std::string& path, long long bands, long long channels) {
   if (bands < 1 || bands > sh::kMaxBands) fail_file(path, "bands " + std::to_string(bands) + " out of range 1..32");

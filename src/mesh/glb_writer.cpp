@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/little_endian.h"
 #include "mesh/writers.h"
 
 namespace prt::mesh {
@@ -24,16 +25,10 @@ constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr std::uint32_t kChunkJson = 0x4E4F534A;
 constexpr std::uint32_t kChunkBin = 0x004E4942;
 
-void put_u32(std::string& out, std::uint32_t value) {
-  for (int k = 0; k < 4; ++k) out.push_back(char((value >> (8 * k)) & 0xffu));
-}
+using le::put_u32;
 
 void put_floats(std::string& out, const float* values, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t bits;
-    std::memcpy(&bits, &values[i], 4);
-    put_u32(out, bits);
-  }
+  for (std::size_t i = 0; i < count; ++i) le::put_f32(out, values[i]);
 }
 
 bool valid_semantic(const std::string& name) {

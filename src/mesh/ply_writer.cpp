@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/little_endian.h"
 #include "mesh/ply_format.h"
 #include "mesh/writers.h"
 
@@ -12,15 +13,8 @@ namespace prt::mesh {
 
 namespace {
 
-void put_u32(std::string& out, std::uint32_t value) {
-  for (int k = 0; k < 4; ++k) out.push_back(char((value >> (8 * k)) & 0xffu));
-}
-
-void put_float(std::string& out, float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, 4);
-  put_u32(out, bits);
-}
+using le::put_u32;
+void put_float(std::string& out, float value) { le::put_f32(out, value); }
 
 }  // namespace
 

@@ -7,8 +7,10 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/little_endian.h"
 #include "probes/engine_sh.h"
 #include "probes/exporters.h"
+#include "transfer/half.h"
 
 namespace prt::probes {
 
@@ -17,57 +19,13 @@ namespace {
 constexpr unsigned char kKtx2Identifier[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A};
 constexpr std::uint32_t kVkFormatR16G16B16A16Sfloat = 97;
 
-void put_u32(std::string& s, std::uint32_t v) {
-  for (int b = 0; b < 4; ++b) s.push_back(static_cast<char>((v >> (8 * b)) & 0xFF));
-}
-void put_u64(std::string& s, std::uint64_t v) {
-  for (int b = 0; b < 8; ++b) s.push_back(static_cast<char>((v >> (8 * b)) & 0xFF));
-}
-std::uint32_t get_u32(const std::string& s, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int b = 0; b < 4; ++b) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + b])) << (8 * b);
-  return v;
-}
-std::uint64_t get_u64(const std::string& s, std::size_t at) {
-  return get_u32(s, at) | (static_cast<std::uint64_t>(get_u32(s, at + 4)) << 32);
-}
+using le::get_u32;
+using le::get_u64;
+using le::put_u32;
+using le::put_u64;
 
-// IEEE 754 binary16, round to nearest even; overflow to infinity (never reached for radiance here).
-std::uint16_t to_half(float value) {
-  std::uint32_t f;
-  std::memcpy(&f, &value, 4);
-  const std::uint32_t sign = (f >> 16) & 0x8000u;
-  const std::uint32_t abs = f & 0x7FFFFFFFu;
-  if (abs >= 0x7F800000u) return static_cast<std::uint16_t>(sign | 0x7C00u | (abs > 0x7F800000u ? 0x200u : 0u));
-  if (abs >= 0x477FF000u) return static_cast<std::uint16_t>(sign | 0x7C00u);  // rounds to >= 65520
-  if (abs < 0x38800000u) {                                                    // subnormal half
-    const std::uint32_t mantissa = (abs & 0x7FFFFFu) | 0x800000u;
-    const int shift = 113 - static_cast<int>(abs >> 23) + 13;
-    if (shift > 24) return static_cast<std::uint16_t>(sign);
-    const std::uint32_t half = mantissa >> shift;
-    const std::uint32_t rest = mantissa & ((1u << shift) - 1u), halfway = 1u << (shift - 1);
-    return static_cast<std::uint16_t>(sign | (half + (rest > halfway || (rest == halfway && (half & 1u)))));
-  }
-  const std::uint32_t rebased = abs - 0x38000000u;  // exponent 127 -> 15
-  std::uint32_t half = rebased >> 13;
-  const std::uint32_t rest = rebased & 0x1FFFu;
-  if (rest > 0x1000u || (rest == 0x1000u && (half & 1u))) ++half;
-  return static_cast<std::uint16_t>(sign | half);
-}
-
-float from_half(std::uint16_t h) {
-  const std::uint32_t sign = static_cast<std::uint32_t>(h & 0x8000u) << 16;
-  const std::uint32_t exponent = (h >> 10) & 0x1Fu, mantissa = h & 0x3FFu;
-  float value;
-  if (exponent == 0) value = std::ldexp(static_cast<float>(mantissa), -24);
-  else if (exponent == 31) value = mantissa ? NAN : INFINITY;
-  else value = std::ldexp(static_cast<float>(mantissa | 0x400u), static_cast<int>(exponent) - 25);
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, 4);
-  bits |= sign;
-  std::memcpy(&value, &bits, 4);
-  return value;
-}
+using transfer::float_to_half;
+using transfer::half_to_float;
 
 // The Basic Data Format Descriptor for R16G16B16A16_SFLOAT (KTX 2.0 spec, section 3.10; Khronos Data
 // Format spec 1.3, section 5): model RGBSDA, primaries BT.709, linear transfer, 8 bytes per texel,
@@ -158,8 +116,8 @@ std::string format_bevy_ktx2(const ProbeSet& p) {
             const glm::dvec3& v = cube[2 * axis + sign];
             const std::size_t tx = x, ty = y + ny * sign, tz = z + nz * axis;
             const std::size_t at = ((tz * height + ty) * width + tx) * 8;
-            const std::uint16_t h[4] = {to_half(static_cast<float>(v.x)), to_half(static_cast<float>(v.y)),
-                                        to_half(static_cast<float>(v.z)), to_half(1.0f)};
+            const std::uint16_t h[4] = {float_to_half(static_cast<float>(v.x)), float_to_half(static_cast<float>(v.y)),
+                                        float_to_half(static_cast<float>(v.z)), float_to_half(1.0f)};
             for (int k = 0; k < 4; ++k) {
               texels[at + 2 * k] = static_cast<char>(h[k] & 0xFF);
               texels[at + 2 * k + 1] = static_cast<char>(h[k] >> 8);
@@ -225,7 +183,7 @@ Ktx2Texture read_bevy_ktx2(const std::string& bytes, const std::string& name) {
   t.rgba.resize(texel_count * 4);
   for (std::uint64_t k = 0; k < texel_count * 4; ++k) {
     const std::size_t at = static_cast<std::size_t>(offset + 2 * k);
-    t.rgba[k] = from_half(static_cast<std::uint16_t>(static_cast<unsigned char>(bytes[at]) |
+    t.rgba[k] = half_to_float(static_cast<std::uint16_t>(static_cast<unsigned char>(bytes[at]) |
                                                      (static_cast<unsigned char>(bytes[at + 1]) << 8)));
   }
   return t;

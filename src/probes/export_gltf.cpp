@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/little_endian.h"
 #include "image/image.h"
 #include "light/environment.h"
 #include "mesh/mesh.h"
@@ -32,14 +33,8 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::uint32_t get_u32(const std::string& s, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int b = 0; b < 4; ++b) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + b])) << (8 * b);
-  return v;
-}
-void put_u32(std::string& s, std::uint32_t v) {
-  for (int b = 0; b < 4; ++b) s.push_back(static_cast<char>((v >> (8 * b)) & 0xFF));
-}
+using le::get_u32;
+using le::put_u32;
 
 std::string base64_decode(const std::string& in, const std::string& name) {
   auto value = [](char c) -> int {

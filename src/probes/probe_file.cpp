@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fnv.h"
+#include "core/little_endian.h"
 
 namespace prt::probes {
 
@@ -20,15 +21,8 @@ constexpr std::uint32_t kVersion = 1;
 
 using Json = nlohmann::ordered_json;
 
-void put_u32(std::string& out, std::uint32_t v) {
-  for (int b = 0; b < 4; ++b) out.push_back(static_cast<char>((v >> (8 * b)) & 0xFF));
-}
-
-std::uint32_t get_u32(const std::string& in, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int b = 0; b < 4; ++b) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(in[at + b])) << (8 * b);
-  return v;
-}
+using le::get_u32;
+using le::put_u32;
 
 // The host is little-endian (x86-64, aarch64): float arrays are copied as they are.
 static_assert(sizeof(float) == 4, "float32 payload");
