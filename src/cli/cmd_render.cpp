@@ -1,7 +1,6 @@
 // prt render: one relit frame rendered headless (OpenGL through EGL) and written as PNG or EXR.
-#include <cmath>
-
 #include "cli/arguments.h"
+#include "cli/view_arguments.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "image/image.h"
@@ -12,10 +11,8 @@ namespace prt::cli {
 namespace {
 
 struct RenderCommandOptions {
-  std::string mesh_path, transfer_path, env, rotate, object_rotate, camera = "auto", size = "1024x1024", background,
-      tone_map = "aces", output, brdf;
-  double exposure = 0.0;
-  int bands = 0;
+  std::string mesh_path, transfer_path, env, tone_map = "aces", output, brdf;
+  ViewArguments view = {"", "", "auto", "1024x1024", "", 0.0, 0};
   bool quiet = false;
 };
 
@@ -25,16 +22,8 @@ void run_render(const RenderCommandOptions& o) {
   options.transfer_path = o.transfer_path;
   options.environment = o.env;
   options.output = o.output;
-  if (!o.rotate.empty()) options.rotate = parse_angles(o.rotate, "--rotate");
-  if (!o.object_rotate.empty()) options.object_rotate = parse_angles(o.object_rotate, "--object-rotate");
-  options.camera = render::parse_camera(o.camera);
-  render::parse_size(o.size, options.width, options.height);
-  if (!std::isfinite(o.exposure)) fail("--exposure: must be a finite number of stops");
-  options.exposure = o.exposure;
+  apply_view_arguments(o.view, options);
   options.tone_map = parse_tone_map(o.tone_map);
-  if (!o.background.empty()) options.background = render::parse_background(o.background);
-  if (o.bands < 0) fail("--bands: must be at least 1 (0 = all of the transfer's bands)");
-  options.bands = o.bands;
   options.quiet = o.quiet;
   options.brdf = o.brdf;
   render::render_to_file(options);
@@ -52,19 +41,19 @@ void add_render_command(CLI::App& app) {
                   "Environment image (equirect 2:1, cross, or six faces; projected to the transfer's bands) or SH "
                   "lighting .json")
       ->required();
-  cmd->add_option("--rotate", options->rotate, "YAW,PITCH,ROLL degrees: rotate the environment by Ry Rx Rz");
-  cmd->add_option("--object-rotate", options->object_rotate,
+  cmd->add_option("--rotate", options->view.rotate, "YAW,PITCH,ROLL degrees: rotate the environment by Ry Rx Rz");
+  cmd->add_option("--object-rotate", options->view.object_rotate,
                   "YAW,PITCH,ROLL degrees: rotate the object about its bounds centre");
-  cmd->add_option("--camera", options->camera,
+  cmd->add_option("--camera", options->view.camera,
                   "AZ,EL,DIST or auto: orbit about the bounds centre (degrees, degrees, mesh units; DIST may be auto). "
                   "AZ=0,EL=0 looks from +Z toward -Z")
       ->capture_default_str();
-  cmd->add_option("--size", options->size, "WxH pixels")->capture_default_str();
-  cmd->add_option("--exposure", options->exposure, "Exposure in stops (PNG only)")->capture_default_str();
+  cmd->add_option("--size", options->view.size, "WxH pixels")->capture_default_str();
+  cmd->add_option("--exposure", options->view.exposure, "Exposure in stops (PNG only)")->capture_default_str();
   cmd->add_option("--tone-map", options->tone_map, "aces (Narkowicz 2015) or clamp (PNG only)")->capture_default_str();
-  cmd->add_option("--background", options->background,
+  cmd->add_option("--background", options->view.background,
                   "env (the image), sh (its SH reconstruction) or black; default env, sh for a .json");
-  cmd->add_option("--bands", options->bands, "Use only the first K bands of the transfer (0 = all)");
+  cmd->add_option("--bands", options->view.bands, "Use only the first K bands of the transfer (0 = all)");
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfer: the BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");
   cmd->add_flag("-q,--quiet", options->quiet, "No summary line on stderr");

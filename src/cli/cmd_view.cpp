@@ -1,7 +1,6 @@
 // prt view: the interactive relighting viewer (GLFW window, Dear ImGui panel).
-#include <cmath>
-
 #include "cli/arguments.h"
+#include "cli/view_arguments.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "render/viewer.h"
@@ -11,10 +10,10 @@ namespace prt::cli {
 namespace {
 
 struct ViewCommandOptions {
-  std::string mesh_path, rotate, object_rotate, camera = "auto", size = "1280x800", background, screenshot, brdf;
+  std::string mesh_path, screenshot, brdf;
   std::vector<std::string> transfer_paths, environments;
-  double exposure = 0.0;
-  int bands = 0, frames = 0;
+  ViewArguments view = {"", "", "auto", "1280x800", "", 0.0, 0};
+  int frames = 0;
 };
 
 void run_view(const ViewCommandOptions& o) {
@@ -23,15 +22,7 @@ void run_view(const ViewCommandOptions& o) {
   options.transfer_paths = o.transfer_paths;
   options.brdf = o.brdf;
   options.environments = o.environments;
-  if (!o.rotate.empty()) options.rotate = parse_angles(o.rotate, "--rotate");
-  if (!o.object_rotate.empty()) options.object_rotate = parse_angles(o.object_rotate, "--object-rotate");
-  options.camera = render::parse_camera(o.camera);
-  render::parse_size(o.size, options.width, options.height);
-  if (!std::isfinite(o.exposure)) fail("--exposure: must be a finite number of stops");
-  options.exposure = o.exposure;
-  if (!o.background.empty()) options.background = render::parse_background(o.background);
-  if (o.bands < 0) fail("--bands: must be at least 1 (0 = all of the transfer's bands)");
-  options.bands = o.bands;
+  apply_view_arguments(o.view, options);
   if (o.frames < 0) fail("--frames: must be positive");
   options.frames = o.frames;
   options.screenshot = o.screenshot;
@@ -52,13 +43,13 @@ void add_view_command(CLI::App& app) {
       ->required()
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->add_option("--rotate", options->rotate, "Initial YAW,PITCH,ROLL degrees of the environment");
-  cmd->add_option("--object-rotate", options->object_rotate, "Initial YAW,PITCH,ROLL degrees of the object");
-  cmd->add_option("--camera", options->camera, "Initial AZ,EL,DIST or auto (as prt render)")->capture_default_str();
-  cmd->add_option("--size", options->size, "Window size WxH")->capture_default_str();
-  cmd->add_option("--exposure", options->exposure, "Initial exposure in stops")->capture_default_str();
-  cmd->add_option("--background", options->background, "Initial background: env, sh or black");
-  cmd->add_option("--bands", options->bands, "Initial band truncation (0 = all)");
+  cmd->add_option("--rotate", options->view.rotate, "Initial YAW,PITCH,ROLL degrees of the environment");
+  cmd->add_option("--object-rotate", options->view.object_rotate, "Initial YAW,PITCH,ROLL degrees of the object");
+  cmd->add_option("--camera", options->view.camera, "Initial AZ,EL,DIST or auto (as prt render)")->capture_default_str();
+  cmd->add_option("--size", options->view.size, "Window size WxH")->capture_default_str();
+  cmd->add_option("--exposure", options->view.exposure, "Initial exposure in stops")->capture_default_str();
+  cmd->add_option("--background", options->view.background, "Initial background: env, sh or black");
+  cmd->add_option("--bands", options->view.bands, "Initial band truncation (0 = all)");
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfers: the BRDF SPEC to shade with (default: each one's BRDF recorded at bake time); "
                   "the panel edits it live, G toggles its diffuse lobes only");
