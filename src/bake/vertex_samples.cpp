@@ -43,7 +43,7 @@ std::uint64_t splitmix64(std::uint64_t x) {
 }
 }  // namespace
 
-glm::mat3 vertex_frame(const glm::vec3& n, std::uint32_t seed, std::uint64_t vertex) {
+glm::mat3 turned_frame(const glm::vec3& n, double angle) {
   // Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin: "Building an Orthonormal Basis,
   // Revisited", JCGT 2017.
   const float sign = std::copysign(1.0f, n.z);
@@ -51,10 +51,13 @@ glm::mat3 vertex_frame(const glm::vec3& n, std::uint32_t seed, std::uint64_t ver
   const float b = n.x * n.y * a;
   const glm::vec3 t(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
   const glm::vec3 bt(b, sign + n.y * n.y * a, -n.y);
-  const std::uint64_t h = splitmix64(splitmix64(seed) ^ vertex);
-  const double angle = static_cast<double>(h >> 11) * (2.0 * M_PI / 9007199254740992.0);
   const float c = static_cast<float>(std::cos(angle)), s = static_cast<float>(std::sin(angle));
   return glm::mat3(c * t + s * bt, -s * t + c * bt, n);
+}
+
+glm::mat3 vertex_frame(const glm::vec3& n, std::uint32_t seed, std::uint64_t vertex) {
+  const std::uint64_t h = splitmix64(splitmix64(seed) ^ vertex);
+  return turned_frame(n, static_cast<double>(h >> 11) * (2.0 * M_PI / 9007199254740992.0));
 }
 
 }  // namespace prt::bake

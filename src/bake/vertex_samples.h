@@ -1,5 +1,6 @@
 #pragma once
-// Internal to prt_bake: the hemisphere sample set every vertex traces, and per-vertex frames.
+// The hemisphere sample set every vertex traces and per-vertex frames: internal to prt_bake, and
+// turned_frame is also used by prt_probes' surface pass.
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,10 @@ LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed)
 /// S directions uniform on the hemisphere about +z (sh::hemisphere_directions_uniform) and the SH
 /// basis of `bands` bands at each (the glossy passes, which weight by the BRDF rather than the cosine).
 LocalSampleSet make_uniform_sample_set(int samples, int bands, std::uint32_t seed);
+
+/// Rotation (columns t, b, n) taking local coordinates about +z to world ones about the unit normal n:
+/// Duff et al. 2017's branchless basis turned about n by `angle` radians.
+glm::mat3 turned_frame(const glm::vec3& normal, double angle);
 
 /// Rotation (columns t, b, n) taking the local frame to the world frame at a vertex with unit normal n.
 /// The tangent is Duff et al. 2017's branchless basis turned about n by an angle hashed from

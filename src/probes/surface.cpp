@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "bake/vertex_samples.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -31,16 +32,6 @@ std::uint64_t mix64(std::uint64_t x) {
   x *= 0x94d049bb133111ebull;
   x ^= x >> 31;
   return x;
-}
-
-// Frame (t, b, n) about unit n, turned about n by angle 2 pi u.
-glm::mat3 turned_frame(const glm::vec3& n, double u) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-  const glm::vec3 t0(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  const glm::vec3 b0(b, sign + n.y * n.y * a, -n.y);
-  const float c = static_cast<float>(std::cos(2.0 * kPi * u)), s = static_cast<float>(std::sin(2.0 * kPi * u));
-  return glm::mat3(c * t0 + s * b0, -s * t0 + c * b0, n);
 }
 
 struct Context {
@@ -75,7 +66,7 @@ std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit 
     std::uint64_t traced = 0;
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = ctx.order[k];
-      const glm::mat3 frame = turned_frame(mesh.normals[v], hash_to_unit(ctx.seed, v, 0x5eedu));
+      const glm::mat3 frame = bake::turned_frame(mesh.normals[v], 2.0 * kPi * hash_to_unit(ctx.seed, v, 0x5eedu));
       const glm::vec3 origin = ctx.scene->offset_origin(mesh.positions[v], mesh.normals[v]);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);
