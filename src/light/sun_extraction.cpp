@@ -156,7 +156,7 @@ bool fit_region(const std::vector<std::uint32_t>& region, const std::vector<floa
   for (std::uint32_t i : region)
     if (lum[i] > core_threshold)
       core_radius = std::max(core_radius, std::acos(std::min(1.0, glm::dot(centroid, g.direction(i % g.width, i / g.width)))));
-  if (core_radius > kMaxCoreRadiusDegrees * kPi / 180.0) return false;
+  if (core_radius > std::max(kMaxCoreRadiusDegrees * kPi / 180.0, 1.5 * g.texel_angle())) return false;
 
   const double mask_radius = core_radius + kMaskMarginTexels * g.texel_angle();
   const double ring_radius = mask_radius + 2.0 * g.texel_angle();
@@ -221,7 +221,7 @@ image::Image equirect_of_cube(const Environment& env, int threads) {
 
 }  // namespace
 
-ExtractionResult extract_discs(const Environment& environment, int threads) {
+ExtractionResult extract_discs(const Environment& environment, int threads, int max_discs) {
   ExtractionResult result;
   result.residual = environment;
   if (environment.layout == Environment::Layout::cube) {
@@ -251,7 +251,8 @@ ExtractionResult extract_discs(const Environment& environment, int threads) {
   std::stable_sort(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) {
     return glm::dot(a.disc.irradiance, kLuminance) > glm::dot(b.disc.irradiance, kLuminance);
   });
-  if (fits.size() > static_cast<std::size_t>(kMaxDiscs)) fits.resize(kMaxDiscs);
+  max_discs = std::clamp(max_discs, 1, kMaxDiscs);
+  if (fits.size() > static_cast<std::size_t>(max_discs)) fits.resize(static_cast<std::size_t>(max_discs));
   for (const Fit& f : fits) {
     for (std::size_t k = 0; k < f.mask.size(); ++k)
       for (int c = 0; c < 3; ++c) map.at(f.mask[k][0], f.mask[k][1], c) = static_cast<float>(f.fill[k][c]);
