@@ -40,7 +40,8 @@ inline constexpr int kMaxDiscs = 4;
 /// What extraction found and did.
 struct ExtractionResult {
   std::vector<Disc> discs;   ///< brightest first; empty when the map has no dominant light
-  Environment residual;      ///< the map with every disc's texels refilled (== the input when no disc)
+  Environment residual;      ///< with discs: the map with their texels refilled (equirect); without: empty
+                             ///< (the input stands unchanged: no copy is made)
   double sky_level = 0.0;    ///< S, the solid-angle-weighted median luminance
   std::vector<int> masked_texels;  ///< per disc: texels refilled
 };

@@ -31,7 +31,7 @@ bool contains(const std::string& haystack, const std::string& needle) { return h
 
 }  // namespace
 
-TEST_CASE("--sun none --window none reproduces the pre-split light, bake and shade files bit for bit", "[light][sun][cli]") {
+TEST_CASE("sun none and window none reproduce the pre-split light, bake and shade files bit for bit", "[light][sun][cli]") {
   test::TempDir dir("sun_golden");
   fs::copy_file(kSunrise, dir.file("sunrise.exr"));
   // prt light records its input as given: run it from the folder, as the golden file was made.
@@ -82,7 +82,7 @@ TEST_CASE("prt light reports and stores the sun, and shading from the file equal
   CHECK(std::stod(cmp.output.substr(at + 8)) < 1e-6);
 }
 
-TEST_CASE("malformed --sun values are one-line errors and leave no file", "[light][sun][cli]") {
+TEST_CASE("malformed sun values are one-line errors and leave no file", "[light][sun][cli]") {
   test::TempDir dir("sun_bad");
   const char* bad[] = {"1,2", "0,1,0,1,1,1", "0,1,0,1,1,1,0", "0,1,0,1,1,1,-2", "0,1,0,-1,1,1,0.5", "0,1,0,0,0,0,0.5",
                        "0,0,0,1,1,1,0.5", "0,1,0,1,1,1,50", "0,1,0,1,nan,1,0.5", "sunny"};
