@@ -47,7 +47,7 @@ void run_shade(const ShadeCommandOptions& o) {
     fail_file(o.transfer_path, std::string("--eye and --brdf apply to glossy transfer; this one is ") +
                                    transfer::kind_name(transfer.header.kind));
   const light::SceneLighting lighting = load_scene_lighting(o.env.empty() ? o.light : o.env, static_cast<int>(transfer.header.bands),
-                                                            angles, o.lighting, o.threads);
+                                                            angles, o.lighting, o.threads, glossy);
   shade::DiscShadingOptions disc_options = o.discs;
   disc_options.threads = o.threads;
   shade::SplitReport report;

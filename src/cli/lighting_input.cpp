@@ -19,8 +19,10 @@ light::SunRequest sun_request(const LightingArguments& a) { return light::parse_
 light::WindowRequest window_request(const LightingArguments& a) { return light::parse_window_request(a.window, a.window_param); }
 
 light::SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, const LightingArguments& a,
-                                         int threads) {
-  return light::load_scene_lighting(spec, bands, ypr, sun_request(a), window_request(a), threads);
+                                         int threads, bool glossy) {
+  light::WindowRequest window = window_request(a);
+  window.radiance = glossy;
+  return light::load_scene_lighting(spec, bands, ypr, sun_request(a), window, threads);
 }
 
 sh::RgbCoefficients load_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, int threads) {

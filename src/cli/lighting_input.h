@@ -25,9 +25,10 @@ void add_lighting_options(CLI::App* cmd, LightingArguments& arguments);
 light::SunRequest sun_request(const LightingArguments& arguments);
 light::WindowRequest window_request(const LightingArguments& arguments);
 
-/// light::load_scene_lighting with the parsed arguments.
+/// light::load_scene_lighting with the parsed arguments; `glossy` selects the glossy criterion of the
+/// auto window (light/deringing.h).
 light::SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm::dvec3& yaw_pitch_roll,
-                                         const LightingArguments& arguments, int threads = 0);
+                                         const LightingArguments& arguments, int threads = 0, bool glossy = false);
 
 /// The whole lighting as SH, unsplit and unwindowed (--sun none --window none): a .json file written by
 /// `prt light` (truncated or zero-padded to `bands`, its discs folded in), or anything
