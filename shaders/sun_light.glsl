@@ -16,9 +16,9 @@ uniform bool disc_shadows;                // false for unshadowed transfer: V = 
 layout(binding = 8) uniform sampler2DArray shadow_maps;
 
 // Bias (docs/conventions.md, "Sun shadow maps"): the receiver moves along its normal by
-// normal_offset texels x sin(theta), and a map depth d counts as a blocker only when
-// d < receiver - texel (constant_bias + slope_bias min(tan(theta), max_slope)).
-const float normal_offset = 1.0, constant_bias = 1.0, slope_bias = 1.5, max_slope = 8.0;
+// normal_offset texels x sin(theta), and a map depth d sampled r texels away counts as a blocker only
+// when d < receiver - texel (constant_bias + (slope_bias + r) min(tan(theta), max_slope)).
+const float normal_offset = 0.5, constant_bias = 0.5, slope_bias = 0.5, max_slope = 8.0;
 // Search and filter radii are clamped to [min_filter, max_filter] texels.
 const float min_filter = 0.75, max_filter = 12.0;
 
@@ -41,13 +41,16 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   float texel = shadow_texel[k], depth_scale = shadow_depth_scale[k];
   vec3 s = (shadow_matrix[k] * vec4(p + n * (normal_offset * texel * sin_theta), 1.0)).xyz;
   float receiver = s.z * depth_scale;
-  float bias = texel * (constant_bias + slope_bias * min(sin_theta / cos_theta, max_slope));
+  // A sample r texels from the receiver's own texel may see the receiver's plane up to r tan(theta)
+  // texels nearer the light: the bias grows with the sample's distance (receiver-plane bias, isotropic).
+  float slope = min(sin_theta / cos_theta, max_slope);
+  float bias = texel * (constant_bias + slope_bias * slope), bias_per_texel = texel * slope;
   float texels_per_unit = 1.0 / texel, texel_uv = 1.0 / float(textureSize(shadow_maps, 0).x);
   float search = clamp(receiver * disc_tan_radius[k] * texels_per_unit, min_filter, max_filter);
   float blocker_sum = 0.0, blockers = 0.0;
   for (int i = 0; i < 12; ++i) {
     float d = texture(shadow_maps, vec3(s.xy + spiral[i] * (search * texel_uv), float(k))).r * depth_scale;
-    if (d < receiver - bias) {
+    if (d < receiver - bias - bias_per_texel * length(spiral[i]) * search) {
       blocker_sum += d;
       blockers += 1.0;
     }
@@ -58,7 +61,7 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   for (int i = 0; i < 12; ++i) {
     vec2 uv = s.xy + spiral[i] * (penumbra * texel_uv);
     float d = texture(shadow_maps, vec3(uv, float(k))).r * depth_scale;
-    lit += d < receiver - bias ? 0.0 : 1.0;
+    lit += d < receiver - bias - bias_per_texel * length(spiral[i]) * penumbra ? 0.0 : 1.0;
   }
   return lit / 12.0;
 }
