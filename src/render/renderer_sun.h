@@ -45,8 +45,9 @@ struct Renderer::SunPass {
   int version = 0;                                 ///< bumped by set_discs and BRDF changes
   int updates = 0;                                 ///< shadow-map redraws
 
-  Program shadow_program, visibility_program;
+  Program shadow_program, visibility_program, minmax_program;
   GLuint shadow_texture = 0, shadow_framebuffer = 0;
+  GLuint tile_texture = 0;                         ///< per tile of kShadowTile^2 texels: least, greatest depth
   GLuint disc_lighting_buffer = 0;                 ///< object-frame disc SH (uniform Lighting layout)
   GLuint bounce_vertex = 0;                        ///< diffuse: x y z floats per vertex
   GLuint bounce_outgoing = 0;                      ///< glossy: vec4 per coefficient per vertex
