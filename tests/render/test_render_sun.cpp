@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -32,6 +34,7 @@
 #include "shade/glossy.h"
 #include "shade/scene_shading.h"
 #include "shade/surface_albedo.h"
+#include "support/run_prt.h"
 #include "trace/scene.h"
 
 using namespace prt;
@@ -324,4 +327,47 @@ TEST_CASE("shadow maps are redrawn when the lighting changes and only then", "[r
   renderer.render(settings, 64, 48);
   CHECK(renderer.shadow_map_updates() == 4);
   CHECK(before.width == 64);
+}
+
+TEST_CASE("prt render --sun none --window none reproduces the pre-sun image bit for bit", "[render][gl][sun][cli]") {
+  // tests/render/data/golden_sun_none.exr: `prt render mesh.ply transfer.prt --env env.exr --size 64x48`
+  // on the files of write_fixture_files, by the prt binary of commit b33d0aa (before discs and windows;
+  // see tests/render/data/README.md).
+  const std::string dir = test::fresh_temp_dir("render_sun_golden");
+  write_fixture_files(dir);
+  const std::string out = dir + "/none.exr";
+  const test::RunResult r = test::run_prt("render " + dir + "/mesh.ply " + dir + "/transfer.prt --env " + dir +
+                                          "/env.exr --size 64x48 --sun none --window none -q -o " + out);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const image::Image got = image::read_rgb(out);
+  const image::Image golden = image::read_rgb(PRT_SOURCE_DIR "/tests/render/data/golden_sun_none.exr");
+  REQUIRE(got.width == golden.width);
+  REQUIRE(got.height == golden.height);
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < got.pixels.size(); ++i) differ += std::memcmp(&got.pixels[i], &golden.pixels[i], sizeof(float)) != 0;
+  CHECK(differ == 0);
+}
+
+TEST_CASE("prt render and view: a malformed --sun or --window is a one-line error", "[render][sun][cli]") {
+  const std::string dir = test::fresh_temp_dir("render_sun_errors");
+  write_fixture_files(dir);
+  const std::string base = "render " + dir + "/mesh.ply " + dir + "/transfer.prt --env " + dir + "/env.exr --size 32x24 -o " + dir + "/x.exr ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {base + "--sun 1,2", "--sun: expected auto, none"},
+      {base + "--sun 0,1,0,1,1,1,0", "--sun: the angular radius must lie in (0, 45]"},
+      {base + "--sun 0,1,0,-1,1,1,1", "--sun: the irradiance R,G,B must be >= 0"},
+      {base + "--sun 0,0,0,1,1,1,1", "--sun: the direction must be finite and not zero"},
+      {base + "--window sinc", "--window"},
+      {"view " + dir + "/mesh.ply " + dir + "/transfer.prt --env " + dir + "/env.exr --sun 0,1,0,1,1,1,90 --frames 1", "--sun: the angular radius"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const test::RunResult r = test::run_prt(arguments);
+    INFO(arguments << "\n" << r.output);
+    CHECK(r.exit_code == 1);
+    CHECK(r.output.find(expected) != std::string::npos);
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  std::error_code error;
+  CHECK(!std::filesystem::exists(dir + "/x.exr", error));
 }

@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   render::HeadlessContext context;
-  std::printf("bench_sun: %s; frames %dx%d\n", context.description().c_str(), kFrameSize, kFrameSize);
+  std::printf("bench_sun_render: %s; frames %dx%d\n", context.description().c_str(), kFrameSize, kFrameSize);
   render::Renderer renderer;
   const mesh::Mesh mesh = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true);
   renderer.set_mesh(mesh);
