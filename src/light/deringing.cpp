@@ -22,17 +22,18 @@ WindowRequest parse_window_request(const std::string& name, double param) {
   return request;
 }
 
-double auto_window_lambda(const sh::RgbCoefficients& lighting) {
+double auto_window_lambda(const sh::RgbCoefficients& lighting, bool radiance) {
   sh::RgbCoefficients irradiance = lighting;
   for (int l = 0; l < lighting.bands; ++l)
     for (int m = -l; m <= l; ++m) irradiance.values[static_cast<std::size_t>(l * (l + 1) + m)] *= sh::clamped_cosine_factor(l);
-  return std::max(sh::nonnegative_laplacian_lambda(lighting), sh::nonnegative_laplacian_lambda(irradiance));
+  const double lambda = sh::nonnegative_laplacian_lambda(irradiance);
+  return radiance ? std::max(lambda, sh::nonnegative_laplacian_lambda(lighting)) : lambda;
 }
 
 WindowChoice apply_window_request(const WindowRequest& request, sh::RgbCoefficients& lighting) {
   WindowChoice choice;
   if (request.automatic) {
-    const double lambda = auto_window_lambda(lighting);
+    const double lambda = auto_window_lambda(lighting, request.radiance);
     if (lambda > 0.0) {
       choice.window = sh::Window::laplacian;
       choice.param = lambda;

@@ -44,36 +44,49 @@ sh::RgbCoefficients SceneLighting::total() const {
   return out;
 }
 
-SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, const SunRequest& sun,
-                                  const WindowRequest& window, int threads) {
-  SceneLighting out;
-  out.sky = sh::RgbCoefficients(bands);
-  if (is_json(spec)) {
-    const LightFile file = read_lighting_file(spec);
-    const int keep = std::min(bands, file.coefficients.bands);
-    for (int i = 0; i < keep * keep; ++i) out.sky.values[i] = file.coefficients.values[i];
-    if (sun.mode == SunRequest::Mode::none)
-      add(out.sky, discs_coefficients(bands, file.discs));
-    else
-      out.discs = file.discs;
-  } else {
-    const Environment environment = load_environment(spec);
-    if (sun.mode == SunRequest::Mode::automatic) {
-      ExtractionResult extracted = extract_discs(environment, threads);
-      out.discs = std::move(extracted.discs);
-      out.sky_level = extracted.sky_level;
-      out.sky = project(out.discs.empty() ? environment : extracted.residual, bands, threads);
-    } else {
-      out.sky = project(environment, bands, threads);
-    }
-  }
-  if (sun.mode == SunRequest::Mode::given) out.discs.push_back(sun.disc);
+namespace {
+
+void rotate_and_window(SceneLighting& out, int bands, const glm::dvec3& ypr, const WindowRequest& window) {
   if (ypr != glm::dvec3(0.0)) {
     const glm::dmat3 r = sh::rotation_from_yaw_pitch_roll(ypr.x, ypr.y, ypr.z);
     out.sky = sh::Rotation(bands, r).apply(out.sky);
     for (Disc& d : out.discs) d = rotated(d, r);
   }
   out.window = apply_window_request(window, out.sky);
+}
+
+}  // namespace
+
+SceneLighting split_environment(const Environment& environment, int bands, const glm::dvec3& ypr, const SunRequest& sun,
+                                const WindowRequest& window, int threads) {
+  SceneLighting out;
+  if (sun.mode == SunRequest::Mode::automatic) {
+    ExtractionResult extracted = extract_discs(environment, threads);
+    out.discs = std::move(extracted.discs);
+    out.sky_level = extracted.sky_level;
+    out.sky = project(out.discs.empty() ? environment : extracted.residual, bands, threads);
+  } else {
+    out.sky = project(environment, bands, threads);
+    if (sun.mode == SunRequest::Mode::given) out.discs.push_back(sun.disc);
+  }
+  rotate_and_window(out, bands, ypr, window);
+  return out;
+}
+
+SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, const SunRequest& sun,
+                                  const WindowRequest& window, int threads) {
+  if (!is_json(spec)) return split_environment(load_environment(spec), bands, ypr, sun, window, threads);
+  SceneLighting out;
+  out.sky = sh::RgbCoefficients(bands);
+  const LightFile file = read_lighting_file(spec);
+  const int keep = std::min(bands, file.coefficients.bands);
+  for (int i = 0; i < keep * keep; ++i) out.sky.values[i] = file.coefficients.values[i];
+  if (sun.mode == SunRequest::Mode::none)
+    add(out.sky, discs_coefficients(bands, file.discs));
+  else
+    out.discs = file.discs;
+  if (sun.mode == SunRequest::Mode::given) out.discs.push_back(sun.disc);
+  rotate_and_window(out, bands, ypr, window);
   return out;
 }
 

@@ -46,6 +46,12 @@ struct SceneLighting {
 SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm::dvec3& yaw_pitch_roll,
                                   const SunRequest& sun, const WindowRequest& window, int threads = 0);
 
+struct Environment;
+
+/// As load_scene_lighting, for an environment already loaded.
+SceneLighting split_environment(const Environment& environment, int bands, const glm::dvec3& yaw_pitch_roll,
+                                const SunRequest& sun, const WindowRequest& window, int threads = 0);
+
 /// One line for a command's summary: "sun: <n> disc(s) (dir (x,y,z), radius a deg, E (r,g,b)); window W".
 std::string describe_lighting(const SceneLighting& lighting);
 

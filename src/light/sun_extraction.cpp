@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <glm/geometric.hpp>
 
@@ -48,73 +50,110 @@ struct Grid {
 
 glm::dvec3 texel(const image::Image& im, int x, int y) { return {im.at(x, y, 0), im.at(x, y, 1), im.at(x, y, 2)}; }
 
-std::vector<float> luminance_of(const image::Image& im, int threads) {
-  std::vector<float> y(static_cast<std::size_t>(im.width) * im.height);
-  parallel_for(static_cast<std::size_t>(im.height), 16, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t row = begin; row < end; ++row)
-      for (int x = 0; x < im.width; ++x) {
-        const std::size_t i = row * im.width + x;
-        y[i] = static_cast<float>(glm::dot(texel(im, x, static_cast<int>(row)), kLuminance));
-      }
-  });
-  return y;
+// The luminance of every texel, with the map's power sum Y Omega and the solid-angle histogram of
+// log2 Y, in one parallel pass over fixed chunks of rows (merged in chunk order: deterministic).
+struct LuminanceField {
+  std::vector<float> y;
+  std::vector<double> histogram = std::vector<double>(kBins, 0.0);
+  double zero_weight = 0.0, total_weight = 0.0, power = 0.0;
+};
+
+// Bin of a positive finite float: its exponent and top 4 mantissa bits, i.e. 1/16-stop steps (linear
+// within each step, which is all a threshold needs).
+int log_bin(float v) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &v, 4);
+  const int bin = static_cast<int>(bits >> 19) - (127 + kMinStop) * kBinsPerStop;
+  return std::clamp(bin, 0, kBins - 1);
 }
 
-// The solid-angle-weighted median of the luminance, to 1/16 stop (bin centre, geometric).
-double sky_level(const std::vector<float>& lum, const Grid& g) {
-  std::vector<double> histogram(kBins, 0.0);
-  double zero_weight = 0.0, total = 0.0;
-  for (int y = 0; y < g.height; ++y) {
-    const double omega = g.row_solid_angle[y];
-    for (int x = 0; x < g.width; ++x) {
-      const float v = lum[static_cast<std::size_t>(y) * g.width + x];
-      total += omega;
-      if (!(v > 0.0f)) {
-        zero_weight += omega;
-        continue;
+LuminanceField luminance_of(const image::Image& im, const Grid& g, int threads) {
+  constexpr int kRows = 16;
+  const int chunks = (im.height + kRows - 1) / kRows;
+  std::vector<LuminanceField> parts(static_cast<std::size_t>(chunks));
+  LuminanceField field;
+  field.y.resize(static_cast<std::size_t>(im.width) * im.height);
+  parallel_for(static_cast<std::size_t>(chunks), 1, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t chunk = begin; chunk < end; ++chunk) {
+      LuminanceField& part = parts[chunk];
+      for (int row = static_cast<int>(chunk) * kRows; row < std::min(im.height, static_cast<int>(chunk + 1) * kRows); ++row) {
+        const double omega = g.row_solid_angle[row];
+        const float* p = &im.pixels[static_cast<std::size_t>(row) * im.width * im.channels];
+        float* out = &field.y[static_cast<std::size_t>(row) * im.width];
+        double row_sum = 0.0;
+        for (int x = 0; x < im.width; ++x, p += im.channels) {
+          const float v = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+          out[x] = v;
+          row_sum += v;
+          if (v > 0.0f) part.histogram[static_cast<std::size_t>(log_bin(v))] += omega;
+          else part.zero_weight += omega;
+        }
+        part.power += row_sum * omega;
+        part.total_weight += omega * im.width;
       }
-      const int bin = std::clamp(static_cast<int>(std::floor((std::log2(v) - kMinStop) * kBinsPerStop)), 0, kBins - 1);
-      histogram[bin] += omega;
     }
+  });
+  for (const LuminanceField& part : parts) {
+    for (int b = 0; b < kBins; ++b) field.histogram[static_cast<std::size_t>(b)] += part.histogram[static_cast<std::size_t>(b)];
+    field.zero_weight += part.zero_weight;
+    field.total_weight += part.total_weight;
+    field.power += part.power;
   }
-  double seen = zero_weight;
-  if (seen >= 0.5 * total) return 0.0;
+  return field;
+}
+
+// The solid-angle-weighted median of the luminance, to 1/16 stop (the bin's lower edge).
+double sky_level(const LuminanceField& f) {
+  double seen = f.zero_weight;
+  if (seen >= 0.5 * f.total_weight) return 0.0;
   for (int b = 0; b < kBins; ++b) {
-    seen += histogram[b];
-    if (seen >= 0.5 * total) return std::exp2(kMinStop + (b + 0.5) / kBinsPerStop);
+    seen += f.histogram[static_cast<std::size_t>(b)];
+    if (seen >= 0.5 * f.total_weight) return std::exp2(kMinStop + static_cast<double>(b) / kBinsPerStop);
   }
   return std::exp2(kMinStop + 128.0);
 }
 
-// 8-connected regions of texels above `threshold` (wrapping in phi), in scan order of their first texel.
-std::vector<std::vector<std::uint32_t>> bright_regions(const std::vector<float>& lum, const Grid& g, double threshold) {
-  std::vector<int> label(lum.size(), -1);
+// 8-connected regions of texels above `threshold` (wrapping in phi), in scan order of their first
+// texel. Only the seeds are visited: a parallel scan collects them, a flood fill groups them.
+std::vector<std::vector<std::uint32_t>> bright_regions(const std::vector<float>& lum, const Grid& g, double threshold, int threads) {
+  std::vector<std::vector<std::uint32_t>> row_seeds(static_cast<std::size_t>(g.height));
+  parallel_for(static_cast<std::size_t>(g.height), 32, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t row = begin; row < end; ++row)
+      for (int x = 0; x < g.width; ++x)
+        if (lum[row * g.width + x] > threshold) row_seeds[row].push_back(static_cast<std::uint32_t>(row * g.width + x));
+  });
+  std::vector<std::uint32_t> seeds;
+  for (const auto& r : row_seeds) seeds.insert(seeds.end(), r.begin(), r.end());
+  std::vector<int> label(seeds.size(), -1);
+  auto index_of = [&](std::uint32_t texel) -> std::ptrdiff_t {
+    auto it = std::lower_bound(seeds.begin(), seeds.end(), texel);
+    return it != seeds.end() && *it == texel ? it - seeds.begin() : -1;
+  };
   std::vector<std::vector<std::uint32_t>> regions;
-  std::vector<std::uint32_t> stack;
-  for (std::size_t start = 0; start < lum.size(); ++start) {
-    if (!(lum[start] > threshold) || label[start] >= 0) continue;
+  std::vector<std::size_t> stack;
+  for (std::size_t start = 0; start < seeds.size(); ++start) {
+    if (label[start] >= 0) continue;
     const int id = static_cast<int>(regions.size());
     regions.emplace_back();
     label[start] = id;
-    stack.assign(1, static_cast<std::uint32_t>(start));
+    stack.assign(1, start);
     while (!stack.empty()) {
-      const std::uint32_t i = stack.back();
+      const std::uint32_t i = seeds[stack.back()];
       stack.pop_back();
-      regions[id].push_back(i);
+      regions[static_cast<std::size_t>(id)].push_back(i);
       const int x = static_cast<int>(i % g.width), y = static_cast<int>(i / g.width);
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int ny = y + dy;
           if (ny < 0 || ny >= g.height || (dx == 0 && dy == 0)) continue;
-          const int nx = (x + dx + g.width) % g.width;
-          const std::size_t j = static_cast<std::size_t>(ny) * g.width + nx;
-          if (lum[j] > threshold && label[j] < 0) {
-            label[j] = id;
-            stack.push_back(static_cast<std::uint32_t>(j));
+          const std::ptrdiff_t k = index_of(static_cast<std::uint32_t>(ny * g.width + (x + dx + g.width) % g.width));
+          if (k >= 0 && label[static_cast<std::size_t>(k)] < 0) {
+            label[static_cast<std::size_t>(k)] = id;
+            stack.push_back(static_cast<std::size_t>(k));
           }
         }
     }
-    std::sort(regions[id].begin(), regions[id].end());
+    std::sort(regions[static_cast<std::size_t>(id)].begin(), regions[static_cast<std::size_t>(id)].end());
   }
   return regions;
 }
@@ -156,7 +195,7 @@ bool fit_region(const std::vector<std::uint32_t>& region, const std::vector<floa
   for (std::uint32_t i : region)
     if (lum[i] > core_threshold)
       core_radius = std::max(core_radius, std::acos(std::min(1.0, glm::dot(centroid, g.direction(i % g.width, i / g.width)))));
-  if (core_radius > kMaxCoreRadiusDegrees * kPi / 180.0) return false;
+  if (core_radius > std::max(kMaxCoreRadiusDegrees * kPi / 180.0, 1.5 * g.texel_angle())) return false;
 
   const double mask_radius = core_radius + kMaskMarginTexels * g.texel_angle();
   const double ring_radius = mask_radius + 2.0 * g.texel_angle();
@@ -221,40 +260,37 @@ image::Image equirect_of_cube(const Environment& env, int threads) {
 
 }  // namespace
 
-ExtractionResult extract_discs(const Environment& environment, int threads) {
+ExtractionResult extract_discs(const Environment& environment, int threads, int max_discs) {
   ExtractionResult result;
-  result.residual = environment;
-  if (environment.layout == Environment::Layout::cube) {
-    result.residual.layout = Environment::Layout::equirect;
-    result.residual.equirect = equirect_of_cube(environment, threads);
-    result.residual.faces = {};
-  }
-  image::Image& map = result.residual.equirect;
+  const bool cube = environment.layout == Environment::Layout::cube;
+  const image::Image resampled = cube ? equirect_of_cube(environment, threads) : image::Image();
+  const image::Image& map = cube ? resampled : environment.equirect;
   const Grid grid(map.width, map.height);
-  const std::vector<float> lum = luminance_of(map, threads);
-  result.sky_level = sky_level(lum, grid);
-  double total_power = 0.0;
-  for (int y = 0; y < grid.height; ++y) {
-    double row = 0.0;
-    for (int x = 0; x < grid.width; ++x) row += lum[static_cast<std::size_t>(y) * grid.width + x];
-    total_power += row * grid.row_solid_angle[y];
-  }
-  if (!(total_power > 0.0)) return result;
+  const LuminanceField field = luminance_of(map, grid, threads);
+  result.sky_level = sky_level(field);
+  if (!(field.power > 0.0)) return result;
 
   std::vector<Fit> fits;
-  for (const auto& region : bright_regions(lum, grid, kSeedContrast * result.sky_level)) {
+  for (const auto& region : bright_regions(field.y, grid, kSeedContrast * result.sky_level, threads)) {
     Fit fit;
-    if (!fit_region(region, lum, grid, result.sky_level, map, fit)) continue;
-    if (glm::dot(fit.disc.irradiance, kLuminance) < kMinPowerFraction * total_power) continue;
+    if (!fit_region(region, field.y, grid, result.sky_level, map, fit)) continue;
+    if (glm::dot(fit.disc.irradiance, kLuminance) < kMinPowerFraction * field.power) continue;
     fits.push_back(std::move(fit));
   }
+  if (fits.empty()) return result;
   std::stable_sort(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) {
     return glm::dot(a.disc.irradiance, kLuminance) > glm::dot(b.disc.irradiance, kLuminance);
   });
-  if (fits.size() > static_cast<std::size_t>(kMaxDiscs)) fits.resize(kMaxDiscs);
+  max_discs = std::clamp(max_discs, 1, kMaxDiscs);
+  if (fits.size() > static_cast<std::size_t>(max_discs)) fits.resize(static_cast<std::size_t>(max_discs));
+
+  result.residual.layout = Environment::Layout::equirect;
+  result.residual.source = environment.source;
+  result.residual.repaired = environment.repaired;
+  result.residual.equirect = map;
   for (const Fit& f : fits) {
     for (std::size_t k = 0; k < f.mask.size(); ++k)
-      for (int c = 0; c < 3; ++c) map.at(f.mask[k][0], f.mask[k][1], c) = static_cast<float>(f.fill[k][c]);
+      for (int c = 0; c < 3; ++c) result.residual.equirect.at(f.mask[k][0], f.mask[k][1], c) = static_cast<float>(f.fill[k][c]);
     result.discs.push_back(f.disc);
     result.masked_texels.push_back(static_cast<int>(f.mask.size()));
   }

@@ -32,7 +32,7 @@ namespace prt::light {
 inline constexpr double kSeedContrast = 200.0;        ///< seeds: Y > this x the sky level ...
 inline constexpr double kSeedPeakFraction = 0.05;     ///< ... and > this x the region's peak luminance
 inline constexpr double kPeakContrast = 1000.0;       ///< a disc's peak: > this x the sky level
-inline constexpr double kMaxCoreRadiusDegrees = 10.0; ///< compactness of the seeds
+inline constexpr double kMaxCoreRadiusDegrees = 1.5;  ///< compactness of the seeds (or 1.5 texel widths, if larger)
 inline constexpr double kMaskMarginTexels = 2.0;      ///< mask = core + this many texel widths
 inline constexpr double kMinPowerFraction = 0.02;     ///< a disc carries >= 2% of the map's power
 inline constexpr int kMaxDiscs = 4;
@@ -40,13 +40,15 @@ inline constexpr int kMaxDiscs = 4;
 /// What extraction found and did.
 struct ExtractionResult {
   std::vector<Disc> discs;   ///< brightest first; empty when the map has no dominant light
-  Environment residual;      ///< the map with every disc's texels refilled (== the input when no disc)
+  Environment residual;      ///< with discs: the map with their texels refilled (equirect); without: empty
+                             ///< (the input stands unchanged: no copy is made)
   double sky_level = 0.0;    ///< S, the solid-angle-weighted median luminance
   std::vector<int> masked_texels;  ///< per disc: texels refilled
 };
 
-/// Finds and removes the dominant lights of `environment` (see RULE). Deterministic; `threads` <= 0
-/// uses all cores. The residual of a cube map is an equirect map (see RULE).
-ExtractionResult extract_discs(const Environment& environment, int threads = 0);
+/// Finds and removes the dominant lights of `environment` (see RULE), at most `max_discs` (1..kMaxDiscs)
+/// of them. Deterministic; `threads` <= 0 uses all cores. The residual of a cube map is an equirect map
+/// (see RULE).
+ExtractionResult extract_discs(const Environment& environment, int threads = 0, int max_discs = kMaxDiscs);
 
 }  // namespace prt::light

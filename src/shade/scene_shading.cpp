@@ -44,18 +44,25 @@ void add_into(std::vector<glm::vec3>& to, const std::vector<glm::vec3>& from) {
   for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
 }
 
+// The split lighting's output: no negative channel (see the header).
+std::vector<glm::vec3> clamped(std::vector<glm::vec3> radiance, const light::SceneLighting& lighting) {
+  if (lighting.discs.empty() && lighting.window.window == sh::Window::none) return radiance;
+  for (glm::vec3& r : radiance) r = glm::max(r, glm::vec3(0.0f));
+  return radiance;
+}
+
 }  // namespace
 
 std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
                                            const light::SceneLighting& lighting, const std::string& origin,
                                            const DiscShadingOptions& options, SplitReport* report) {
   std::vector<glm::vec3> out = shade_diffuse(transfer, lighting.sky);
-  if (lighting.discs.empty()) return out;
+  if (lighting.discs.empty()) return clamped(std::move(out), lighting);
   if (const auto bounce = bounce_part(transfer, origin, report))
     add_into(out, shade_diffuse(*bounce, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs)));
   const auto scene = shadow_scene(mesh, transfer.header, options.threads);
   add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, scene.get(), options));
-  return out;
+  return clamped(std::move(out), lighting);
 }
 
 std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
@@ -64,7 +71,7 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
                                           const std::string& origin, const DiscShadingOptions& options,
                                           SplitReport* report) {
   std::vector<glm::vec3> out = shade_glossy_eye(transfer, matrix, lighting.sky, mesh.positions, mesh.normals, eye);
-  if (lighting.discs.empty()) return out;
+  if (lighting.discs.empty()) return clamped(std::move(out), lighting);
   if (const auto bounce = bounce_part(transfer, origin, report))
     add_into(out, shade_glossy_eye(*bounce, matrix, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs),
                                    mesh.positions, mesh.normals, eye));
@@ -75,7 +82,7 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
   }
   const auto scene = shadow_scene(mesh, transfer.header, options.threads);
   add_into(out, disc_direct_glossy(mesh, surface, lighting.discs, view, scene.get(), options));
-  return out;
+  return clamped(std::move(out), lighting);
 }
 
 }  // namespace prt::shade
