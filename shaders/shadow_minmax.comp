@@ -1,5 +1,6 @@
-// pass: sun shadow maps, tile bounds: the least and greatest stored depth of every tile of
-// shadow_tile x shadow_tile texels of each disc's map (sun_light.glsl's exact early-outs read them).
+// pass: sun (shadow-map tile bounds); mirrors Renderer::draw_shadow_maps (renderer_sun.cpp).
+// The least and greatest stored depth of every tile of shadow_tile x shadow_tile texels of each disc's
+// map (sun_light.glsl's exact early-outs read them).
 #version 450 core
 
 layout(local_size_x = 8, local_size_y = 8) in;

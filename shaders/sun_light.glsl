@@ -1,6 +1,6 @@
-// Included by the passes that shade discs (prt_sun.frag, prt_glossy.frag with SUN, sun_visibility.comp):
-// the discs' uniforms, their shadow maps filtered PCSS-style, and the BRDF evaluated exactly.
-// Mirrors Renderer's sun pass (renderer_sun.cpp) and docs/conventions.md, "Sun shadow maps".
+// pass: sun (included by prt_sun.frag, prt_glossy.frag with SUN, sun_visibility.comp); mirrors prt::brdf::eval_cosine.
+// The discs' uniforms, their shadow maps filtered PCSS-style (docs/conventions.md, "Sun shadow maps";
+// set by Renderer::bind_sun, renderer_sun.cpp), and the BRDF evaluated exactly.
 
 #ifndef SEARCH_COUNT
 #define SEARCH_COUNT 8
