@@ -218,7 +218,9 @@ TEST_CASE("glossy render with a sun equals the split glossy shading with the BRD
       const sh::RgbCoefficients sky = test_lighting(3);
       renderer.set_lighting(sky, nullptr);
       renderer.set_discs({sun});
-      const render::FrameSettings settings = frame(index, render::Camera{-40.0, 30.0, 0.0});
+      // Looking down the sun's mirror direction off the floor (azimuth -120, elevation 44 degrees): the
+      // specular highlight is in view.
+      const render::FrameSettings settings = frame(index, render::Camera{-120.0, 40.0, 0.0});
       renderer.render(settings, kWidth, kHeight);
       const image::Image gpu = renderer.read_radiance();
       const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
