@@ -11,12 +11,14 @@
 
 #include "light/disc.h"
 #include "mesh/mesh.h"
+#include "bench_lighting.h"
 #include "render/gl.h"
 #include "render/headless_context.h"
 #include "render/renderer.h"
 #include "sh/rotation.h"
 
 using namespace prt;
+using bench::synthetic_lighting;
 
 namespace {
 
@@ -41,12 +43,6 @@ transfer::TransferData synthetic_transfer(std::size_t vertices, int bands) {
   data.bounce_only = data.values;
   for (float& v : data.bounce_only) v *= 0.1f;
   return data;
-}
-
-sh::RgbCoefficients synthetic_lighting(int bands) {
-  sh::RgbCoefficients lighting(bands);
-  for (int i = 0; i < bands * bands; ++i) lighting.values[static_cast<std::size_t>(i)] = glm::dvec3(1.0 / (1 + i), 0.8 / (1 + i), 0.5 / (1 + i));
-  return lighting;
 }
 
 struct Figures {
