@@ -127,6 +127,7 @@ void Renderer::set_discs(const std::vector<light::Disc>& discs) {
   s.discs.assign(discs.begin(), discs.begin() + std::min<std::ptrdiff_t>(discs.size(), kMaxDiscs));
   const sh::RgbCoefficients sh = light::discs_coefficients(sh::kMaxBands, s.discs);
   for (std::size_t i = 0; i < s.disc_lighting.size(); ++i) s.disc_lighting[i] = glm::vec3(sh.values[i]);
+  ++s.disc_version;
   ++s.version;
 }
 
@@ -167,11 +168,11 @@ void Renderer::update_sun(const FrameSettings& settings, int bands) {
     fail("renderer: glossy transfer " + std::to_string(settings.transfer) +
          " has no BRDF for the discs' direct light (set_brdf with the Brdf)");
   const glm::dmat3 rotation = glm::transpose(settings.object_rotation) * settings.environment_rotation;
-  if (!s.maps_valid || s.maps_version != s.version || s.maps_rotation != rotation) {
+  if (!s.maps_valid || s.maps_version != s.disc_version || s.maps_rotation != rotation) {
     for (std::size_t k = 0; k < s.discs.size(); ++k) s.direction[k] = glm::vec3(glm::normalize(rotation * s.discs[k].direction));
     draw_shadow_maps();
     s.maps_valid = true;
-    s.maps_version = s.version;
+    s.maps_version = s.disc_version;
     s.maps_rotation = rotation;
     ++s.updates;
   }

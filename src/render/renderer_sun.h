@@ -42,7 +42,8 @@ struct Renderer::SunPass {
 
   std::vector<light::Disc> discs;                  ///< environment frame, at most kMaxDiscs
   std::vector<glm::vec3> disc_lighting;            ///< their SH radiance, environment frame, kMaxBands^2
-  int version = 0;                                 ///< bumped by set_discs and BRDF changes
+  int disc_version = 0;                            ///< bumped by set_discs (the maps depend on the discs only)
+  int version = 0;                                 ///< bumped by set_discs and BRDF changes (the bounce light)
   int updates = 0;                                 ///< shadow-map redraws
 
   Program shadow_program, visibility_program, minmax_program;
