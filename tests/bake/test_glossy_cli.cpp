@@ -55,7 +55,7 @@ TEST_CASE("prt bake glossy and prt shade --eye match the library, float16 adds l
 
   const std::string light = write_light(dir);
   const test::RunResult shade = test::run_prt("shade " + mesh_path + " " + dir + "/one.prt --light " + light +
-                                              " --eye 0,3,4 -o " + dir + "/out.ply");
+                                              " --eye 0,3,4 --window none -o " + dir + "/out.ply");
   INFO(shade.output);
   REQUIRE(shade.exit_code == 0);
   const mesh::Mesh shaded = mesh::load_mesh(dir + "/out.ply", nullptr, true);
