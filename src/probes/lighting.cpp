@@ -6,14 +6,15 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "light/analytic.h"
 #include "light/environment.h"
+#include "sh/sampling.h"
 
 namespace prt::probes {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 glm::dvec3 Sun::radiance() const {
@@ -53,11 +54,8 @@ sh::RgbCoefficients sun_coefficients(int bands, const Sun& sun) {
 
 glm::dvec3 sun_direction_sample(const Sun& sun, double u0, double u1) {
   const glm::dvec3& n = sun.direction;
-  // Duff et al. 2017 orthonormal basis.
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
-  const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  const glm::dvec3 bt(b, sign + n.y * n.y * a, -n.y);
+  glm::dvec3 t, bt;
+  sh::orthonormal_basis(n, t, bt);
   const double cos_theta = 1.0 - u0 * (1.0 - std::cos(sun.angular_radius));
   const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
   const double phi = 2.0 * kPi * u1;
