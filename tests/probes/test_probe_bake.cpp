@@ -10,10 +10,8 @@
 #include "probes/baker.h"
 #include "probes/probe_reference.h"
 #include "probes/probe_scene.h"
-#include "probes/surface.h"
 #include "sh/rotation.h"
 #include "sh/zonal.h"
-#include "trace/scene.h"
 
 using namespace prt;
 
@@ -217,7 +215,7 @@ TEST_CASE("probe estimates are unbiased when the control variate is chosen per p
   options.bounces = 0;
   options.surface_samples = 16;
   std::vector<glm::dvec3> positions;
-  for (int i = 0; i < 4000; ++i) positions.emplace_back(0.01 * (i % 64), 1.0, 0.01 * (i / 64));
+  for (int i = 0; i < 16000; ++i) positions.emplace_back(0.01 * (i % 128), 1.0, 0.01 * (i / 128));
   const probes::ProbeSet baked = probes::bake_probes(scene.mesh, light, positions, points_layout(), options);
   double sum = 0.0, sum_sq = 0.0;
   for (std::size_t p = 0; p < baked.count(); ++p) {
@@ -229,55 +227,5 @@ TEST_CASE("probe estimates are unbiased when the control variate is chosen per p
   const double mean = sum / n, standard_error = std::sqrt((sum_sq / n - mean * mean) / (n - 1.0));
   INFO("mean c_0 " << mean << " +- " << standard_error << " (exact: 0)");
   CHECK(standard_error > 0.0);  // the estimates do vary: the test has power
-  CHECK(std::abs(mean) < 4.0 * standard_error);
-}
-
-TEST_CASE("surface radiance is unbiased when the control variate is chosen per vertex", "[probes][bake]") {
-  // Floor vertices at the foot of a tall wall (x = 0, facing +X): the wall blocks exactly the half of
-  // each vertex's hemisphere with x < 0, and the environment is 1 only there (x < -0.2) and 0 elsewhere,
-  // so every floor vertex's exact direct radiance is 0. With 16 rays per vertex the number blocked
-  // varies from vertex to vertex; choosing the control variate from those rays' own hit count made it
-  // correlate with the control variate's quadrature error (positive on average here).
-  mesh::Mesh m;
-  const float big = 1000.0f;
-  m.positions = {{0, 0, -big}, {0, 0, big}, {0, big, big}, {0, big, -big}};  // the wall
-  m.normals.assign(4, glm::vec3(1, 0, 0));
-  m.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from +X
-  const int columns = 2000;
-  for (int i = 0; i < columns; ++i)
-    for (float x : {1e-3f, 2e-3f}) {
-      m.positions.emplace_back(x, 0.0f, 1e-3f * static_cast<float>(i));
-      m.normals.emplace_back(0, 1, 0);
-    }
-  for (int i = 0; i + 1 < columns; ++i) {
-    const std::uint32_t a = 4 + 2 * i, b = a + 1, c = a + 2, d = a + 3;  // a, c at x = 1e-3
-    m.indices.insert(m.indices.end(), {a, c, b, b, c, d});  // counter-clockwise seen from +Y
-  }
-  m.positions.reserve(m.positions.size() + 1);
-  light::Environment env;
-  env.layout = light::Environment::Layout::equirect;
-  env.equirect = image::Image(128, 64, 3);
-  for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 128; ++x) {
-      const glm::dvec3 d = light::equirect_direction((x + 0.5) / 128.0, (y + 0.5) / 64.0);
-      for (int c = 0; c < 3; ++c) env.equirect.at(x, y, c) = d.x < -0.2 ? 1.0f : 0.0f;
-    }
-  probes::SceneLight light;
-  light.environment = &env;
-  probes::SurfaceOptions options;
-  options.samples = 16;
-  options.bounces = 0;
-  const trace::Scene scene(m);
-  const std::vector<glm::vec3> albedo(m.positions.size(), glm::vec3(1.0f));
-  const std::vector<glm::vec3> radiance = probes::surface_radiance(scene, m, albedo, light, options);
-  double sum = 0.0, sum_sq = 0.0;
-  const double n = 2.0 * columns;
-  for (std::size_t v = 4; v < m.positions.size(); ++v) {
-    sum += radiance[v].x;
-    sum_sq += double(radiance[v].x) * radiance[v].x;
-  }
-  const double mean = sum / n, standard_error = std::sqrt((sum_sq / n - mean * mean) / (n - 1.0));
-  INFO("mean floor radiance " << mean << " +- " << standard_error << " (exact: 0)");
-  CHECK(standard_error > 0.0);
   CHECK(std::abs(mean) < 4.0 * standard_error);
 }
