@@ -49,12 +49,16 @@ std::size_t gcd(std::size_t a, std::size_t b) {
 // 12-way L1 (float, direct stores, against the best stride): 1 position: 9 rows cost nothing, 25 rows
 // 6x, 81 rows 10x; 2 positions: 81 rows 7x; 4 positions: 81 rows 2.5x, as slow as the staged path;
 // 8 positions: 81 rows 1.1x, 1024 rows 1.3x.
+// Rows per set position beyond which stores thrash: half the ways of an 8-way L1 (Zen 3; measured with
+// bench_sh_eval: 9 rows on one position, stride = count = 1024 floats, 3.5x the padded figure).
+constexpr std::size_t kRowsPerSet = 4;
+
 template <typename T>
 bool rows_share_cache_sets(int rows, std::size_t stride) {
   std::size_t offset = (stride * sizeof(T)) % kPage;
   std::size_t step = gcd(offset == 0 ? kPage : offset, kPage);
   std::size_t sets = kPage / (step > kCacheLine ? step : kCacheLine);
-  return sets <= 2 && static_cast<std::size_t>(rows) > 12 * sets;
+  return sets <= 2 && static_cast<std::size_t>(rows) > kRowsPerSet * sets;
 }
 
 // Directions to skip so that out + j is `alignment`-byte aligned (0 if out is not even T-aligned).
@@ -181,9 +185,12 @@ PRT_SH_INLINE void staged_kernel_tile(int rows, std::size_t tile, const T* x, co
     StridedStore<T> put{scratch + b, scratch_stride};
     kernel(load<V>(x + b), load<V>(y + b), load<V>(z + b), put);
   }
-  for (int row = 0; row < rows; ++row)
-    std::memcpy(out + static_cast<std::size_t>(row) * stride, scratch + static_cast<std::size_t>(row) * scratch_stride,
-                sizeof(T) * tile);
+  // Inline vector copies: a memcpy call per row costs more than the row at small tiles.
+  for (int row = 0; row < rows; ++row) {
+    T* dst = out + static_cast<std::size_t>(row) * stride;
+    const T* src = scratch + static_cast<std::size_t>(row) * scratch_stride;
+    for (std::size_t b = 0; b < tile; b += kLanes<T>) store(dst + b, load<V>(src + b));
+  }
 }
 
 // The batch driver shared by every band count: `kernel(x, y, z, put)` evaluates one vector (or one
