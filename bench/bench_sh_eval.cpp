@@ -1,8 +1,9 @@
 // SH basis evaluation speed: sh::eval_batch (float and double, the unrolled fast path) and sh::eval
 // (one direction), each against the generic runtime-loop recurrence measured in the same run, for
 // bands 1..16 (and the generic path up to kMaxBands). Prints Google Benchmark's table, then one summary
-// line per band count with ns per direction, ns per coefficient, the issue's target and the peers of
-// ../shared/reference/anchors.md (Sloan's JCGT 2013 SSE x4 code).
+// line per band count with ns per direction, ns per coefficient, the issue's target and the peer
+// figures (Sloan, "Efficient Spherical Harmonic Evaluation", JCGT 2(2) 2013, SSE x4 code: constants
+// written into this benchmark, not measured here).
 //
 // Batched runs write to a 64-byte aligned buffer with out_stride = sh::padded_stride(count, sizeof(T)), the
 // recommended layout; "batch_stride=count" repeats the float fast path with out_stride = count, which
@@ -68,6 +69,65 @@ void bench_batch(benchmark::State& state, int bands, Path path, std::size_t coun
       sh::detail::eval_batch_generic(bands, count, d.x.data(), d.y.data(), d.z.data(), out, stride);
     }
     benchmark::DoNotOptimize(out);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * count));
+  state.counters["dirs"] = static_cast<double>(count);
+}
+
+// The bound of a batched figure: the same output bytes written by std::fill (no arithmetic), in the
+// same buffer layout. What the batch takes beyond this is the evaluation's own cost.
+template <typename T>
+void bench_fill(benchmark::State& state, int bands, std::size_t count, std::size_t stride) {
+  std::vector<T> storage(static_cast<std::size_t>(bands * bands) * stride + 64 / sizeof(T));
+  T* out = storage.data();
+  while (reinterpret_cast<std::uintptr_t>(out) % 64 != 0) ++out;
+  T value = static_cast<T>(0.5);
+  for (auto _ : state) {
+    for (int k = 0; k < bands * bands; ++k) std::fill(out + static_cast<std::size_t>(k) * stride, out + k * stride + count, value);
+    value += static_cast<T>(1e-7);
+    benchmark::DoNotOptimize(out);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * count));
+  state.counters["dirs"] = static_cast<double>(count);
+}
+
+// Evaluation where the bake uses it: fused with accumulation. Directions are evaluated kFusedBlock at a
+// time into a small buffer that stays in L1, and each block's basis rows are summed with per-direction
+// weights into bands^2 accumulators (sum_j w_j Y_k(d_j)), so nothing large is ever stored.
+constexpr std::size_t kFusedBlock = 64;
+
+template <typename T>
+void bench_fused(benchmark::State& state, int bands, std::size_t count) {
+  Directions<T> d = random_directions<T>(count);
+  std::vector<T> weight(count);
+  for (std::size_t j = 0; j < count; ++j) weight[j] = static_cast<T>(0.5 + 0.25 * d.x[j]);
+  const std::size_t n = static_cast<std::size_t>(bands * bands), stride = sh::padded_stride(kFusedBlock, sizeof(T));
+  std::vector<T> storage(n * stride + 64 / sizeof(T)), sums(n);
+  T* block = storage.data();
+  while (reinterpret_cast<std::uintptr_t>(block) % 64 != 0) ++block;
+  for (auto _ : state) {
+    std::fill(sums.begin(), sums.end(), T(0));
+    for (std::size_t first = 0; first < count; first += kFusedBlock) {
+      const std::size_t m = std::min(kFusedBlock, count - first);
+      sh::eval_batch(bands, m, d.x.data() + first, d.y.data() + first, d.z.data() + first, block, stride);
+      const T* w = weight.data() + first;
+      for (std::size_t k = 0; k < n; ++k) {
+        // kLanesAcc independent partial sums (a vectorisable order), then their total.
+        constexpr std::size_t kLanesAcc = 8;
+        const T* row = block + k * stride;
+        T acc[kLanesAcc] = {};
+        std::size_t j = 0;
+        for (; j + kLanesAcc <= m; j += kLanesAcc)
+          for (std::size_t l = 0; l < kLanesAcc; ++l) acc[l] += w[j + l] * row[j + l];
+        for (; j < m; ++j) acc[0] += w[j] * row[j];
+        T total = 0;
+        for (std::size_t l = 0; l < kLanesAcc; ++l) total += acc[l];
+        sums[k] += total;
+      }
+    }
+    benchmark::DoNotOptimize(sums.data());
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * count));
@@ -144,9 +204,9 @@ void print_summary(const SummaryReporter& r, std::size_t batch, std::size_t one_
               " the runtime-loop recurrence (eval_batch beyond %d bands), 'x' the fast path's speed-up over it.\n",
               batch, sh::padded_stride(batch, sizeof(float)), batch, one_count, sh::detail::kLanes<float>,
               sh::detail::kLanes<double>, sh::kMaxFastBands);
-  std::printf("%5s %5s | %-36s | %-13s | %-15s | %-17s | %-30s | %-22s\n", "bands", "coefs",
-              "float batch ns/dir ns/coef  target", "stride=count", "generic      x", "double ns/dir coef",
-              "eval float  generic x  (Sloan)", "eval double generic x");
+  std::printf("%5s %5s | %-36s | %-21s | %-19s | %-15s | %-15s | %-17s | %-30s | %-22s\n", "bands", "coefs",
+              "float batch ns/dir ns/coef  target", "stride=count (bound)", "write bound B/dir", "fused  target", "generic      x",
+              "double ns/dir coef", "eval float  generic x  (Sloan)", "eval double generic x");
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
     const double n2 = bands * bands;
     const bool fast = bands <= sh::kMaxFastBands;  // eval_batch is the generic path beyond
@@ -155,6 +215,9 @@ void print_summary(const SummaryReporter& r, std::size_t batch, std::size_t one_
     double ff = fast ? r.median(name_of("batch", "float", Path::kFast, bands)) : fg;
     double df = fast ? r.median(name_of("batch", "double", Path::kFast, bands)) : dg;
     double fc = r.median(name_of("batch_stride=count", "float", Path::kFast, bands));
+    double fill = r.median(name_of("fill", "float", Path::kFast, bands));
+    double fill_count = r.median(name_of("fill_stride=count", "float", Path::kFast, bands));
+    double fused = fast ? r.median(name_of("fused", "float", Path::kFast, bands)) : NAN;
     double of = r.median(name_of("one", "float", Path::kFast, bands));
     double og = r.median(name_of("one", "float", Path::kGeneric, bands));
     double odf = r.median(name_of("one", "double", Path::kFast, bands));
@@ -169,15 +232,21 @@ void print_summary(const SummaryReporter& r, std::size_t batch, std::size_t one_
     }
     char scalar_peer[32] = "";
     if (!std::isnan(sloan_scalar_ns(bands))) std::snprintf(scalar_peer, sizeof scalar_peer, "(%.1f)", sloan_scalar_ns(bands));
-    std::printf("%5d %5d | %7.3f %8.4f  %-14s | %7.3f %-5s | %7.3f %6.2fx | %7.3f %8.4f | %7.2f %7.2f %5.2fx %-7s | "
-                "%7.2f %7.2f %5.2fx\n",
+    std::printf("%5d %5d | %7.3f %8.4f  %-14s | %7.3f %-5s (%6.3f) | %7.3f %5.0f %5.1fGB/s | %7.3f %-7s | %7.3f %6.2fx | %7.3f %8.4f | "
+                "%7.2f %7.2f %5.2fx %-7s | %7.2f %7.2f %5.2fx\n",
                 bands, bands * bands, ff, ff / n2, target, fc,
-                std::isnan(t) || std::isnan(fc) ? "" : fc <= t ? "ok" : "MISS", fg, fg / ff, df, df / n2, of, og,
-                og / of, scalar_peer, odf, odg, odg / odf);
+                std::isnan(t) || std::isnan(fc) ? "" : fc <= t ? "ok" : "MISS", fill_count, fill, n2 * sizeof(float),
+                n2 * sizeof(float) / fill, fused, std::isnan(t) || std::isnan(fused) ? "" : fused <= t ? "ok" : "MISS", fg,
+                fg / ff, df, df / n2, of, og, og / of, scalar_peer, odf, odg, odg / odf);
   }
   std::printf("targets (float, batched, per direction): 3 bands <= 0.6 ns, 5 <= 1.6 ns, 9 <= 6 ns; ns/coef flat "
-              "up to 16 bands. Peers on this machine kind (anchors.md): Sloan SSE x4 0.61 / 1.58 / 3.35 / 6.0 ns, "
-              "Sloan scalar 2.1 / 6.4 / 13.6 / 23.2 ns for 3 / 5 / 7 / 9 bands.\n");
+              "up to 16 bands.\n'write bound': std::fill of the same output bytes (bands^2 x 4 B per direction, shown) "
+              "in the same layout, measured in this run: a batch cannot beat it; where the output outgrows L1/L2 the "
+              "batch figure is that bound plus a little. 'fused': eval_batch of %zu directions at a time into an L1 "
+              "buffer, summed with weights into bands^2 accumulators (what the bake does; nothing large stored).\n"
+              "Peer figures in parentheses are CONSTANTS (Sloan, JCGT 2013, SSE x4 0.61 / 1.58 / 3.35 / 6.0 ns and "
+              "scalar 2.1 / 6.4 / 13.6 / 23.2 ns for 3 / 5 / 7 / 9 bands, measured once on this machine kind), not "
+              "measured in this run.\n", kFusedBlock);
 }
 
 // Removes "--name=value" from argv and returns value (or fallback).
@@ -207,9 +276,15 @@ int main(int argc, char** argv) {
   const std::size_t stride_d = sh::padded_stride(batch, sizeof(double));
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
     for (Path path : {Path::kFast, Path::kGeneric}) {
-      if (path == Path::kFast)
+      if (path == Path::kFast) {
         add(name_of("batch_stride=count", "float", path, bands),
             [=](benchmark::State& s) { bench_batch<float>(s, bands, path, batch, batch); });
+        add(name_of("fill", "float", path, bands), [=](benchmark::State& s) { bench_fill<float>(s, bands, batch, stride_f); });
+        add(name_of("fill_stride=count", "float", path, bands),
+            [=](benchmark::State& s) { bench_fill<float>(s, bands, batch, batch); });
+        if (bands <= sh::kMaxFastBands)
+          add(name_of("fused", "float", path, bands), [=](benchmark::State& s) { bench_fused<float>(s, bands, batch); });
+      }
       // Beyond kMaxFastBands eval_batch is the generic path: measure that once.
       if (bands > sh::kMaxFastBands && path == Path::kFast) continue;
       add(name_of("batch", "float", path, bands),

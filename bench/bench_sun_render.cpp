@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   render::HeadlessContext context;
   std::printf("bench_sun_render: %s; frames %dx%d\n", context.description().c_str(), kFrameSize, kFrameSize);
   render::Renderer renderer;
-  const mesh::Mesh mesh = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true);
+  const mesh::Mesh mesh = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/guardian_lion_10k.ply", nullptr, true);
   renderer.set_mesh(mesh);
   const int index = renderer.add_transfer(synthetic_transfer(mesh.vertex_count(), 5), "synthetic");
   renderer.set_lighting(synthetic_lighting(5), nullptr);

@@ -5,8 +5,8 @@
 // lifted by the offset rule, traced with Scene::occluded (rtcOccluded1M) / Scene::intersect
 // (rtcIntersect1M) in batches of 256 (4 calls per vertex), vertices split over threads by
 // prt::parallel_for.
-// Target (shared/reference/toolchain.md, Stanford dragon, 871k triangles, 256 rays per vertex,
-// rtcOccluded1M, Morton order): 8.3 Mrays/s on 1 thread, 16.4 on 2.
+// Target (a figure measured once with a bare Embree 3 loop on the Stanford dragon, 871k triangles, 256
+// rays per vertex, rtcOccluded1M, Morton order; a constant here): 8.3 Mrays/s on 1 thread, 16.4 on 2.
 //
 // Usage: bench_trace [--full] [benchmark flags]
 //   default: the passes trace every 8th vertex of the Morton order (84M rays per pass);
@@ -34,7 +34,7 @@ using namespace prt;
 
 namespace {
 
-constexpr double kTarget1Thread = 8.3;  // Mrays/s, toolchain.md (dragon, 256 rays per vertex)
+constexpr double kTarget1Thread = 8.3;  // Mrays/s, the constant above (dragon, 256 rays per vertex)
 constexpr double kTarget2Threads = 16.4;
 
 struct Fixture {
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
             state.counters["embree_peak_MiB"] = mib(s.embree_peak_bytes);
             state.counters["mesh+bvh_peak_MiB"] = mib(s.embree_peak_bytes + s.geometry_bytes + mesh_bytes);
             state.counters["shares_positions"] = s.shares_positions ? 1 : 0;
-            state.counters["target_build_s"] = 0.7;  // toolchain.md: 0.3-0.7 s for ~1M triangles
+            state.counters["target_build_s"] = 0.7;  // a constant: 0.3-0.7 s for ~1M triangles (Embree 3 MEDIUM builder)
             if (threads == 2) f.scene = std::move(scene);
           }
         })
@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
     });
   }
   // Variants on 1 thread, as ratios to the baseline: batch size, call kind, vertex order, robust flag,
-  // rays per vertex (256: the toolchain.md setup).
+  // rays per vertex (256: the setup of the target above).
   for (std::size_t batch : {64, 1024}) {
     register_pass(f, "occlusion/batch:" + std::to_string(batch) + "/threads:1", 1, [&f, scene, batch] {
       return bench::occlusion_pass(scene(), f.mesh, f.morton, f.directions_1024, 1, batch);

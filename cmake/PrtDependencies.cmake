@@ -9,7 +9,7 @@ find_package(tinyobjloader CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 
 # Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist; generation fails as
-# soon as anything links it. Drop that entry (see ../shared/reference/toolchain.md).
+# soon as anything links it. Drop that entry.
 get_target_property(_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
 if(_oiio_inc)
   list(FILTER _oiio_inc EXCLUDE REGEX "opencv4")

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 prt=build/src/cli/prt
-mesh=assets/meshes/chinese_dragon_10k.ply
+mesh=assets/meshes/guardian_lion_10k.ply
 env=assets/env/sunrise.exr
 mkdir -p out
 "$prt" bake "$mesh" --transfer interreflected --bands 5 --samples 1024 -o out/lion.prt

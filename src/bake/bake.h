@@ -43,7 +43,7 @@
 //                         = Rot(F_p^T) - (2 pi / S) Rot_out(F_p^T F_s) C Rot_in(F_s^T),
 //                     C = sum over OCCLUDED samples s of y_out(w_s) y_in(w_s)^T, with S directions w_s
 //                     uniform on the hemisphere (an Owen-scrambled Sobol set, pdf 1 / (2 pi)) in the
-//                     sample frame F_s = vertex_frame(n, seed, p) (the diffuse baker's hashed frame).
+//                     sample frame F_s = sh::vertex_frame(n, seed, p) (the diffuse baker's hashed frame).
 //                     The exact unoccluded part is the control variate: zero noise where nothing is
 //                     occluded. C is summed in float, the rotations are applied in double.
 //   bounce b >= 1:    T^b_p(w) = radiance arriving from front-face hits q along F_p w, where q's

@@ -14,6 +14,7 @@
 #include "mesh/mesh.h"
 #include "sh/rotation.h"
 #include "trace/scene.h"
+#include "trace/vertex_rays.h"
 
 namespace prt::bake {
 
@@ -29,11 +30,15 @@ struct GlossyContext {
   std::uint32_t seed = 0;
   int threads = 0;
   bool progress = false;
+
+  /// The per-vertex ray loop of this context (trace/vertex_rays.h) with query `query`.
+  trace::VertexRays rays(trace::Query query) const {
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query};
+  }
 };
 
 /// The glossy half of bake() (bake.h, GLOSSY); options already validated.
 transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report);
-
 
 /// The direct (shadowed) pass: per vertex M = Rot(F^T) - (2 pi / S) Rot_out(F^T F_s) C Rot_in(F_s^T),
 /// C = sum over occluded samples of y_out(w_s) y_in(w_s)^T (bake.h, GLOSSY). One channel. Returns the

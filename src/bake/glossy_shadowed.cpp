@@ -1,15 +1,12 @@
 // The direct pass of a glossy bake: per-vertex transfer matrices with binary visibility (bake.h, GLOSSY).
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 #include <glm/matrix.hpp>
 
 #include "bake/glossy_passes.h"
-#include "core/parallel.h"
+#include "core/constants.h"
 #include "core/progress.h"
-#include "sh/basis.h"
-#include "sh/sampling.h"
 
 namespace prt::bake {
 
@@ -44,72 +41,66 @@ void rotate_columns(const sh::Rotation& r, int columns, double* matrix) {
   }
 }
 
-std::uint64_t glossy_direct_pass(const GlossyContext& ctx, std::vector<float>& out) {
-  const mesh::Mesh& mesh = *ctx.mesh;
-  const LocalSampleSet& set = *ctx.samples;
-  const int n_in = ctx.bands * ctx.bands, n_out = ctx.bands_out * ctx.bands_out;
-  const std::size_t per_vertex = static_cast<std::size_t>(n_out) * n_in;
-  const std::size_t sample_count = set.directions.size();
-  const double scale = 2.0 * M_PI / static_cast<double>(sample_count);  // 1 / (pdf S), uniform pdf 1 / (2 pi)
-  out.assign(mesh.positions.size() * per_vertex, 0.0f);
-  Progress progress("bake glossy shadowed", "vertices", mesh.positions.size(), ctx.progress);
-  std::atomic<std::uint64_t> rays{0};
+namespace {
 
-  parallel_for(ctx.order->size(), 64, ctx.threads, [&](std::size_t begin, std::size_t end) {
-    trace::RayBatch batch(std::min<std::size_t>(sample_count, trace::kDefaultBatchCapacity));
-    std::vector<float> occluded_sum(per_vertex);
-    std::vector<double> matrix(per_vertex), correction(per_vertex);
-    std::uint64_t traced = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      const std::uint32_t v = (*ctx.order)[k];
-      const glm::mat3 sample_frame = vertex_frame(mesh.normals[v], ctx.seed, v);
-      const glm::mat3& frame = (*ctx.frames)[v];
-      const glm::vec3 origin = ctx.scene->offset_origin(mesh.positions[v], mesh.normals[v]);
-      std::fill(occluded_sum.begin(), occluded_sum.end(), 0.0f);
-      bool any_occluded = false;
-      for (std::size_t first = 0; first < sample_count; first += batch.capacity()) {
-        const std::size_t count = std::min(batch.capacity(), sample_count - first);
-        batch.clear();
-        for (std::size_t s = first; s < first + count; ++s) batch.push(origin, sample_frame * set.directions[s]);
-        ctx.scene->occluded(batch);
-        traced += count;
-        for (std::size_t i = 0; i < count; ++i) {
-          if (!batch.is_occluded(i)) continue;
-          any_occluded = true;
-          // Accumulate the outer product y_out(w_s) y_in(w_s)^T (sample frame).
-          const float* y = set.basis.data() + (first + i) * n_in;
-          for (int row = 0; row < n_out; ++row) {
-            const float a = y[row];
-            float* dst = occluded_sum.data() + static_cast<std::size_t>(row) * n_in;
-            for (int col = 0; col < n_in; ++col) dst[col] += a * y[col];
-          }
-        }
-      }
-      // Unoccluded part: the first n_out rows of Rot(F^T), which takes world coefficients to local ones.
-      const glm::dmat3 world_to_local = glm::transpose(glm::dmat3(frame));
-      const sh::Rotation to_local(ctx.bands, world_to_local);
-      std::fill(matrix.begin(), matrix.end(), 0.0);
-      for (int l = 0; l < ctx.bands_out; ++l) {
-        const int width = 2 * l + 1;
-        const double* block = to_local.block(l);
-        for (int a = 0; a < width; ++a)
-          for (int b = 0; b < width; ++b) matrix[static_cast<std::size_t>(l * l + a) * n_in + l * l + b] = block[a * width + b];
-      }
-      if (any_occluded) {
-        // Occluded part: Rot_out(F^T F_s) C Rot_in(F_s^T), C in the sample frame F_s.
-        for (std::size_t i = 0; i < per_vertex; ++i) correction[i] = occluded_sum[i];
-        rotate_rows(sh::Rotation(ctx.bands, glm::dmat3(sample_frame)), n_out, correction.data());
-        rotate_columns(sh::Rotation(ctx.bands_out, world_to_local * glm::dmat3(sample_frame)), n_in, correction.data());
-        for (std::size_t i = 0; i < per_vertex; ++i) matrix[i] -= scale * correction[i];
-      }
-      float* o = out.data() + static_cast<std::size_t>(v) * per_vertex;
-      for (std::size_t i = 0; i < per_vertex; ++i) o[i] = static_cast<float>(matrix[i]);
+// Per chunk: sums y_out(w_s) y_in(w_s)^T over v's occluded rays (sample frame), then writes
+// M = Rot(F^T) - (2 pi / S) Rot_out(F^T F_s) C Rot_in(F_s^T).
+class GlossyDirectWorker : public OccludedSamples<GlossyDirectWorker> {
+ public:
+  GlossyDirectWorker(const GlossyContext& ctx, std::vector<float>& out)
+      : OccludedSamples(*ctx.samples), ctx_(ctx), out_(out), n_in_(ctx.bands * ctx.bands),
+        n_out_(ctx.bands_out * ctx.bands_out), per_vertex_(static_cast<std::size_t>(n_out_) * n_in_),
+        occluded_sum_(per_vertex_), matrix_(per_vertex_), correction_(per_vertex_) {}
+
+  void clear() { std::fill(occluded_sum_.begin(), occluded_sum_.end(), 0.0f); }
+  // The outer product y_out(w_s) y_in(w_s)^T (sample frame).
+  void add_occluded(const float* y) {
+    for (int row = 0; row < n_out_; ++row) {
+      const float a = y[row];
+      float* dst = occluded_sum_.data() + static_cast<std::size_t>(row) * n_in_;
+      for (int col = 0; col < n_in_; ++col) dst[col] += a * y[col];
     }
-    rays += traced;
-    progress.advance(end - begin);
-  });
-  progress.finish();
-  return rays.load();
+  }
+
+  void finish(std::uint32_t v, const glm::mat3& sample_frame) {
+    // Unoccluded part: the first n_out rows of Rot(F^T), which takes world coefficients to local ones.
+    const glm::dmat3 world_to_local = glm::transpose(glm::dmat3((*ctx_.frames)[v]));
+    const sh::Rotation to_local(ctx_.bands, world_to_local);
+    std::fill(matrix_.begin(), matrix_.end(), 0.0);
+    for (int l = 0; l < ctx_.bands_out; ++l) {
+      const int width = 2 * l + 1;
+      const double* block = to_local.block(l);
+      for (int a = 0; a < width; ++a)
+        for (int b = 0; b < width; ++b) matrix_[static_cast<std::size_t>(l * l + a) * n_in_ + l * l + b] = block[a * width + b];
+    }
+    if (any_occluded()) {
+      // Occluded part: Rot_out(F^T F_s) C Rot_in(F_s^T), C in the sample frame F_s.
+      const double scale = 2.0 * kPi / static_cast<double>(ctx_.samples->directions.size());  // 1 / (pdf S)
+      for (std::size_t i = 0; i < per_vertex_; ++i) correction_[i] = occluded_sum_[i];
+      rotate_rows(sh::Rotation(ctx_.bands, glm::dmat3(sample_frame)), n_out_, correction_.data());
+      rotate_columns(sh::Rotation(ctx_.bands_out, world_to_local * glm::dmat3(sample_frame)), n_in_, correction_.data());
+      for (std::size_t i = 0; i < per_vertex_; ++i) matrix_[i] -= scale * correction_[i];
+    }
+    float* o = out_.data() + static_cast<std::size_t>(v) * per_vertex_;
+    for (std::size_t i = 0; i < per_vertex_; ++i) o[i] = static_cast<float>(matrix_[i]);
+  }
+
+ private:
+  const GlossyContext& ctx_;
+  std::vector<float>& out_;
+  int n_in_, n_out_;
+  std::size_t per_vertex_;
+  std::vector<float> occluded_sum_;
+  std::vector<double> matrix_, correction_;
+};
+
+}  // namespace
+
+std::uint64_t glossy_direct_pass(const GlossyContext& ctx, std::vector<float>& out) {
+  const std::size_t per_vertex = static_cast<std::size_t>(ctx.bands_out * ctx.bands_out) * (ctx.bands * ctx.bands);
+  out.assign(ctx.mesh->positions.size() * per_vertex, 0.0f);
+  Progress progress("bake glossy shadowed", "vertices", ctx.mesh->positions.size(), ctx.progress);
+  return trace::trace_vertex_rays(ctx.rays(trace::Query::occluded), progress, [&] { return GlossyDirectWorker(ctx, out); });
 }
 
 }  // namespace prt::bake

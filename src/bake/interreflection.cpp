@@ -1,10 +1,8 @@
 #include <algorithm>
-#include <atomic>
 
 #include <glm/geometric.hpp>
 
 #include "bake/passes.h"
-#include "core/parallel.h"
 
 namespace prt::bake {
 
@@ -59,66 +57,67 @@ class WeightMap {
   std::size_t mask_ = 0;
 };
 
+// Per chunk: merges the barycentric weights of v's front-face hits per hit vertex, then reads each
+// distinct vertex's previous transfer once.
+class BounceWorker {
+ public:
+  BounceWorker(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const std::vector<float>& prev,
+               std::vector<float>& next)
+      : ctx_(ctx), albedo_(albedo), channels_(channels), prev_(prev), next_(next),
+        n_(static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands), stride_(n_ * channels),
+        weights_(3 * ctx.samples->directions.size()), gathered_(stride_) {}
+
+  void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
+
+  void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t) {
+    const mesh::Mesh& mesh = *ctx_.mesh;
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      if (!batch.is_hit(i)) continue;
+      const trace::HitResult hit = batch.hit(i);
+      const std::uint32_t* tri = mesh.indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
+      const glm::vec3& p0 = mesh.positions[tri[0]];
+      const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
+      if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
+      weights_.add(tri[0], 1.0f - hit.u - hit.v);
+      weights_.add(tri[1], hit.u);
+      weights_.add(tri[2], hit.v);
+    }
+  }
+
+  void finish(std::uint32_t v, const glm::mat3&) {
+    std::fill(gathered_.begin(), gathered_.end(), 0.0f);
+    for (std::size_t e = 0; e < weights_.size(); ++e) {
+      const float w = weights_.weight(e);
+      const float* p = prev_.data() + static_cast<std::size_t>(weights_.key(e)) * stride_;
+      for (std::size_t c = 0; c < stride_; ++c) gathered_[c] += w * p[c];
+    }
+    const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
+    float* o = next_.data() + static_cast<std::size_t>(v) * stride_;
+    for (int ch = 0; ch < channels_; ++ch) {
+      const float scale = albedo_[v][ch] * inv_samples;
+      for (std::size_t c = 0; c < n_; ++c) o[ch * n_ + c] = scale * gathered_[ch * n_ + c];
+    }
+  }
+
+ private:
+  const PassContext& ctx_;
+  const std::vector<glm::vec3>& albedo_;
+  int channels_;
+  const std::vector<float>& prev_;
+  std::vector<float>& next_;
+  std::size_t n_, stride_;
+  WeightMap weights_;
+  std::vector<float> gathered_;
+};
+
 }  // namespace
 
 std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label) {
-  const mesh::Mesh& mesh = *ctx.mesh;
-  const LocalSampleSet& set = *ctx.samples;
-  const std::size_t n = static_cast<std::size_t>(set.bands) * set.bands;
-  const std::size_t stride = n * static_cast<std::size_t>(channels);
-  const std::size_t sample_count = set.directions.size();
-  const float inv_samples = 1.0f / static_cast<float>(sample_count);
   next.assign(prev.size(), 0.0f);
-  Progress progress(label, "vertices", mesh.positions.size(), ctx.progress);
-  std::atomic<std::uint64_t> rays{0};
-
-  parallel_for(ctx.order->size(), 64, ctx.threads, [&](std::size_t begin, std::size_t end) {
-    trace::RayBatch batch(std::min<std::size_t>(sample_count, trace::kDefaultBatchCapacity));
-    WeightMap weights(3 * sample_count);
-    std::vector<float> gathered(stride);
-    std::uint64_t traced = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      const std::uint32_t v = (*ctx.order)[k];
-      const glm::mat3 frame = vertex_frame(mesh.normals[v], ctx.seed, v);
-      const glm::vec3 origin = ctx.scene->offset_origin(mesh.positions[v], mesh.normals[v]);
-      weights.clear();
-      for (std::size_t first = 0; first < sample_count; first += batch.capacity()) {
-        const std::size_t count = std::min(batch.capacity(), sample_count - first);
-        batch.clear();
-        for (std::size_t s = first; s < first + count; ++s) batch.push(origin, frame * set.directions[s]);
-        ctx.scene->intersect(batch);
-        traced += count;
-        for (std::size_t i = 0; i < count; ++i) {
-          const trace::HitResult hit = batch.hit(i);
-          if (!hit.hit()) continue;
-          const std::uint32_t* tri = mesh.indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
-          const glm::vec3& p0 = mesh.positions[tri[0]];
-          const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
-          const trace::Ray& d = batch.data()[i].ray;
-          if (face_normal.x * d.dir_x + face_normal.y * d.dir_y + face_normal.z * d.dir_z >= 0.0f) continue;
-          weights.add(tri[0], 1.0f - hit.u - hit.v);
-          weights.add(tri[1], hit.u);
-          weights.add(tri[2], hit.v);
-        }
-      }
-      std::fill(gathered.begin(), gathered.end(), 0.0f);
-      for (std::size_t e = 0; e < weights.size(); ++e) {
-        const float w = weights.weight(e);
-        const float* p = prev.data() + static_cast<std::size_t>(weights.key(e)) * stride;
-        for (std::size_t c = 0; c < stride; ++c) gathered[c] += w * p[c];
-      }
-      float* o = next.data() + static_cast<std::size_t>(v) * stride;
-      for (int ch = 0; ch < channels; ++ch) {
-        const float scale = albedo[v][ch] * inv_samples;
-        for (std::size_t c = 0; c < n; ++c) o[ch * n + c] = scale * gathered[ch * n + c];
-      }
-    }
-    rays += traced;
-    progress.advance(end - begin);
-  });
-  progress.finish();
-  return rays.load();
+  Progress progress(label, "vertices", ctx.mesh->positions.size(), ctx.progress);
+  return trace::trace_vertex_rays(ctx.rays(trace::Query::closest_hit), progress,
+                                  [&] { return BounceWorker(ctx, albedo, channels, prev, next); });
 }
 
 }  // namespace prt::bake

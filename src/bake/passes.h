@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "mesh/mesh.h"
 #include "trace/scene.h"
+#include "trace/vertex_rays.h"
 
 namespace prt::bake {
 
@@ -23,6 +24,11 @@ struct PassContext {
   std::uint32_t seed = 0;
   int threads = 0;
   bool progress = false;
+
+  /// The per-vertex ray loop of this context (trace/vertex_rays.h) with query `query`.
+  trace::VertexRays rays(trace::Query query) const {
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query};
+  }
 };
 
 /// (1/pi) A_l, l < bands: the clamped-cosine factors of the unshadowed transfer.

@@ -1,68 +1,53 @@
 #include <algorithm>
-#include <atomic>
 
 #include "bake/passes.h"
-#include "core/parallel.h"
 #include "sh/rotation.h"
+#include "trace/vertex_rays.h"
 
 namespace prt::bake {
 
 namespace {
 
-// Fills `batch` with the rays s in [first, first + count) of vertex v.
-void fill_rays(trace::RayBatch& batch, const glm::vec3& origin, const glm::mat3& frame,
-               const std::vector<glm::vec3>& local, std::size_t first, std::size_t count) {
-  batch.clear();
-  for (std::size_t s = first; s < first + count; ++s) batch.push(origin, frame * local[s]);
-}
+// Per chunk: sums the local basis rows of v's occluded rays, then writes the unshadowed transfer minus
+// that sum rotated to the world (the control variate of bake.h).
+class ShadowedWorker : public OccludedSamples<ShadowedWorker> {
+ public:
+  ShadowedWorker(const PassContext& ctx, const std::vector<double>& factors, std::vector<float>& out)
+      : OccludedSamples(*ctx.samples), ctx_(ctx), factors_(factors), out_(out), n_(ctx.samples->bands * ctx.samples->bands),
+        local_sum_(n_), world_sum_(n_) {}
+
+  void clear() { std::fill(local_sum_.begin(), local_sum_.end(), 0.0f); }
+  void add_occluded(const float* y) {
+    for (int c = 0; c < n_; ++c) local_sum_[c] += y[c];
+  }
+
+  void finish(std::uint32_t v, const glm::mat3& frame) {
+    const int bands = ctx_.samples->bands;
+    float* o = out_.data() + static_cast<std::size_t>(v) * n_;
+    unshadowed_vertex(bands, factors_, ctx_.mesh->normals[v], o);
+    if (!any_occluded()) return;
+    const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
+    sh::rotate(bands, frame, local_sum_.data(), world_sum_.data());
+    for (int c = 0; c < n_; ++c) o[c] -= inv_samples * world_sum_[c];
+  }
+
+ private:
+  const PassContext& ctx_;
+  const std::vector<double>& factors_;
+  std::vector<float>& out_;
+  int n_;
+  std::vector<float> local_sum_, world_sum_;
+};
 
 }  // namespace
 
 std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out) {
-  const mesh::Mesh& mesh = *ctx.mesh;
-  const LocalSampleSet& set = *ctx.samples;
-  const int n = set.bands * set.bands;
-  const std::size_t sample_count = set.directions.size();
-  const float inv_samples = 1.0f / static_cast<float>(sample_count);
-  const std::vector<double> factors = unshadowed_factors(set.bands);
-  out.assign(mesh.positions.size() * static_cast<std::size_t>(n), 0.0f);
-  Progress progress("bake shadowed", "vertices", mesh.positions.size(), ctx.progress);
-  std::atomic<std::uint64_t> rays{0};
-
-  parallel_for(ctx.order->size(), 64, ctx.threads, [&](std::size_t begin, std::size_t end) {
-    trace::RayBatch batch(std::min<std::size_t>(sample_count, trace::kDefaultBatchCapacity));
-    std::vector<float> local_sum(static_cast<std::size_t>(n)), world_sum(static_cast<std::size_t>(n));
-    std::uint64_t traced = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      const std::uint32_t v = (*ctx.order)[k];
-      const glm::mat3 frame = vertex_frame(mesh.normals[v], ctx.seed, v);
-      const glm::vec3 origin = ctx.scene->offset_origin(mesh.positions[v], mesh.normals[v]);
-      std::fill(local_sum.begin(), local_sum.end(), 0.0f);
-      bool any_occluded = false;
-      for (std::size_t first = 0; first < sample_count; first += batch.capacity()) {
-        const std::size_t count = std::min(batch.capacity(), sample_count - first);
-        fill_rays(batch, origin, frame, set.directions, first, count);
-        ctx.scene->occluded(batch);
-        traced += count;
-        for (std::size_t i = 0; i < count; ++i) {
-          if (!batch.is_occluded(i)) continue;
-          any_occluded = true;
-          const float* y = set.basis.data() + (first + i) * n;
-          for (int c = 0; c < n; ++c) local_sum[c] += y[c];
-        }
-      }
-      float* o = out.data() + static_cast<std::size_t>(v) * n;
-      unshadowed_vertex(set.bands, factors, mesh.normals[v], o);
-      if (any_occluded) {
-        sh::rotate(set.bands, frame, local_sum.data(), world_sum.data());
-        for (int c = 0; c < n; ++c) o[c] -= inv_samples * world_sum[c];
-      }
-    }
-    rays += traced;
-    progress.advance(end - begin);
-  });
-  progress.finish();
-  return rays.load();
+  const std::size_t n = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands;
+  const std::vector<double> factors = unshadowed_factors(ctx.samples->bands);
+  out.assign(ctx.mesh->positions.size() * n, 0.0f);
+  Progress progress("bake shadowed", "vertices", ctx.mesh->positions.size(), ctx.progress);
+  return trace::trace_vertex_rays(ctx.rays(trace::Query::occluded), progress,
+                                  [&] { return ShadowedWorker(ctx, factors, out); });
 }
 
 }  // namespace prt::bake

@@ -1,11 +1,12 @@
 #pragma once
-// The hemisphere sample set every vertex traces and per-vertex frames: internal to prt_bake, and
-// turned_frame is also used by prt_probes' surface pass.
+// The hemisphere sample set every vertex traces and per-vertex frames: internal to prt_bake.
 #include <cstdint>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
+
+#include "trace/scene.h"
 
 namespace prt::bake {
 
@@ -16,20 +17,40 @@ struct LocalSampleSet {
   std::vector<float> basis;           ///< S x bands^2, sample-major: basis[s * bands^2 + i] = Y_i(directions[s])
 };
 
+/// The part every visibility worker of trace::trace_vertex_rays shares: per vertex, hands the basis row
+/// of each occluded sample to Derived::add_occluded(const float* y) (after Derived::clear() at the start)
+/// and remembers whether any ray was occluded. Derived adds finish(v, frame).
+template <class Derived>
+class OccludedSamples {
+ public:
+  explicit OccludedSamples(const LocalSampleSet& set) : set_(set), n_(set.bands * set.bands) {}
+
+  void start(std::uint32_t, const glm::mat3&) {
+    any_occluded_ = false;
+    static_cast<Derived*>(this)->clear();
+  }
+
+  void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t first) {
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      if (!batch.is_occluded(i)) continue;
+      any_occluded_ = true;
+      static_cast<Derived*>(this)->add_occluded(set_.basis.data() + (first + i) * n_);
+    }
+  }
+
+ protected:
+  bool any_occluded() const { return any_occluded_; }
+
+ private:
+  const LocalSampleSet& set_;
+  int n_;
+  bool any_occluded_ = false;
+};
+
 /// Builds the set for (samples, seed): sh::hemisphere_directions_cosine, basis in float.
 LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed);
 
 /// S directions uniform on the hemisphere about +z (sh::hemisphere_directions_uniform) and the SH
 /// basis of `bands` bands at each (the glossy passes, which weight by the BRDF rather than the cosine).
 LocalSampleSet make_uniform_sample_set(int samples, int bands, std::uint32_t seed);
-
-/// Rotation (columns t, b, n) taking local coordinates about +z to world ones about the unit normal n:
-/// Duff et al. 2017's branchless basis turned about n by `angle` radians.
-glm::mat3 turned_frame(const glm::vec3& normal, double angle);
-
-/// Rotation (columns t, b, n) taking the local frame to the world frame at a vertex with unit normal n.
-/// The tangent is Duff et al. 2017's branchless basis turned about n by an angle hashed from
-/// (seed, vertex), so the sample pattern differs from vertex to vertex but not from run to run.
-glm::mat3 vertex_frame(const glm::vec3& normal, std::uint32_t seed, std::uint64_t vertex);
-
 }  // namespace prt::bake

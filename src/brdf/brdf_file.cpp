@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/little_endian.h"
+#include "core/text.h"
 #include "sh/basis.h"
 
 namespace prt::brdf {
@@ -20,14 +21,6 @@ constexpr char kMagic[8] = {'P', 'R', 'T', 'B', 'R', 'D', 'F', '1'};
 constexpr const char* kLayout =
     "matrix[c][k][j] = B_kj of colour channel c; row k = outgoing SH coefficient, column j = incident "
     "(transferred radiance) coefficient, flat index l(l+1)+m; local frame with +z the normal; O = B T";
-
-std::string lower_extension(const std::string& path) {
-  const std::size_t dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext;
-}
 
 using le::get_f64;
 using le::get_u32;

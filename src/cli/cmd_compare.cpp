@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "image/compare.h"
 #include "image/image.h"
 #include "mesh/writers.h"
@@ -20,9 +21,7 @@ struct CompareCommandOptions {
 };
 
 bool is_ply(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".ply";
+  return lower_extension(path) == ".ply";
 }
 
 // Blue -> cyan -> green -> yellow -> red over t in [0, 1].

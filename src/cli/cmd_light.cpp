@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "image/image.h"
 #include "light/environment.h"
 #include "light/light_file.h"
@@ -48,12 +49,6 @@ struct CheckedLight {
   light::SunRequest sun;
   double yaw = 0, pitch = 0, roll = 0;
 };
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 CheckedLight check_options(const LightOptions& o) {
   CheckedLight checked;

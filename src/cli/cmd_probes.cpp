@@ -59,30 +59,72 @@ std::string describe_point(const glm::vec3& p) {
   return buf;
 }
 
-void run_probes(ProbesCommandOptions o) {
-  const probes::Format format = probes::parse_format(o.format);
+// The probe layout of --grid (with --bounds, or bounds to follow from the scene) or --points, checked.
+probes::ProbeSet parse_layout(const ProbesCommandOptions& o) {
   if (o.grid.empty() == o.points.empty()) fail("give exactly one of --grid NX,NY,NZ and --points FILE");
   if (!o.bounds.empty() && o.grid.empty()) fail("--bounds needs --grid");
   probes::ProbeSet layout;
-  if (!o.grid.empty()) {
-    const std::vector<double> counts = parse_numbers(o.grid, 3, "--grid", "NX,NY,NZ");
-    for (int a = 0; a < 3; ++a) {
-      if (counts[a] != std::floor(counts[a]) || counts[a] < 0 || counts[a] > (1 << 26))
-        fail("--grid: counts must be whole numbers >= 1, got '" + o.grid + "'");
-      layout.grid.counts[a] = static_cast<int>(counts[a]);
-    }
-    layout.layout = probes::ProbeSet::Layout::grid;
-    if (!o.bounds.empty()) {
-      const std::vector<double> b = parse_numbers(o.bounds, 6, "--bounds", "X0,Y0,Z0,X1,Y1,Z1");
-      layout.grid.lo = {b[0], b[1], b[2]};
-      layout.grid.hi = {b[3], b[4], b[5]};
+  if (o.grid.empty()) return layout;
+  const std::vector<double> counts = parse_numbers(o.grid, 3, "--grid", "NX,NY,NZ");
+  for (int a = 0; a < 3; ++a) {
+    if (counts[a] != std::floor(counts[a]) || counts[a] < 0 || counts[a] > (1 << 26))
+      fail("--grid: counts must be whole numbers >= 1, got '" + o.grid + "'");
+    layout.grid.counts[a] = static_cast<int>(counts[a]);
+  }
+  layout.layout = probes::ProbeSet::Layout::grid;
+  if (!o.bounds.empty()) {
+    const std::vector<double> b = parse_numbers(o.bounds, 6, "--bounds", "X0,Y0,Z0,X1,Y1,Z1");
+    layout.grid.lo = {b[0], b[1], b[2]};
+    layout.grid.hi = {b[3], b[4], b[5]};
+  } else {
+    layout.grid.lo = glm::dvec3(1.0);  // bounds follow from the scene later; check the counts now
+    layout.grid.hi = glm::dvec3(2.0);
+  }
+  probes::check_grid(layout.grid);
+  return layout;
+}
+
+// The probe positions: the grid's cell centres (its bounds the scene's unless given), or the --points
+// positions, checked to lie inside the scene's bounds.
+std::vector<glm::dvec3> place_probes(const ProbesCommandOptions& o, const mesh::Mesh& mesh, probes::ProbeSet& layout,
+                                     std::vector<glm::dvec3> points) {
+  const mesh::Bounds scene_bounds = mesh::bounds(mesh);
+  if (layout.layout != probes::ProbeSet::Layout::grid) {
+    probes::check_points_inside(points, glm::dvec3(scene_bounds.lo), glm::dvec3(scene_bounds.hi), o.points);
+    return points;
+  }
+  if (o.bounds.empty()) {
+    layout.grid.lo = glm::dvec3(scene_bounds.lo);
+    layout.grid.hi = glm::dvec3(scene_bounds.hi);
+    try {
       probes::check_grid(layout.grid);
-    } else {
-      layout.grid.lo = glm::dvec3(1.0);  // bounds follow from the scene below; check the counts now
-      layout.grid.hi = glm::dvec3(2.0);
-      probes::check_grid(layout.grid);
+    } catch (const Error& e) {
+      fail_file(o.scene_path, std::string("the scene's bounds cannot hold a grid (") + e.what() + "); give --bounds");
     }
   }
+  return probes::grid_positions(layout.grid);
+}
+
+void print_summary(const ProbesCommandOptions& o, const probes::ProbeSet& baked, const probes::ProbeBakeReport& report,
+                   probes::Format format, double seconds) {
+  if (report.invalid > 0) {
+    std::string list;
+    std::size_t shown = 0;
+    for (std::size_t i = 0; i < baked.count() && shown < 8; ++i)
+      if (!baked.valid[i]) list += (shown++ ? ", " : "") + std::to_string(i) + " " + describe_point(baked.positions[i]);
+    if (report.invalid > shown) list += ", ...";
+    std::fprintf(stderr, "prt probes: %zu of %zu probes are inside geometry (more than %.0f%% back-face hits), marked invalid: %s\n",
+                 report.invalid, baked.count(), 100.0 * o.bake.max_backface_fraction, list.c_str());
+  }
+  std::fprintf(stderr, "prt probes: %zu probes, %d bands, %d rays each, %d bounce(s)%s, %.2f Mrays in %.2f s -> %s (%s)\n",
+               baked.count(), baked.bands, o.bake.rays, o.bake.bounces, o.bake.transfer_bands ? ", with transfer" : "",
+               (report.surface_rays + report.probe_rays + report.transfer_rays) / 1e6, seconds, o.output.c_str(),
+               probes::format_name(format));
+}
+
+void run_probes(ProbesCommandOptions o) {
+  const probes::Format format = probes::parse_format(o.format);
+  probes::ProbeSet layout = parse_layout(o);
   if (format == probes::Format::bevy && layout.layout != probes::ProbeSet::Layout::grid)
     fail("--format bevy needs a probe grid (--grid): an irradiance volume is a 3D texture");
   if (!o.albedo.empty()) o.bake.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
@@ -93,27 +135,13 @@ void run_probes(ProbesCommandOptions o) {
   probes::SceneLight light;
   const light::SunRequest sun = light::parse_sun_request(o.sun);
   if (sun.mode == light::SunRequest::Mode::given) light.sun = sun.disc;
-  std::vector<glm::dvec3> positions;
-  if (!o.points.empty()) positions = probes::read_points_file(o.points);
+  std::vector<glm::dvec3> points;
+  if (!o.points.empty()) points = probes::read_points_file(o.points);
   { AtomicFile check_folder(o.output); }
 
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(o.scene_path, &load_report, o.quiet);
-  const mesh::Bounds scene_bounds = mesh::bounds(mesh);
-  if (layout.layout == probes::ProbeSet::Layout::grid) {
-    if (o.bounds.empty()) {
-      layout.grid.lo = glm::dvec3(scene_bounds.lo);
-      layout.grid.hi = glm::dvec3(scene_bounds.hi);
-      try {
-        probes::check_grid(layout.grid);
-      } catch (const Error& e) {
-        fail_file(o.scene_path, std::string("the scene's bounds cannot hold a grid (") + e.what() + "); give --bounds");
-      }
-    }
-    positions = probes::grid_positions(layout.grid);
-  } else {
-    probes::check_points_inside(positions, glm::dvec3(scene_bounds.lo), glm::dvec3(scene_bounds.hi), o.points);
-  }
+  const std::vector<glm::dvec3> positions = place_probes(o, mesh, layout, std::move(points));
   light::Environment environment = light::load_environment(o.environment);
   if (sun.mode == light::SunRequest::Mode::automatic) {
     // The brightest compact source becomes the probes' sun (traced with visibility); the rest stays sky.
@@ -138,22 +166,7 @@ void run_probes(ProbesCommandOptions o) {
   export_options.environment = &environment;
   export_options.specular_size = o.specular_size;
   probes::export_probes(baked, format, o.output, export_options);
-
-  if (!o.quiet) {
-    if (report.invalid > 0) {
-      std::string list;
-      std::size_t shown = 0;
-      for (std::size_t i = 0; i < baked.count() && shown < 8; ++i)
-        if (!baked.valid[i]) list += (shown++ ? ", " : "") + std::to_string(i) + " " + describe_point(baked.positions[i]);
-      if (report.invalid > shown) list += ", ...";
-      std::fprintf(stderr, "prt probes: %zu of %zu probes are inside geometry (more than %.0f%% back-face hits), marked invalid: %s\n",
-                   report.invalid, baked.count(), 100.0 * o.bake.max_backface_fraction, list.c_str());
-    }
-    std::fprintf(stderr, "prt probes: %zu probes, %d bands, %d rays each, %d bounce(s)%s, %.2f Mrays in %.2f s -> %s (%s)\n",
-                 baked.count(), baked.bands, o.bake.rays, o.bake.bounces, o.bake.transfer_bands ? ", with transfer" : "",
-                 (report.surface_rays + report.probe_rays + report.transfer_rays) / 1e6, seconds, o.output.c_str(),
-                 probes::format_name(format));
-  }
+  if (!o.quiet) print_summary(o, baked, report, format, seconds);
 }
 
 }  // namespace

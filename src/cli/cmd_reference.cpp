@@ -8,16 +8,17 @@
 #include <memory>
 #include <optional>
 
+#include "brdf/brdf.h"
 #include "camera/camera.h"
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "image/image.h"
 #include "light/environment.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
-#include "brdf/brdf.h"
 #include "reference/glossy_estimator.h"
 #include "reference/reference.h"
 #include "reference/reference_image.h"
@@ -50,12 +51,6 @@ struct GivenOptions {
   std::vector<std::string> image_only;  // names of image-only options that were given
 };
 
-std::string lower_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
-}
-
 void print_summary(const char* what, std::size_t count, int samples, int bounces, const reference::ReferenceReport& report,
                    const std::string& output) {
   const double seconds = std::max(1e-9, report.seconds_trace);
@@ -67,7 +62,7 @@ void print_summary(const char* what, std::size_t count, int samples, int bounces
                output.c_str());
 }
 
-void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) {
+reference::ReferenceOptions diffuse_options(const ReferenceCommandOptions& o, const GivenOptions& given) {
   reference::ReferenceOptions options;
   options.bounces = o.bounces;
   options.samples = given.samples ? o.samples : (o.image ? reference::kDefaultImageSamples : reference::kDefaultSamples);
@@ -79,47 +74,77 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
   if (given.band_limit && (o.band_limit < 1 || o.band_limit > sh::kMaxBands))
     fail("--band-limit: expected a band count in 1.." + std::to_string(sh::kMaxBands) + ", got " +
          std::to_string(o.band_limit));
+  return options;
+}
 
-  // Everything the arguments can get wrong is checked before loading and tracing for minutes.
-  const bool glossy = !o.brdf.empty();
-  reference::GlossyReferenceOptions glossy_options;
-  if (glossy || !o.eye.empty() || given.brdf_bands) {
-    if (!glossy) fail(o.eye.empty() ? "--brdf-bands needs --brdf SPEC" : "--eye needs --brdf SPEC (glossy reference)");
-    if (o.eye.empty()) fail("--brdf needs --eye X,Y,Z: glossy radiance depends on the view");
-    if (o.image) fail("--brdf: the glossy reference is per vertex only (no --image)");
-    if (!o.albedo.empty()) fail("--albedo does not apply with --brdf (the BRDF is the material)");
-    glossy_options.estimator.brdf = brdf::parse_brdf(o.brdf);
-    glossy_options.estimator.bounces = options.bounces;
-    if (given.brdf_bands && (o.brdf_bands < 1 || o.brdf_bands > sh::kMaxBands))
-      fail("--brdf-bands: expected a band count in 1.." + std::to_string(sh::kMaxBands) + ", got " + std::to_string(o.brdf_bands));
-    glossy_options.estimator.brdf_bands = given.brdf_bands ? o.brdf_bands : 0;
-    glossy_options.eye = parse_triple(o.eye, "--eye", "X,Y,Z (mesh units)");
-    glossy_options.samples = options.samples;
-    glossy_options.seed = options.seed;
-    glossy_options.threads = options.threads;
-    glossy_options.progress = options.progress;
+// The glossy options (--brdf, --eye, --brdf-bands), checked; `options` gives the shared ones.
+reference::GlossyReferenceOptions glossy_options(const ReferenceCommandOptions& o, const GivenOptions& given,
+                                                 const reference::ReferenceOptions& options) {
+  reference::GlossyReferenceOptions glossy;
+  if (o.brdf.empty()) fail(o.eye.empty() ? "--brdf-bands needs --brdf SPEC" : "--eye needs --brdf SPEC (glossy reference)");
+  if (o.eye.empty()) fail("--brdf needs --eye X,Y,Z: glossy radiance depends on the view");
+  if (o.image) fail("--brdf: the glossy reference is per vertex only (no --image)");
+  if (!o.albedo.empty()) fail("--albedo does not apply with --brdf (the BRDF is the material)");
+  glossy.estimator.brdf = brdf::parse_brdf(o.brdf);
+  glossy.estimator.bounces = options.bounces;
+  if (given.brdf_bands && (o.brdf_bands < 1 || o.brdf_bands > sh::kMaxBands))
+    fail("--brdf-bands: expected a band count in 1.." + std::to_string(sh::kMaxBands) + ", got " + std::to_string(o.brdf_bands));
+  glossy.estimator.brdf_bands = given.brdf_bands ? o.brdf_bands : 0;
+  glossy.eye = parse_triple(o.eye, "--eye", "X,Y,Z (mesh units)");
+  glossy.samples = options.samples;
+  glossy.seed = options.seed;
+  glossy.threads = options.threads;
+  glossy.progress = options.progress;
+  return glossy;
+}
+
+// The --image options (camera, size, rotations, background, exposure, tone map), checked.
+reference::ImageOptions image_options(const ReferenceCommandOptions& o, const std::string& extension) {
+  reference::ImageOptions image;
+  if (extension != ".exr" && extension != ".png")
+    fail_file(o.output, "--image output must be .exr (linear radiance) or .png (tone mapped)");
+  image.camera = camera::parse_camera(o.camera);
+  camera::parse_size(o.size, image.width, image.height);
+  if (!o.rotate.empty()) {
+    const glm::dvec3 a = parse_angles(o.rotate, "--rotate");
+    image.environment_rotation = sh::rotation_from_yaw_pitch_roll(a.x, a.y, a.z);
   }
+  if (!o.object_rotate.empty()) {
+    const glm::dvec3 a = parse_angles(o.object_rotate, "--object-rotate");
+    image.object_rotation = sh::rotation_from_yaw_pitch_roll(a.x, a.y, a.z);
+  }
+  if (o.background != "env" && o.background != "black")
+    fail("--background: expected env or black, got '" + o.background +
+         "' (the reference has no SH background: with --band-limit N the environment itself is band-limited)");
+  image.black_background = o.background == "black";
+  if (!std::isfinite(o.exposure)) fail("--exposure: must be a finite number of stops");
+  parse_tone_map(o.tone_map);
+  return image;
+}
+
+void write_reference_image(const ReferenceCommandOptions& o, const reference::ReferenceImage& result,
+                           const reference::ImageOptions& image, const std::string& extension) {
+  if (extension == ".exr") {
+    image::write(o.output, result.radiance);
+  } else {
+    image::write(o.output, image::to_display(result.radiance, o.exposure, parse_tone_map(o.tone_map)));
+  }
+  if (o.quiet) return;
+  const std::size_t covered = static_cast<std::size_t>(std::count(result.covered.begin(), result.covered.end(), 1));
+  const std::string what = "covered pixels of " + std::to_string(image.width) + "x" + std::to_string(image.height);
+  print_summary(what.c_str(), covered, image.reference.samples, image.reference.bounces, result.report, o.output);
+}
+
+void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) {
+  // Everything the arguments can get wrong is checked before loading and tracing for minutes.
+  const reference::ReferenceOptions options = diffuse_options(o, given);
+  const bool glossy = !o.brdf.empty();
+  reference::GlossyReferenceOptions glossy_reference;
+  if (glossy || !o.eye.empty() || given.brdf_bands) glossy_reference = glossy_options(o, given, options);
   const std::string extension = lower_extension(o.output);
-  reference::ImageOptions image_options;
+  reference::ImageOptions image;
   if (o.image) {
-    if (extension != ".exr" && extension != ".png")
-      fail_file(o.output, "--image output must be .exr (linear radiance) or .png (tone mapped)");
-    image_options.camera = camera::parse_camera(o.camera);
-    camera::parse_size(o.size, image_options.width, image_options.height);
-    if (!o.rotate.empty()) {
-      const glm::dvec3 a = parse_angles(o.rotate, "--rotate");
-      image_options.environment_rotation = sh::rotation_from_yaw_pitch_roll(a.x, a.y, a.z);
-    }
-    if (!o.object_rotate.empty()) {
-      const glm::dvec3 a = parse_angles(o.object_rotate, "--object-rotate");
-      image_options.object_rotation = sh::rotation_from_yaw_pitch_roll(a.x, a.y, a.z);
-    }
-    if (o.background != "env" && o.background != "black")
-      fail("--background: expected env or black, got '" + o.background +
-           "' (the reference has no SH background: with --band-limit N the environment itself is band-limited)");
-    image_options.black_background = o.background == "black";
-    if (!std::isfinite(o.exposure)) fail("--exposure: must be a finite number of stops");
-    parse_tone_map(o.tone_map);
+    image = image_options(o, extension);
   } else {
     if (!given.image_only.empty()) fail(given.image_only.front() + " is an option of --image");
     if (extension != ".ply")
@@ -140,25 +165,15 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
 
   if (!o.image) {
     reference::ReferenceReport report;
-    const std::vector<glm::vec3> radiance = glossy ? reference::glossy_vertex_radiance(mesh, sampler, glossy_options, &report)
+    const std::vector<glm::vec3> radiance = glossy ? reference::glossy_vertex_radiance(mesh, sampler, glossy_reference, &report)
                                                    : reference::vertex_radiance(mesh, sampler, options, &report);
     mesh::write_ply(o.output, mesh.positions, radiance, mesh.indices);
     if (!o.quiet) print_summary("vertices", mesh.positions.size(), options.samples, options.bounces, report, o.output);
     return;
   }
-  image_options.reference = options;
-  const reference::ReferenceImage result = reference::render_image(mesh, sampler, image_options, loaded ? &*loaded : nullptr);
-  if (extension == ".exr") {
-    image::write(o.output, result.radiance);
-  } else {
-    image::write(o.output, image::to_display(result.radiance, o.exposure, parse_tone_map(o.tone_map)));
-  }
-  if (!o.quiet) {
-    const std::size_t covered = static_cast<std::size_t>(std::count(result.covered.begin(), result.covered.end(), 1));
-    const std::string what = "covered pixels of " + std::to_string(image_options.width) + "x" +
-                             std::to_string(image_options.height);
-    print_summary(what.c_str(), covered, options.samples, options.bounces, result.report, o.output);
-  }
+  image.reference = options;
+  const reference::ReferenceImage result = reference::render_image(mesh, sampler, image, loaded ? &*loaded : nullptr);
+  write_reference_image(o, result, image, extension);
 }
 
 }  // namespace

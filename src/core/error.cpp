@@ -1,15 +1,8 @@
 #include "core/error.h"
 
-namespace prt {
+#include "core/text.h"
 
-namespace {
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-}  // namespace
+namespace prt {
 
 Error::Error(const std::string& message) : std::runtime_error(one_line(message)) {}
 

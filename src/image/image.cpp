@@ -11,21 +11,13 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/srgb.h"
+#include "core/text.h"
 #include "image/backend.h"
 
 namespace prt::image {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-double srgb_to_linear(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
-
-double linear_to_srgb(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
 
 std::string executable_folder() {
   std::error_code ec;

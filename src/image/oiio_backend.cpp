@@ -5,23 +5,12 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "core/text.h"
 #include "image/backend.h"
 
 namespace prt::image::backend {
 
 namespace {
-
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 // Integer-encoded files are display-referred unless they say otherwise: OpenImageIO reports
 // "oiio:ColorSpace" as "sRGB" for PNG/JPEG, and "Linear" only where the file declares it.
@@ -29,7 +18,7 @@ bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
   if (spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
       spec.format.basetype == OIIO::TypeDesc::DOUBLE)
     return false;
-  return lower(spec.get_string_attribute("oiio:ColorSpace")).find("linear") == std::string::npos;
+  return to_lower(spec.get_string_attribute("oiio:ColorSpace")).find("linear") == std::string::npos;
 }
 
 std::string read(const std::string& path, DecodedImage& out) {
@@ -60,7 +49,7 @@ std::string write(const std::string& file, const std::string& format_path, int w
     spec.attribute("oiio:ColorSpace", "sRGB");
   } else {
     spec.attribute("oiio:ColorSpace", "Linear");
-    const std::string path = lower(format_path);
+    const std::string path = to_lower(format_path);
     if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".exr") == 0) spec.attribute("compression", "zip");
   }
   if (!output->open(file, spec)) return "cannot open for writing: " + one_line(output->geterror());

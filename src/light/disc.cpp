@@ -7,13 +7,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "light/analytic.h"
+#include "sh/sampling.h"
 
 namespace prt::light {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<double> parse_numbers(const std::string& text, const std::string& option, const std::string& usage) {
   std::vector<double> v;
@@ -78,10 +79,8 @@ sh::RgbCoefficients discs_coefficients(int bands, const std::vector<Disc>& discs
 
 glm::dvec3 disc_direction_sample(const Disc& disc, double u0, double u1) {
   const glm::dvec3& n = disc.direction;
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
-  const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  const glm::dvec3 bt(b, sign + n.y * n.y * a, -n.y);
+  glm::dvec3 t, bt;
+  sh::orthonormal_basis(n, t, bt);
   const double cos_theta = 1.0 - u0 * (1.0 - std::cos(disc.angular_radius));
   const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
   const double phi = 2.0 * kPi * u1;

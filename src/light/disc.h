@@ -52,7 +52,7 @@ sh::RgbCoefficients disc_coefficients(int bands, const Disc& disc);
 sh::RgbCoefficients discs_coefficients(int bands, const std::vector<Disc>& discs);
 
 /// A direction in the disc for u in [0,1)^2, uniform in solid angle (cos theta uniform in [cos a, 1],
-/// phi = 2 pi u1 about d, in the Duff et al. 2017 orthonormal basis of d).
+/// phi = 2 pi u1 about d, in sh::orthonormal_basis(d), Duff et al. 2017).
 glm::dvec3 disc_direction_sample(const Disc& disc, double u0, double u1);
 
 /// The disc under the active rotation `rotation` (the direction is rotated; E and a are unchanged).

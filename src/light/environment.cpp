@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/constants.h"
 #include "core/error.h"
 
 namespace prt::light {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::string size_text(const image::Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); }
 

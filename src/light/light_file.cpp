@@ -7,14 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/constants.h"
 #include "core/error.h"
 #include "sh/basis.h"
 
 namespace prt::light {
 
 namespace {
-
-constexpr double kPiDegrees = 3.14159265358979323846;
 
 using nlohmann::json;
 
@@ -45,7 +44,7 @@ std::string format_discs(const std::vector<Disc>& discs) {
     const glm::dvec3 l = d.radiance();
     out << (k ? ",\n    " : "\n    ") << "{\"direction\": [" << number(d.direction.x) << ", " << number(d.direction.y) << ", "
         << number(d.direction.z) << "], \"irradiance\": [" << number(d.irradiance.x) << ", " << number(d.irradiance.y)
-        << ", " << number(d.irradiance.z) << "], \"angular_radius_degrees\": " << number(d.angular_radius * 180.0 / kPiDegrees)
+        << ", " << number(d.irradiance.z) << "], \"angular_radius_degrees\": " << number(d.angular_radius * 180.0 / kPi)
         << ", \"radiance\": [" << number(l.x) << ", " << number(l.y) << ", " << number(l.z) << "]}";
   }
   out << "\n  ]";
@@ -80,7 +79,7 @@ std::vector<Disc> parse_discs(const json& list, const std::string& path) {
     const json& radius = require(item, "angular_radius_degrees", path);
     const double degrees = radius.is_number() ? radius.get<double>() : -1.0;
     if (!(degrees > 0.0 && degrees <= 45.0)) fail_file(path, what + " angular_radius_degrees must lie in (0, 45]");
-    d.angular_radius = degrees * kPiDegrees / 180.0;
+    d.angular_radius = degrees * kPi / 180.0;
     discs.push_back(d);
   }
   return discs;

@@ -7,6 +7,7 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "sh/basis.h"
@@ -16,7 +17,6 @@ namespace prt::light {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSqrt2 = 1.41421356237309504880;
 // Independent partial sums per lane: lets the compiler vectorise the row sums without reassociating
 // floating-point additions (no -ffast-math), so results are identical on every run.

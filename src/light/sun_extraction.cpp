@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/constants.h"
 #include "core/parallel.h"
 #include "light/projection.h"
 
@@ -15,7 +16,6 @@ namespace prt::light {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr glm::dvec3 kLuminance(0.2126, 0.7152, 0.0722);
 
 // log2(Y) histogram for the weighted median: 1/16 stop bins over [-64, 64) stops.

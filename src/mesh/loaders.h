@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/srgb.h"
 #include "mesh/mesh.h"
 
 namespace prt::mesh::detail {
@@ -36,7 +37,6 @@ RawMesh load_obj(const std::string& path);
 RawMesh load_ply(const std::string& path);
 RawMesh load_gltf(const std::string& path, bool binary);
 
-/// sRGB-encoded value in [0,1] to linear (IEC 61966-2-1 piecewise curve).
-double srgb_to_linear(double encoded);
+using prt::srgb_to_linear;  // core/srgb.h
 
 }  // namespace prt::mesh::detail

@@ -13,18 +13,13 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "mesh/loaders.h"
 #include "mesh/mesh.h"
 
 namespace prt::mesh {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 /// The first bytes of the file (up to 4 KiB), or prt::Error if it cannot be read.
 std::string read_head(const std::string& path) {
@@ -73,11 +68,6 @@ std::string vec_text(const glm::vec3& v) {
 }  // namespace
 
 namespace detail {
-
-double srgb_to_linear(double encoded) {
-  if (encoded <= 0.04045) return encoded / 12.92;
-  return std::pow((encoded + 0.055) / 1.055, 2.4);
-}
 
 Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet) {
   LoadReport result = std::move(raw.notes_only);

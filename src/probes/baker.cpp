@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/bake.h"
+#include "core/constants.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -27,8 +28,6 @@ namespace prt::probes {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 double process_cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -37,15 +36,6 @@ double process_cpu_seconds() {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Uniform random rotation from three hashed numbers (Shoemake, "Uniform random rotations", GGems III).
-glm::dmat3 probe_rotation(std::uint32_t seed, std::uint64_t probe) {
-  const double u1 = hash_to_unit(seed, probe, 1), u2 = hash_to_unit(seed, probe, 2), u3 = hash_to_unit(seed, probe, 3);
-  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-  const glm::dquat q(b * std::cos(2.0 * kPi * u3), a * std::sin(2.0 * kPi * u2), a * std::cos(2.0 * kPi * u2),
-                     b * std::sin(2.0 * kPi * u3));
-  return glm::mat3_cast(glm::normalize(q));
 }
 
 std::string parameters_json(const ProbeBakeOptions& o, const SceneLight& light, bool mesh_albedo) {
@@ -71,11 +61,6 @@ std::string parameters_json(const ProbeBakeOptions& o, const SceneLight& light, 
   return j.dump();
 }
 
-// Per-vertex values interpolated at a hit: (1-u-v) a + u b + v c.
-inline glm::vec3 interpolate(const std::vector<glm::vec3>& values, const std::uint32_t* tri, float u, float v) {
-  return (1.0f - u - v) * values[tri[0]] + u * values[tri[1]] + v * values[tri[2]];
-}
-
 }  // namespace
 
 void check_options(const ProbeBakeOptions& o) {
@@ -92,6 +77,283 @@ void check_options(const ProbeBakeOptions& o) {
   for (int c = 0; c < 3; ++c)
     if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
 }
+
+namespace {
+
+// A probe decides once, from kPilotRays occlusion rays of its own (an independent Sobol set under an
+// independent hashed rotation), whether its rays use the control variate or the plain estimator. The
+// choice must not depend on the rays it applies to: a choice made per batch from that batch's own hit
+// count correlates with the batch's quadrature error and biases the estimate (see baker.h, ESTIMATOR).
+constexpr int kPilotRays = 16;
+constexpr std::uint32_t kPilotSalt = 0x9170u;
+
+// Everything the probe loop reads, prepared once.
+struct ProbeInputs {
+  const trace::Scene* scene = nullptr;
+  const mesh::Mesh* mesh = nullptr;
+  const SceneLight* light = nullptr;
+  const ProbeBakeOptions* options = nullptr;
+  const light::Environment* environment = nullptr;  // the lookup copy, or null without an environment
+  std::vector<glm::vec3> corner_radiance;            // R_K at each triangle's corners, triangle-major
+  std::vector<glm::vec3> directions;                 // the S ray directions before a probe's rotation
+  std::vector<float> basis;                          // S x bands^2, Y at each direction
+  std::vector<glm::vec3> pilot_directions;           // kPilotRays directions on the sphere
+  sh::RgbCoefficients env_sh, sun_sh;                // exact projections, probe bands
+  // transfer (transfer_bands > 0)
+  transfer::TransferData vertex_transfer;
+  std::vector<glm::vec3> bias_radiance;
+  int channels = 0;
+};
+
+// Per-probe sums in the probe's rotated frame.
+struct ProbeSums {
+  std::vector<glm::dvec3> radiance, bias;  // bands^2 each
+  std::vector<double> transfer;            // channels x bands^2 x transfer_bands^2
+  std::size_t backfaces = 0;
+  double env_share = 0.0;  // the share of c_env the control variate adds (1 or 0)
+  double sun_visible = 0.0;
+};
+
+// Scratch of one parallel_for chunk: traces and sums probes one at a time.
+class ProbeTracer {
+ public:
+  explicit ProbeTracer(const ProbeInputs& in)
+      : in_(in), o_(*in.options), n_(o_.bands * o_.bands), ne_(o_.transfer_bands * o_.transfer_bands),
+        batch_(std::min<std::size_t>(in.directions.size(), trace::kDefaultBatchCapacity)),
+        sun_batch_(static_cast<std::size_t>(std::max(o_.sun_samples, kPilotRays))), batch_sum_(n_),
+        env_basis_(static_cast<std::size_t>(std::max(ne_, 1))) {
+    sums_.radiance.resize(n_);
+    sums_.bias.resize(n_);
+    sums_.transfer.resize(static_cast<std::size_t>(in.channels) * n_ * ne_);
+  }
+
+  std::uint64_t traced() const { return traced_; }
+
+  // Traces probe p and writes its results into `out`.
+  void bake(std::size_t p, const glm::vec3& origin, ProbeSet& out) {
+    const glm::dmat3 rotation = probe_rotation(o_.seed, p);
+    std::fill(sums_.radiance.begin(), sums_.radiance.end(), glm::dvec3(0.0));
+    std::fill(sums_.bias.begin(), sums_.bias.end(), glm::dvec3(0.0));
+    std::fill(sums_.transfer.begin(), sums_.transfer.end(), 0.0);
+    sums_.backfaces = 0;
+    const bool plain = mostly_blocked(p, origin);
+    sums_.env_share = plain ? 0.0 : 1.0;
+    const glm::mat3 rotation_f(rotation);
+    const std::size_t samples = in_.directions.size();
+    for (std::size_t first = 0; first < samples; first += batch_.capacity()) {
+      const std::size_t count = std::min(batch_.capacity(), samples - first);
+      batch_.clear();
+      for (std::size_t s = first; s < first + count; ++s) batch_.push(origin, rotation_f * in_.directions[s]);
+      in_.scene->intersect(batch_);
+      traced_ += count;
+      // The random reads of the hit triangles' corner radiance were most of this pass's cost beyond
+      // Embree (cache misses, measured): prefetch them all before the sums read them.
+      batch_.hit_count(in_.corner_radiance.data(), 3 * sizeof(glm::vec3));
+      sum_batch(first, count, plain);
+    }
+    sums_.sun_visible = in_.light->sun ? sun_visibility(p, origin) : 0.0;
+    store(p, rotation, out);
+  }
+
+ private:
+  // Uniform random rotation from three hashed numbers (Shoemake, "Uniform random rotations", GGems III).
+  static glm::dmat3 probe_rotation(std::uint32_t seed, std::uint64_t probe, std::uint32_t salt = 0) {
+    const double u1 = hash_to_unit(seed, probe, salt + 1), u2 = hash_to_unit(seed, probe, salt + 2),
+                 u3 = hash_to_unit(seed, probe, salt + 3);
+    const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+    const glm::dquat q(b * std::cos(2.0 * kPi * u3), a * std::sin(2.0 * kPi * u2), a * std::cos(2.0 * kPi * u2),
+                       b * std::sin(2.0 * kPi * u3));
+    return glm::mat3_cast(glm::normalize(q));
+  }
+
+  // The pilot: true if more than half of kPilotRays independent rays from the probe are blocked.
+  bool mostly_blocked(std::size_t p, const glm::vec3& origin) {
+    const glm::mat3 rotation(probe_rotation(o_.seed, p, kPilotSalt));
+    sun_batch_.clear();
+    for (const glm::vec3& d : in_.pilot_directions) sun_batch_.push(origin, rotation * d);
+    in_.scene->occluded(sun_batch_);
+    traced_ += sun_batch_.size();
+    return 2 * sun_batch_.occluded_count() > sun_batch_.size();
+  }
+
+  // Adds one batch's rays to the sums: with the control variate (plain false) the hit rays' L_hit - L_env;
+  // with the plain estimator every ray's L_in.
+  void sum_batch(std::size_t first, std::size_t count, bool plain) {
+    std::fill(batch_sum_.begin(), batch_sum_.end(), glm::vec3(0.0f));
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::vec3 dir = batch_.direction(i);
+      const float* y = in_.basis.data() + (first + i) * n_;
+      if (!batch_.is_hit(i)) {
+        if (plain && in_.environment) add_scaled(batch_sum_, glm::vec3(in_.environment->radiance_float(dir)), y);
+        continue;
+      }
+      const trace::HitResult hit = batch_.hit(i);
+      const bool front = batch_.is_front_hit(i);
+      glm::vec3 value(0.0f);
+      if (!plain && in_.environment) value = -in_.environment->radiance_float(dir);
+      if (front) {
+        const glm::vec3* corner = in_.corner_radiance.data() + 3 * static_cast<std::size_t>(hit.prim_id);
+        value += (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
+      } else {
+        ++sums_.backfaces;
+      }
+      add_scaled(batch_sum_, value, y);
+      if (ne_ > 0) sum_transfer(hit, front, dir, y);
+    }
+    for (int k = 0; k < n_; ++k) sums_.radiance[k] += glm::dvec3(batch_sum_[k]);
+  }
+
+  void add_scaled(std::vector<glm::vec3>& sum, const glm::vec3& value, const float* y) const {
+    for (int k = 0; k < n_; ++k) sum[k] += value * y[k];
+  }
+
+  // The transfer matrix and bias terms of one hit ray (baker.h, TRANSFER).
+  void sum_transfer(const trace::HitResult& hit, bool front, const glm::vec3& dir, const float* y) {
+    const std::uint32_t* tri = in_.mesh->indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
+    sh::eval(o_.transfer_bands, glm::dvec3(dir), env_basis_.data());
+    const float w0 = 1.0f - hit.u - hit.v;
+    const std::size_t stride = static_cast<std::size_t>(in_.channels) * ne_;  // per vertex in vertex_transfer
+    const std::vector<float>& t = in_.vertex_transfer.values;
+    for (int c = 0; c < in_.channels; ++c) {
+      double* m = sums_.transfer.data() + static_cast<std::size_t>(c) * n_ * ne_;
+      for (int j = 0; j < ne_; ++j) {
+        double g = -env_basis_[j];
+        if (front) {
+          const std::size_t offset = static_cast<std::size_t>(c) * ne_ + j;
+          g += w0 * t[tri[0] * stride + offset] + hit.u * t[tri[1] * stride + offset] + hit.v * t[tri[2] * stride + offset];
+        }
+        for (int k = 0; k < n_; ++k) m[static_cast<std::size_t>(k) * ne_ + j] += y[k] * g;
+      }
+    }
+    if (!front) return;
+    const glm::dvec3 bias((1.0f - hit.u - hit.v) * in_.bias_radiance[tri[0]] + hit.u * in_.bias_radiance[tri[1]] +
+                          hit.v * in_.bias_radiance[tri[2]]);
+    for (int k = 0; k < n_; ++k) sums_.bias[k] += bias * static_cast<double>(y[k]);
+  }
+
+  // The unoccluded fraction of sun_samples stratified shadow rays toward the sun's disc.
+  double sun_visibility(std::size_t p, const glm::vec3& origin) {
+    const std::uint32_t scramble = hash_to_u32(o_.seed, p, 0x5u);
+    sun_batch_.clear();
+    for (int k = 0; k < o_.sun_samples; ++k) {
+      const glm::dvec2 u = sh::sobol_2d(static_cast<std::uint32_t>(k), scramble);
+      sun_batch_.push(origin, glm::vec3(sun_direction_sample(*in_.light->sun, u.x, u.y)));
+    }
+    in_.scene->occluded(sun_batch_);
+    traced_ += sun_batch_.size();
+    return 1.0 - static_cast<double>(sun_batch_.occluded_count()) / o_.sun_samples;
+  }
+
+  // Rotates `local` (n values per channel, scaled by `weight`) to the world into `world`.
+  void rotate(const sh::Rotation& rot, const double* local, std::size_t stride, double weight, double* world) {
+    column_.resize(n_);
+    for (int k = 0; k < n_; ++k) column_[k] = local[static_cast<std::size_t>(k) * stride] * weight;
+    rot.apply(column_.data(), world);
+  }
+
+  // Rotates the sums to the world, adds the exact parts and writes probe p.
+  void store(std::size_t p, const glm::dmat3& rotation, ProbeSet& out) {
+    const double weight = 4.0 * kPi / static_cast<double>(in_.directions.size());
+    const sh::Rotation rot(o_.bands, rotation);
+    rotated_.resize(n_);
+    for (int c = 0; c < 3; ++c) {
+      rotate(rot, &sums_.radiance[0][c], 3, weight, rotated_.data());
+      for (int k = 0; k < n_; ++k)
+        out.coefficients[p * n_ + k][c] = static_cast<float>(rotated_[k] + sums_.env_share * in_.env_sh.values[k][c] +
+                                                             sums_.sun_visible * in_.sun_sh.values[k][c]);
+    }
+    const double fraction = static_cast<double>(sums_.backfaces) / static_cast<double>(in_.directions.size());
+    out.backface_fraction[p] = static_cast<float>(fraction);
+    out.valid[p] = fraction > o_.max_backface_fraction ? 0 : 1;
+    if (ne_ == 0) return;
+    float* m_out = out.transfer.data() + p * out.transfer_values_per_probe();
+    for (int c = 0; c < in_.channels; ++c)
+      for (int j = 0; j < ne_; ++j) {
+        rotate(rot, sums_.transfer.data() + static_cast<std::size_t>(c) * n_ * ne_ + j, ne_, weight, rotated_.data());
+        for (int k = 0; k < n_; ++k)
+          m_out[(static_cast<std::size_t>(c) * n_ + k) * ne_ + j] = static_cast<float>(rotated_[k] + (k == j ? 1.0 : 0.0));
+      }
+    for (int c = 0; c < 3; ++c) {
+      rotate(rot, &sums_.bias[0][c], 3, weight, rotated_.data());
+      for (int k = 0; k < n_; ++k)
+        out.transfer_bias[p * n_ + k][c] = static_cast<float>(rotated_[k] + sums_.sun_visible * in_.sun_sh.values[k][c]);
+    }
+  }
+
+  const ProbeInputs& in_;
+  const ProbeBakeOptions& o_;
+  int n_, ne_;
+  trace::RayBatch batch_, sun_batch_;
+  std::vector<glm::vec3> batch_sum_;
+  std::vector<double> env_basis_, column_, rotated_;
+  ProbeSums sums_;
+  std::uint64_t traced_ = 0;
+};
+
+// The empty output: positions, sky, parameters; coefficients zero, every probe valid.
+ProbeSet empty_output(const ProbeSet& layout, const std::vector<glm::dvec3>& positions, const ProbeInputs& in,
+                      const ProbeBakeOptions& o, const SceneLight& light, bool mesh_albedo) {
+  const int n = o.bands * o.bands;
+  ProbeSet out = layout;
+  out.bands = o.bands;
+  out.positions.assign(positions.begin(), positions.end());
+  out.coefficients.assign(positions.size() * n, glm::vec3(0.0f));
+  out.valid.assign(positions.size(), 1);
+  out.backface_fraction.assign(positions.size(), 0.0f);
+  out.sky = sh::RgbCoefficients(o.bands);
+  for (int i = 0; i < n; ++i) out.sky.values[i] = in.env_sh.values[i] + in.sun_sh.values[i];
+  out.parameters_json = parameters_json(o, light, mesh_albedo);
+  return out;
+}
+
+// The transfer inputs (the baker's interreflected per-vertex transfer and the bias surface radiance of
+// the sun and emission) and the transfer fields of `out`. Fills rep.transfer_rays, seconds_transfer.
+void prepare_transfer(const trace::Scene& scene, const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo,
+                      const SceneLight& light, const ProbeBakeOptions& o, SurfaceOptions bias_options, ProbeInputs& in,
+                      ProbeSet& out, ProbeBakeReport& rep) {
+  const auto start = std::chrono::steady_clock::now();
+  const int tb = o.transfer_bands;
+  bake::BakeOptions bo;
+  bo.kind = transfer::Kind::interreflected;
+  bo.bands = tb;
+  bo.samples = o.surface_samples;
+  bo.bounces = o.bounces;
+  bo.albedo = o.albedo;
+  bo.seed = o.seed;
+  bo.threads = o.threads;
+  bo.progress = o.progress;
+  bake::BakeReport bake_report;
+  in.vertex_transfer = bake::bake(mesh, bo, &bake_report);
+  in.channels = static_cast<int>(in.vertex_transfer.header.channels);
+  bias_options.environment = false;
+  std::uint64_t bias_rays = 0;
+  if (light.sun || !light.emission.empty())
+    in.bias_radiance = surface_radiance(scene, mesh, albedo, light, bias_options, &bias_rays);
+  else
+    in.bias_radiance.assign(mesh.positions.size(), glm::vec3(0.0f));
+  rep.transfer_rays = bake_report.rays_traced + bias_rays;
+  rep.seconds_transfer = seconds_since(start);
+  const std::size_t count = out.positions.size();
+  out.transfer_bands = tb;
+  out.transfer_channels = in.channels;
+  out.transfer.assign(count * out.transfer_values_per_probe(), 0.0f);
+  out.transfer_bias.assign(count * static_cast<std::size_t>(o.bands * o.bands), glm::vec3(0.0f));
+  out.transfer_environment = light.environment ? light::project(*light.environment, tb, o.threads) : sh::RgbCoefficients(tb);
+  out.sky_bias = in.sun_sh;
+}
+
+// The ray set, its basis table and the pilot directions.
+void prepare_rays(const ProbeBakeOptions& o, ProbeInputs& in) {
+  const std::size_t samples = static_cast<std::size_t>(o.rays);
+  const int n = o.bands * o.bands;
+  for (const glm::dvec3& d : sh::sphere_directions(samples, o.seed)) in.directions.emplace_back(d);
+  in.basis.resize(samples * n);
+  for (std::size_t s = 0; s < samples; ++s) sh::eval(o.bands, in.directions[s], in.basis.data() + s * n);
+  for (const glm::dvec3& d : sh::sphere_directions(kPilotRays, hash_to_u32(o.seed, 0, kPilotSalt)))
+    in.pilot_directions.emplace_back(d);
+}
+
+}  // namespace
 
 ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std::vector<glm::dvec3>& positions,
                      const ProbeSet& layout, const ProbeBakeOptions& o, ProbeBakeReport* report) {
@@ -110,223 +372,40 @@ ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std:
 
   // Surface radiance R_K (everything) and, for the transfer, its non-relightable part (sun, emission).
   start = std::chrono::steady_clock::now();
-  SurfaceOptions surface{o.surface_samples, o.sun_samples, o.bounces, true, o.seed, o.threads, o.progress};
+  const SurfaceOptions surface{o.surface_samples, o.sun_samples, o.bounces, true, o.seed, o.threads, o.progress};
   const std::vector<glm::vec3> radiance = surface_radiance(scene, mesh, albedo, light, surface, &rep.surface_rays);
   rep.seconds_surface = seconds_since(start);
 
-  const int bands = o.bands, n = bands * bands, tb = o.transfer_bands, ne = tb * tb;
-  ProbeSet out = layout;
-  out.bands = bands;
-  out.positions.assign(positions.begin(), positions.end());
-  const std::size_t count = positions.size();
-  out.coefficients.assign(count * n, glm::vec3(0.0f));
-  out.valid.assign(count, 1);
-  out.backface_fraction.assign(count, 0.0f);
-  const sh::RgbCoefficients env_sh = light.environment ? light::project(*light.environment, bands, o.threads) : sh::RgbCoefficients(bands);
-  const sh::RgbCoefficients sun_sh = light.sun ? sun_coefficients(bands, *light.sun) : sh::RgbCoefficients(bands);
-  out.sky = sh::RgbCoefficients(bands);
-  for (int i = 0; i < n; ++i) out.sky.values[i] = env_sh.values[i] + sun_sh.values[i];
-  out.parameters_json = parameters_json(o, light, !mesh.albedo.empty());
-
-  // Transfer inputs: the baker's interreflected per-vertex transfer and the bias surface radiance.
-  transfer::TransferData vertex_transfer;
-  std::vector<glm::vec3> bias_radiance;
-  int channels = 0;
-  if (tb > 0) {
-    start = std::chrono::steady_clock::now();
-    bake::BakeOptions bo;
-    bo.kind = transfer::Kind::interreflected;
-    bo.bands = tb;
-    bo.samples = o.surface_samples;
-    bo.bounces = o.bounces;
-    bo.albedo = o.albedo;
-    bo.seed = o.seed;
-    bo.threads = o.threads;
-    bo.progress = o.progress;
-    bake::BakeReport bake_report;
-    vertex_transfer = bake::bake(mesh, bo, &bake_report);
-    channels = static_cast<int>(vertex_transfer.header.channels);
-    SurfaceOptions bias_options = surface;
-    bias_options.environment = false;
-    std::uint64_t bias_rays = 0;
-    if (light.sun || !light.emission.empty())
-      bias_radiance = surface_radiance(scene, mesh, albedo, light, bias_options, &bias_rays);
-    else
-      bias_radiance.assign(mesh.positions.size(), glm::vec3(0.0f));
-    rep.transfer_rays = bake_report.rays_traced + bias_rays;
-    rep.seconds_transfer = seconds_since(start);
-    out.transfer_bands = tb;
-    out.transfer_channels = channels;
-    out.transfer.assign(count * out.transfer_values_per_probe(), 0.0f);
-    out.transfer_bias.assign(count * n, glm::vec3(0.0f));
-    out.transfer_environment = light.environment ? light::project(*light.environment, tb, o.threads) : sh::RgbCoefficients(tb);
-    out.sky_bias = sun_sh;
-  }
-
-  // The surface radiance at each triangle's corners, triangle-major: one contiguous read per hit.
-  std::vector<glm::vec3> corner_radiance(mesh.indices.size());
-  for (std::size_t k = 0; k < mesh.indices.size(); ++k) corner_radiance[k] = radiance[mesh.indices[k]];
+  ProbeInputs in;
+  in.scene = &scene;
+  in.mesh = &mesh;
+  in.light = &light;
+  in.options = &o;
+  in.env_sh = light.environment ? light::project(*light.environment, o.bands, o.threads) : sh::RgbCoefficients(o.bands);
+  in.sun_sh = light.sun ? sun_coefficients(o.bands, *light.sun) : sh::RgbCoefficients(o.bands);
+  ProbeSet out = empty_output(layout, positions, in, o, light, !mesh.albedo.empty());
+  if (o.transfer_bands > 0) prepare_transfer(scene, mesh, albedo, light, o, surface, in, out, rep);
+  in.corner_radiance.resize(mesh.indices.size());
+  for (std::size_t k = 0; k < mesh.indices.size(); ++k) in.corner_radiance[k] = radiance[mesh.indices[k]];
   const light::Environment lookup = light.environment ? lookup_environment(*light.environment) : light::Environment();
-  const light::Environment* environment = light.environment ? &lookup : nullptr;
-
-  // The ray set and its basis table (sample-major).
-  const std::size_t samples = static_cast<std::size_t>(o.rays);
-  std::vector<glm::vec3> directions;
-  for (const glm::dvec3& d : sh::sphere_directions(samples, o.seed)) directions.emplace_back(d);
-  std::vector<float> basis(samples * n);
-  for (std::size_t s = 0; s < samples; ++s) sh::eval(bands, directions[s], basis.data() + s * n);
-  const double weight = 4.0 * kPi / static_cast<double>(samples);
-  const std::size_t transfer_stride = static_cast<std::size_t>(channels) * ne;  // per vertex in vertex_transfer
+  in.environment = light.environment ? &lookup : nullptr;
+  prepare_rays(o, in);
 
   start = std::chrono::steady_clock::now();
   const double cpu_start = process_cpu_seconds();
-  Progress progress("probes", "probes", count, o.progress);
+  Progress progress("probes", "probes", positions.size(), o.progress);
   std::atomic<std::uint64_t> rays_total{0};
-  parallel_for(count, 8, o.threads, [&](std::size_t begin, std::size_t end) {
-    trace::RayBatch batch(std::min<std::size_t>(samples, trace::kDefaultBatchCapacity));
-    trace::RayBatch sun_batch(static_cast<std::size_t>(o.sun_samples));
-    std::vector<glm::dvec3> local(n), local_bias(n);
-    std::vector<glm::vec3> batch_sum(n);
-    std::vector<double> column(n), rotated(n), env_basis(static_cast<std::size_t>(std::max(ne, 1)));
-    std::vector<double> local_transfer(static_cast<std::size_t>(channels) * n * ne);
-    std::uint64_t traced = 0;
-    for (std::size_t p = begin; p < end; ++p) {
-      const glm::dmat3 rotation = probe_rotation(o.seed, p);
-      const glm::mat3 rotation_f(rotation);
-      const glm::vec3 origin(positions[p]);
-      std::fill(local.begin(), local.end(), glm::dvec3(0.0));
-      std::fill(local_bias.begin(), local_bias.end(), glm::dvec3(0.0));
-      std::fill(local_transfer.begin(), local_transfer.end(), 0.0);
-      std::size_t backfaces = 0;
-      double env_share = 0.0;
-      for (std::size_t first = 0; first < samples; first += batch.capacity()) {
-        const std::size_t batch_count = std::min(batch.capacity(), samples - first);
-        batch.clear();
-        for (std::size_t s = first; s < first + batch_count; ++s) batch.push(origin, rotation_f * directions[s]);
-        scene.intersect(batch);
-        traced += batch_count;
-        // Per batch, the cheaper of two unbiased estimators of its share of c: with more misses than
-        // hits, the control variate (its share of the exact c_env, corrected at the hits: environment
-        // lookups only for hit rays, exact in open space); with more hits, plain Monte Carlo (lookups only
-        // for escaping rays). Either way at most half the rays look up the environment.
-        // The same loop prefetches each hit triangle's corner radiance: the random reads into that
-        // triangle-major array were most of this pass's cost beyond Embree (cache misses, measured).
-        std::size_t hits = 0;
-        for (std::size_t i = 0; i < batch_count; ++i) {
-          const trace::Hit& h = batch.data()[i].hit;
-          if (h.geom_id == trace::kNoHit) continue;
-          ++hits;
-          const glm::vec3* corners = corner_radiance.data() + 3 * static_cast<std::size_t>(h.prim_id);
-          __builtin_prefetch(corners);
-          __builtin_prefetch(corners + 2);  // 36 bytes may straddle two cache lines
-        }
-        const bool plain = 2 * hits > batch_count;
-        if (!plain) env_share += static_cast<double>(batch_count) / static_cast<double>(samples);
-        std::fill(batch_sum.begin(), batch_sum.end(), glm::vec3(0.0f));
-        for (std::size_t i = 0; i < batch_count; ++i) {
-          const trace::HitResult hit = batch.hit(i);
-          const trace::Ray& r = batch.data()[i].ray;
-          const glm::vec3 dir(r.dir_x, r.dir_y, r.dir_z);
-          const float* y = basis.data() + (first + i) * n;
-          if (!hit.hit()) {
-            if (plain && environment) {
-              const glm::vec3 value(environment->radiance_float(dir));
-              for (int k = 0; k < n; ++k) batch_sum[k] += value * y[k];
-            }
-            continue;
-          }
-          // Embree's geometric normal Ng points to the side from which the corners run counter-clockwise
-          // (the same side as (p1 - p0) x (p2 - p0); checked against the MC reference's explicit cross
-          // product in tests/probes): the ray meets a front face when it runs against Ng. Using Ng saves
-          // loading the triangle's corners.
-          const trace::Hit& h = batch.data()[i].hit;
-          const bool front = h.ng_x * dir.x + h.ng_y * dir.y + h.ng_z * dir.z < 0.0f;
-          glm::vec3 value(0.0f);
-          if (!plain && environment) value = -environment->radiance_float(dir);
-          if (front) {
-            const glm::vec3* corner = corner_radiance.data() + 3 * static_cast<std::size_t>(hit.prim_id);
-            value += (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
-          } else {
-            ++backfaces;
-          }
-          for (int k = 0; k < n; ++k) batch_sum[k] += value * y[k];
-          if (tb > 0) {
-            const std::uint32_t* tri = mesh.indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
-            sh::eval(tb, glm::dvec3(dir), env_basis.data());
-            glm::dvec3 bias(0.0);
-            if (front) bias = glm::dvec3(interpolate(bias_radiance, tri, hit.u, hit.v));
-            const float w0 = 1.0f - hit.u - hit.v;
-            for (int c = 0; c < channels; ++c) {
-              double* m = local_transfer.data() + static_cast<std::size_t>(c) * n * ne;
-              for (int j = 0; j < ne; ++j) {
-                double g = -env_basis[j];
-                if (front) {
-                  const std::size_t offset = static_cast<std::size_t>(c) * ne + j;
-                  g += w0 * vertex_transfer.values[tri[0] * transfer_stride + offset] +
-                       hit.u * vertex_transfer.values[tri[1] * transfer_stride + offset] +
-                       hit.v * vertex_transfer.values[tri[2] * transfer_stride + offset];
-                }
-                for (int k = 0; k < n; ++k) m[static_cast<std::size_t>(k) * ne + j] += y[k] * g;
-              }
-            }
-            for (int k = 0; k < n; ++k) local_bias[k] += bias * static_cast<double>(y[k]);
-          }
-        }
-        for (int k = 0; k < n; ++k) local[k] += glm::dvec3(batch_sum[k]);
-      }
-
-      // Sun visibility from the probe.
-      double sun_visible = 0.0;
-      if (light.sun) {
-        const auto scramble = static_cast<std::uint32_t>(hash_to_unit(o.seed, p, 0x5u) * 4294967296.0);
-        sun_batch.clear();
-        for (int k = 0; k < o.sun_samples; ++k) {
-          const glm::dvec2 u = sh::sobol_2d(static_cast<std::uint32_t>(k), scramble);
-          sun_batch.push(origin, glm::vec3(sun_direction_sample(*light.sun, u.x, u.y)));
-        }
-        scene.occluded(sun_batch);
-        traced += sun_batch.size();
-        sun_visible = 1.0 - static_cast<double>(sun_batch.occluded_count()) / o.sun_samples;
-      }
-
-      // Rotate the local sums to the world and add the exact parts.
-      const sh::Rotation rot(bands, rotation);
-      for (int c = 0; c < 3; ++c) {
-        for (int k = 0; k < n; ++k) column[k] = local[k][c] * weight;
-        rot.apply(column.data(), rotated.data());
-        for (int k = 0; k < n; ++k)
-          out.coefficients[p * n + k][c] = static_cast<float>(rotated[k] + env_share * env_sh.values[k][c] + sun_visible * sun_sh.values[k][c]);
-      }
-      const double fraction = static_cast<double>(backfaces) / static_cast<double>(samples);
-      out.backface_fraction[p] = static_cast<float>(fraction);
-      out.valid[p] = fraction > o.max_backface_fraction ? 0 : 1;
-      if (tb > 0) {
-        float* m_out = out.transfer.data() + p * out.transfer_values_per_probe();
-        for (int c = 0; c < channels; ++c) {
-          const double* m = local_transfer.data() + static_cast<std::size_t>(c) * n * ne;
-          for (int j = 0; j < ne; ++j) {
-            for (int k = 0; k < n; ++k) column[k] = m[static_cast<std::size_t>(k) * ne + j] * weight;
-            rot.apply(column.data(), rotated.data());
-            for (int k = 0; k < n; ++k)
-              m_out[(static_cast<std::size_t>(c) * n + k) * ne + j] = static_cast<float>(rotated[k] + (k == j ? 1.0 : 0.0));
-          }
-        }
-        for (int c = 0; c < 3; ++c) {
-          for (int k = 0; k < n; ++k) column[k] = local_bias[k][c] * weight;
-          rot.apply(column.data(), rotated.data());
-          for (int k = 0; k < n; ++k)
-            out.transfer_bias[p * n + k][c] = static_cast<float>(rotated[k] + sun_visible * sun_sh.values[k][c]);
-        }
-      }
-    }
-    rays_total += traced;
+  parallel_for(positions.size(), 8, o.threads, [&](std::size_t begin, std::size_t end) {
+    ProbeTracer tracer(in);
+    for (std::size_t p = begin; p < end; ++p) tracer.bake(p, glm::vec3(positions[p]), out);
+    rays_total += tracer.traced();
     progress.advance(end - begin);
   });
   progress.finish();
   rep.seconds_probes = seconds_since(start);
   rep.cpu_seconds_probes = process_cpu_seconds() - cpu_start;
   rep.probe_rays = rays_total.load();
-  rep.invalid = count - out.valid_count();
+  rep.invalid = positions.size() - out.valid_count();
   return out;
 }
 

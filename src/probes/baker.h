@@ -11,15 +11,20 @@
 // ESTIMATOR. The S ray directions are an Owen-scrambled Sobol set on the sphere
 // (sh::sphere_directions(S, seed)) turned by a random rotation hashed from (seed, probe index); sums are
 // formed in that rotated frame against a table of Y at the set's directions and rotated to the world
-// with the SH rotation. Rays are traced in batches of up to 1024; each batch b of n_b rays contributes
-// its share of c with whichever of two unbiased estimators needs fewer environment lookups:
-//   more misses than hits (control variate):  (n_b / S) c_env + (4 pi / S) sum over its hit rays of
-//                                             (L_hit - L_env(w_s)) Y(w_s),
-//   more hits than misses (plain):            (4 pi / S) sum over its rays of L_in(p, w_s) Y(w_s),
+// with the SH rotation. Rays are traced in batches of up to 256. Each probe first traces 16 PILOT
+// occlusion rays (another Sobol set under another hashed rotation) and from them picks one of two
+// unbiased estimators for all its S rays, whichever needs fewer environment lookups:
+//   at most half the pilot rays blocked (control variate):  c_env + (4 pi / S) sum over hit rays of
+//                                                           (L_hit - L_env(w_s)) Y(w_s),
+//   more than half blocked (plain):                         (4 pi / S) sum over all rays of L_in(p, w_s) Y(w_s),
 // where c_env is the exact projection of the environment image (light::project). A probe in open space
 // is therefore exactly c_env (noise comes only from the blocked directions), and a probe in a closed
-// room looks up the environment only through its openings. The sun adds c_sun V_sun: c_sun the exact
-// SH of its disc (lighting.h), V_sun the unoccluded fraction of `sun_samples` stratified shadow rays.
+// room looks up the environment only through its openings.
+// The choice depends only on the pilot rays, which are independent of the S rays, so the estimate stays
+// unbiased; a choice made from the S rays' own hit count would not be (a batch with fewer hits than
+// usual would take the control variate exactly when its quadrature error has one sign).
+// The sun adds c_sun V_sun: c_sun the exact SH of its disc (lighting.h), V_sun the unoccluded fraction of
+// `sun_samples` stratified shadow rays.
 //
 // VALIDITY. backface_fraction = (rays whose first hit is a back face) / S. A probe with
 // backface_fraction > max_backface_fraction is inside geometry: marked invalid (its coefficients are

@@ -2,13 +2,13 @@
 
 #include <cmath>
 
+#include "core/constants.h"
 #include "sh/zonal.h"
 
 namespace prt::probes {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // |K_i| of the polynomial form Y_i = +-K_i P_i (sh-conventions.md's table, in closed form).
 const std::array<double, 9> kBasisConstant{{

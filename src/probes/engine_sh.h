@@ -1,7 +1,7 @@
 #pragma once
 // What each engine stores per probe, computed from prt's coefficients. Pure maths, no I/O.
 //
-// Notation (see ../shared/reference/sh-conventions.md and probes/<format>/README.md):
+// Notation (see docs/conventions.md and probes/<format>/README.md):
 //   c_i  prt's incident-radiance coefficients (sh/basis.h: WITH the Condon-Shortley phase);
 //   L_i  = cs_i c_i, the same function in the basis WITHOUT the Condon-Shortley phase (three.js,
 //        Godot, Unity, Filament's polynomial form): cs = (+,-,+,-,+,-,+,-,+) for l <= 2, i.e. every

@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/little_endian.h"
+#include "core/text.h"
 #include "image/image.h"
 #include "light/environment.h"
 #include "mesh/mesh.h"
@@ -27,11 +28,6 @@ namespace prt::probes {
 namespace {
 
 using Json = nlohmann::json;
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 using le::get_u32;
 using le::put_u32;
@@ -74,7 +70,7 @@ std::string uri_bytes(const std::string& uri, const std::string& base_dir, const
   std::string path = uri;
   for (std::size_t at; (at = path.find("%20")) != std::string::npos;) path.replace(at, 3, " ");
   if (mime) {
-    const std::string ext = lower(std::filesystem::path(path).extension().string());
+    const std::string ext = to_lower(std::filesystem::path(path).extension().string());
     *mime = (ext == ".jpg" || ext == ".jpeg") ? "image/jpeg" : (ext == ".ktx2" ? "image/ktx2" : "image/png");
   }
   return read_file((std::filesystem::path(base_dir) / path).string());
@@ -109,7 +105,7 @@ GltfDocument parse_glb(const std::string& bytes, const std::string& name) {
 
 // Loads any scene into one JSON + one merged buffer with every image embedded as a buffer view.
 GltfDocument load_scene(const std::string& path, const std::string& out_path) {
-  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  const std::string ext = to_lower(std::filesystem::path(path).extension().string());
   const std::string base_dir = std::filesystem::path(path).parent_path().string();
   std::vector<std::string> buffers;
   GltfDocument doc;
@@ -187,7 +183,7 @@ std::string png_bytes(const image::Image& rgbd, const std::string& out_path) {
 
 void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOptions& options) {
   check_probe_set(probes, "glTF export");
-  if (lower(std::filesystem::path(path).extension().string()) != ".glb")
+  if (to_lower(std::filesystem::path(path).extension().string()) != ".glb")
     fail_file(path, "the gltf export writes a binary glTF: the output must end in .glb");
   const int size = options.specular_size;
   if (size < 1 || size > 1024 || (size & (size - 1)) != 0)

@@ -11,19 +11,11 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace prt::probes {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  const std::size_t dot = path.find_last_of('.');
-  const std::size_t slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 std::string format_point(const glm::dvec3& p) {
   std::ostringstream s;
@@ -129,9 +121,9 @@ std::vector<glm::dvec3> grid_positions(const Grid& grid) {
 
 std::vector<glm::dvec3> read_points_file(const std::string& path) {
   const std::string ext = lower_extension(path);
-  if (ext != "json" && ext != "csv") fail_file(path, "unknown point list format (expected .json or .csv)");
+  if (ext != ".json" && ext != ".csv") fail_file(path, "unknown point list format (expected .json or .csv)");
   const std::string text = read_file(path);
-  std::vector<glm::dvec3> points = ext == "json" ? read_points_json(path, text) : read_points_csv(path, text);
+  std::vector<glm::dvec3> points = ext == ".json" ? read_points_json(path, text) : read_points_csv(path, text);
   if (points.empty()) fail_file(path, "the point list is empty");
   return points;
 }

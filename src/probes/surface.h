@@ -14,10 +14,13 @@
 // set), turned about its normal by a hashed angle; rays start at Scene::offset_origin(p, n).
 //   E_env = E_sh(n) + (pi / S) sum_s [V_s L_env(w_s) - L_sh(w_s)]
 // with L_sh the environment's 5-band SH projection and E_sh(n) its closed-form unoccluded irradiance:
-// a control variate that is exact where nothing occludes and the environment is band-limited. Rays are
-// traced in batches of up to 1024; a batch with more blocked than escaping rays uses plain Monte Carlo,
-// (pi / S) sum over its escaping rays of L_env, instead (no basis evaluations), and its share of
-// E_sh(n) is left out. L_env is looked up in lookup_environment(environment) (lighting.h).
+// a control variate that is exact where nothing occludes and the environment is band-limited. A vertex
+// with more than half of 16 PILOT occlusion rays blocked (their own cosine-distributed Sobol set, turned
+// by their own hashed angle, so independent of the S rays) uses plain Monte Carlo instead,
+// (pi / S) sum over its escaping rays of L_env (no basis evaluations), and leaves E_sh(n) out. Choosing
+// from the S rays' own hit count would bias the estimate (the choice would correlate with the
+// quadrature error of the control variate). L_env is looked up in lookup_environment(environment)
+// (lighting.h).
 //   E_sun = L_sun * Omega / M * sum_k V_k max(n . w_k, 0)
 // over M stratified directions w_k uniform in the sun's disc. G uses the S rays again: (pi / S) sum
 // over front-face hits of f at the hit.
@@ -26,6 +29,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/hash.h"
 #include "mesh/mesh.h"
 #include "probes/lighting.h"
 
@@ -51,7 +55,6 @@ std::vector<glm::vec3> surface_radiance(const trace::Scene& scene, const mesh::M
                                         const std::vector<glm::vec3>& albedo, const SceneLight& light,
                                         const SurfaceOptions& options, std::uint64_t* rays = nullptr);
 
-/// A hash of (seed, index) to [0, 1): the per-vertex and per-probe rotation angles and scrambles.
-double hash_to_unit(std::uint32_t seed, std::uint64_t index, std::uint32_t salt);
+using prt::hash_to_unit;  // core/hash.h: the per-vertex and per-probe rotation angles and scrambles
 
 }  // namespace prt::probes

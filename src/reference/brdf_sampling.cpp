@@ -5,29 +5,19 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/constants.h"
 #include "sh/sampling.h"
 
 namespace prt::reference {
 
 namespace {
 
-constexpr double kInvPi = 0.31830988618379067154;
-
 glm::dvec3 upper(const glm::dvec3& v) { return glm::dvec3(v.x, v.y, std::abs(v.z)); }
-
-// Orthonormal tangents of a unit axis (Duff et al. 2017).
-void tangents(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  t = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = glm::dvec3(c, sign + n.y * n.y * a, -n.y);
-}
 
 // A direction at cos(angle) = c from `axis`, azimuth phi.
 glm::dvec3 around(const glm::dvec3& axis, double c, double phi) {
   glm::dvec3 t, b;
-  tangents(axis, t, b);
+  sh::orthonormal_basis(axis, t, b);
   const double s = std::sqrt(std::max(0.0, 1.0 - c * c));
   return glm::normalize(s * std::cos(phi) * t + s * std::sin(phi) * b + c * axis);
 }

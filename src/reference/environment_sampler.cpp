@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/constants.h"
 #include "light/projection.h"
 
 namespace prt::reference {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Cell averages of the bilinear interpolant of per-texel magnitudes: the average of a 1D hat-function
 // interpolant over one texel is 3/4 of its own value plus 1/8 of each neighbour's.

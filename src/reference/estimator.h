@@ -14,7 +14,8 @@
 // from the triangle's corners (Embree's u, v). So with b = 0 this is direct lighting with binary
 // visibility (what the baker's shadowed transfer predicts), and each bounce adds one interreflection.
 //
-// ESTIMATOR (pbrt's path tracer with next-event estimation, Veach's multiple importance sampling).
+// ESTIMATOR (pbrt's path tracer with next-event estimation, Veach's multiple importance sampling; the
+// loop is path_loop.h, shared with the glossy estimator, with the Lambertian BRDF as its surface model).
 // At every surface vertex of a path, with throughput beta (product of albedos, divided by roulette
 // survival probabilities):
 //  1. Environment sample (next-event estimation): w_l from EnvironmentSampler::sample (density p_l);
@@ -89,7 +90,7 @@ class SampleStream {
 /// A point of a surface as the estimator uses it.
 struct SurfacePoint {
   glm::dvec3 normal{0.0, 1.0, 0.0};  ///< unit shading normal: the hemisphere integrated over
-  glm::dvec3 ray_origin{0.0};        ///< where rays leave the surface (offset rule above)
+  glm::dvec3 origin{0.0};            ///< where rays leave the surface (offset rule above)
   glm::dvec3 albedo{0.0};            ///< linear diffuse reflectance per channel, in [0, 1]
 };
 

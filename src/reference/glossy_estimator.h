@@ -25,7 +25,7 @@
 // `prt bake --transfer glossy-shadowed` (glossy-interreflected --bounces 1) + `prt shade --eye` predict,
 // up to the baker's noise and its interpolation of outgoing radiance at bounce hits.
 //
-// ESTIMATOR. At each path vertex: one environment sample (next-event estimation; a shadow ray only
+// ESTIMATOR (the loop of path_loop.h, shared with the Lambertian estimator). At each path vertex: one environment sample (next-event estimation; a shadow ray only
 // above the tangent plane) and one BRDF sample, combined by the power heuristic. The BRDF sample is
 //   - at the vertex being estimated, with the band-limited BRDF: SIGN-AWARE tabulated sampling: the
 //     density is proportional to |rho_BL(., v)| tabulated on a 64 x 32 equirect grid of the local sphere
@@ -85,8 +85,9 @@ class GlossyTracer {
   RadianceEstimate vertex_radiance(std::uint32_t vertex, const glm::dvec3& view, int paths, SampleStream& stream,
                                    GlossyWorkspace& workspace) const;
 
+ struct Impl;  // the BRDF, its matrix and lobe sampler (internal)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

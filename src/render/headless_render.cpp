@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "render/headless_context.h"
 #include "render/scene_inputs.h"
 #include "sh/rotation.h"
@@ -15,12 +16,6 @@
 namespace prt::render {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
-}
 
 glm::dmat3 rotation_of(const glm::dvec3& ypr) { return sh::rotation_from_yaw_pitch_roll(ypr.x, ypr.y, ypr.z); }
 

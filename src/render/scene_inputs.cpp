@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "light/environment.h"
 #include "shade/glossy.h"
 
@@ -13,9 +14,7 @@ namespace prt::render {
 namespace {
 
 bool is_json(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".json";
+  return lower_extension(path) == ".json";
 }
 
 image::Image equirect_from_cube(const light::Environment& environment) {

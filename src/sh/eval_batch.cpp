@@ -8,6 +8,7 @@
 // take a staged path instead (staged_tile below) whose stores run along each row, about 2x slower
 // than the direct path with a good stride; padded_stride() gives one.
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -48,12 +49,16 @@ std::size_t gcd(std::size_t a, std::size_t b) {
 // 12-way L1 (float, direct stores, against the best stride): 1 position: 9 rows cost nothing, 25 rows
 // 6x, 81 rows 10x; 2 positions: 81 rows 7x; 4 positions: 81 rows 2.5x, as slow as the staged path;
 // 8 positions: 81 rows 1.1x, 1024 rows 1.3x.
+// Rows per set position beyond which stores thrash: half the ways of an 8-way L1 (Zen 3; measured with
+// bench_sh_eval: 9 rows on one position, stride = count = 1024 floats, 3.5x the padded figure).
+constexpr std::size_t kRowsPerSet = 4;
+
 template <typename T>
 bool rows_share_cache_sets(int rows, std::size_t stride) {
   std::size_t offset = (stride * sizeof(T)) % kPage;
   std::size_t step = gcd(offset == 0 ? kPage : offset, kPage);
   std::size_t sets = kPage / (step > kCacheLine ? step : kCacheLine);
-  return sets <= 2 && static_cast<std::size_t>(rows) > 12 * sets;
+  return sets <= 2 && static_cast<std::size_t>(rows) > kRowsPerSet * sets;
 }
 
 // Directions to skip so that out + j is `alignment`-byte aligned (0 if out is not even T-aligned).
@@ -157,6 +162,37 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
   }
 }
 
+// Staged path for crowded strides, with the band count's own kernel (up to kMaxFastBands bands): a
+// tile of directions, as many as keep its bands^2 rows within kKernelStageBytes, is evaluated vector by
+// vector into an L1 scratch block whose rows are padded off one another's cache sets, and each scratch
+// row is then copied to its output row, whole cache lines along the row. The arithmetic is the fast
+// path's; only the copy is added.
+constexpr std::size_t kKernelStageBytes = 16384;
+
+template <typename T>
+std::size_t kernel_tile(int bands) {
+  const std::size_t lanes = kLanes<T>, rows = static_cast<std::size_t>(bands) * bands;
+  std::size_t tile = kKernelStageBytes / (rows * sizeof(T)) / lanes * lanes;
+  const std::size_t most = kStageBytes / sizeof(T);
+  return tile < lanes ? lanes : tile > most ? most : tile;
+}
+
+template <typename T, typename Kernel>
+PRT_SH_INLINE void staged_kernel_tile(int rows, std::size_t tile, const T* x, const T* y, const T* z, T* out,
+                                      std::size_t stride, T* scratch, std::size_t scratch_stride, Kernel& kernel) {
+  using V = Vec<T>;
+  for (std::size_t b = 0; b < tile; b += kLanes<T>) {
+    StridedStore<T> put{scratch + b, scratch_stride};
+    kernel(load<V>(x + b), load<V>(y + b), load<V>(z + b), put);
+  }
+  // Inline vector copies: a memcpy call per row costs more than the row at small tiles.
+  for (int row = 0; row < rows; ++row) {
+    T* dst = out + static_cast<std::size_t>(row) * stride;
+    const T* src = scratch + static_cast<std::size_t>(row) * scratch_stride;
+    for (std::size_t b = 0; b < tile; b += kLanes<T>) store(dst + b, load<V>(src + b));
+  }
+}
+
 // The batch driver shared by every band count: `kernel(x, y, z, put)` evaluates one vector (or one
 // scalar) of directions.
 template <typename T, typename Kernel>
@@ -164,7 +200,18 @@ PRT_SH_INLINE void run_batch(int bands, std::size_t count, const T* x, const T* 
                              std::size_t stride, Kernel&& kernel) {
   using V = Vec<T>;
   constexpr std::size_t lanes = kLanes<T>, tile = kStageBytes / sizeof(T);
-  if (count >= tile && rows_share_cache_sets<T>(bands * bands, stride)) {
+  const bool crowded = rows_share_cache_sets<T>(bands * bands, stride);
+  const std::size_t small_tile = bands <= kMaxFastBands ? kernel_tile<T>(bands) : 0;
+  if (crowded && small_tile > 0 && count >= small_tile) {
+    // rows * (tile + one line) * sizeof(T) <= 2 kKernelStageBytes for every band count up to kMaxFastBands
+    alignas(64) T scratch[2 * kKernelStageBytes / sizeof(T)];
+    const std::size_t scratch_stride = padded_stride(small_tile, sizeof(T));
+    assert(static_cast<std::size_t>(bands * bands) * scratch_stride <= sizeof(scratch) / sizeof(T));
+    const std::size_t peel = alignment_peel(out, kCacheLine);
+    for_each_block(count, small_tile, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+      staged_kernel_tile<T>(bands * bands, small_tile, x + j, y + j, z + j, out + j, stride, scratch, scratch_stride, kernel);
+    });
+  } else if (count >= tile && crowded) {
     const std::size_t peel = alignment_peel(out, kCacheLine);
     for_each_block(count, tile, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
       staged_tile<T>(bands, x + j, y + j, z + j, out + j, stride);

@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "core/constants.h"
 #include "sh/basis.h"
 
 #if defined(__GNUC__)
@@ -120,7 +121,6 @@ struct RecurrenceTables {
 };
 
 constexpr RecurrenceTables make_recurrence_tables() {
-  constexpr double kPi = 3.14159265358979323846;
   RecurrenceTables t{};
   double product = 1.0;  // prod_{k=1..m} (2k-1)/(2k)
   for (int m = 0; m < kMaxBands; ++m) {

@@ -6,6 +6,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "core/error.h"
+#include "sh/rotation_float.h"
 #include "sh/rotation_simd.h"
 #include "sh/rotation_zxzxz.h"
 
@@ -358,6 +359,66 @@ void rotate_rgb(int bands, const glm::mat3& r, const glm::vec3* in, glm::vec3* o
     rotation.apply(channel_in.data(), channel_out.data());
     for (int i = 0; i < n; ++i) out_floats[i * 3 + ch] = channel_out[i];
   }
+}
+
+}  // namespace prt::sh
+
+// ---------------------------------------------------------------------------------------------------
+// FloatRotation (rotation_float.h)
+
+namespace prt::sh {
+
+namespace {
+
+// out[m] = sum_k block[m * W + k] in[k] for one band of width W (compile-time: fully unrolled).
+template <int W, typename V>
+inline void apply_band(const float* block, const V* in, V* out) {
+  for (int m = 0; m < W; ++m) {
+    V sum = block[m * W] * in[0];
+    for (int k = 1; k < W; ++k) sum += block[m * W + k] * in[k];
+    out[m] = sum;
+  }
+}
+
+template <typename V>
+inline void apply_band_any(int w, const float* block, const V* in, V* out) {
+  for (int m = 0; m < w; ++m) {
+    V sum = block[m * w] * in[0];
+    for (int k = 1; k < w; ++k) sum += block[m * w + k] * in[k];
+    out[m] = sum;
+  }
+}
+
+template <typename V>
+void apply_float_blocks(int bands, const float* blocks, const V* in, V* out) {
+  for (int l = 0; l < bands; ++l) {
+    const int w = 2 * l + 1, first = l * l;
+    const float* block = blocks + static_cast<std::size_t>(l) * (2 * l - 1) * (2 * l + 1) / 3;
+    switch (l) {
+      case 0: out[0] = in[0]; break;
+      case 1: apply_band<3>(block, in + first, out + first); break;
+      case 2: apply_band<5>(block, in + first, out + first); break;
+      case 3: apply_band<7>(block, in + first, out + first); break;
+      case 4: apply_band<9>(block, in + first, out + first); break;
+      default: apply_band_any(w, block, in + first, out + first); break;
+    }
+  }
+}
+
+}  // namespace
+
+FloatRotation::FloatRotation(const Rotation& rotation) : bands_(rotation.bands()) {
+  for (int l = 0; l < bands_; ++l) {
+    const int w = 2 * l + 1;
+    const double* block = rotation.block(l);
+    for (int i = 0; i < w * w; ++i) blocks_.push_back(static_cast<float>(block[i]));
+  }
+}
+
+void FloatRotation::apply(const float* in, float* out) const { apply_float_blocks(bands_, blocks_.data(), in, out); }
+
+void FloatRotation::apply_rgb(const glm::vec3* in, glm::vec3* out) const {
+  apply_float_blocks(bands_, blocks_.data(), in, out);
 }
 
 }  // namespace prt::sh

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/constants.h"
+#include "core/hash.h"
+
 namespace prt::sh {
 
 namespace {
@@ -29,16 +32,6 @@ std::uint32_t laine_karras_permutation(std::uint32_t x, std::uint32_t key) {
 
 std::uint32_t nested_uniform_scramble(std::uint32_t x, std::uint32_t key) {
   return reverse_bits(laine_karras_permutation(reverse_bits(x), key));
-}
-
-// MurmurHash3's 32-bit finaliser: spreads small, consecutive seeds over all 32 bits.
-std::uint32_t mix32(std::uint32_t h) {
-  h ^= h >> 16;
-  h *= 0x85ebca6bu;
-  h ^= h >> 13;
-  h *= 0xc2b2ae35u;
-  h ^= h >> 16;
-  return h;
 }
 
 std::uint32_t hash_combine(std::uint32_t seed, std::uint32_t v) {
@@ -142,6 +135,32 @@ double Rng::next_double() {
   const std::uint64_t high = next_u32();
   const std::uint64_t low = next_u32();
   return static_cast<double>(((high << 32) | low) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+namespace {
+template <class V>
+void duff_basis(const V& n, V& t, V& b) {
+  using T = typename V::value_type;
+  const T sign = std::copysign(T(1), n.z);
+  const T a = T(-1) / (sign + n.z);
+  const T c = n.x * n.y * a;
+  t = V(T(1) + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  b = V(c, sign + n.y * n.y * a, -n.y);
+}
+}  // namespace
+
+void orthonormal_basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) { duff_basis(n, t, b); }
+void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) { duff_basis(n, t, b); }
+
+glm::mat3 turned_frame(const glm::vec3& n, double angle) {
+  glm::vec3 t, b;
+  duff_basis(n, t, b);
+  const float c = static_cast<float>(std::cos(angle)), s = static_cast<float>(std::sin(angle));
+  return glm::mat3(c * t + s * b, -s * t + c * b, n);
+}
+
+glm::mat3 vertex_frame(const glm::vec3& n, std::uint32_t seed, std::uint64_t index) {
+  return turned_frame(n, 2.0 * kPi * hash_to_unit(seed, index, 0x5eedu));
 }
 
 }  // namespace prt::sh

@@ -6,8 +6,11 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+
+#include "core/constants.h"
 
 namespace prt::sh {
 
@@ -43,9 +46,25 @@ glm::dvec3 square_to_sphere(const glm::dvec2& u);
 glm::dvec3 square_to_hemisphere_uniform(const glm::dvec2& u);
 glm::dvec3 square_to_hemisphere_cosine(const glm::dvec2& u);
 
+/// Tangents t, b of a unit normal n such that (t, b, n) is a right-handed orthonormal frame: Duff,
+/// Burgess, Christensen, Hery, Kensler, Liani, Villemin, "Building an Orthonormal Basis, Revisited",
+/// JCGT 6(1), 2017 (branchless; continuous except across n.z = 0 where the sign flips).
+void orthonormal_basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b);
+void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b);
+
+/// The rotation (columns t', b', n) taking local coordinates about +z to world ones about the unit
+/// normal n: orthonormal_basis(n) turned about n by `angle` radians (the sample frames of the bake and
+/// of the probes' surface pass; the angle is usually hashed from the vertex index).
+glm::mat3 turned_frame(const glm::vec3& n, double angle);
+
+/// turned_frame(n, 2 pi hash_to_unit(seed, index, 0x5eed)) (core/hash.h): the frame of the hemisphere
+/// samples at vertex `index`, shared by the bake (bake/) and the probes' surface pass, so the pattern
+/// differs from vertex to vertex but not from run to run.
+glm::mat3 vertex_frame(const glm::vec3& n, std::uint32_t seed, std::uint64_t index);
+
 /// The densities of the maps above, per steradian, at a unit direction.
-inline constexpr double kSpherePdf = 0.25 / 3.14159265358979323846;
-inline constexpr double kHemisphereUniformPdf = 0.5 / 3.14159265358979323846;
+inline constexpr double kSpherePdf = 0.25 * kInvPi;
+inline constexpr double kHemisphereUniformPdf = 0.5 * kInvPi;
 /// cos(theta) / pi for direction.z > 0, else 0.
 double hemisphere_cosine_pdf(const glm::dvec3& direction);
 

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "brdf/frame.h"
+#include "core/constants.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "trace/scene.h"
@@ -13,8 +14,6 @@
 namespace prt::shade {
 
 namespace {
-
-constexpr double kInvPi = 0.31830988618379067;
 
 int side_of(int samples) {
   if (samples < 1 || samples > 65536) fail("--sun-samples " + std::to_string(samples) + " is out of range 1..65536");

@@ -120,6 +120,22 @@ std::size_t RayBatch::occluded_count() const {
   return count;
 }
 
+std::size_t RayBatch::hit_count(const void* rows, std::size_t row_bytes) const {
+  std::size_t count = 0;
+  const char* base = static_cast<const char*>(rows);
+  for (std::size_t i = 0; i < size_; ++i) {
+    const Hit& h = rays_[i].hit;
+    if (h.geom_id == kNoHit) continue;
+    ++count;
+    if (base) {
+      const char* row = base + static_cast<std::size_t>(h.prim_id) * row_bytes;
+      __builtin_prefetch(row);
+      __builtin_prefetch(row + row_bytes - 1);  // a row may straddle two cache lines
+    }
+  }
+  return count;
+}
+
 HitResult RayBatch::hit(std::size_t i) const {
   const RayHit& r = rays_[i];
   HitResult result;

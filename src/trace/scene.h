@@ -75,7 +75,7 @@
 // kDefaultBatchCapacity = 256 rays (20 KiB, stays in L1 while Embree reads it): 256 and 1024 are within
 // noise of each other (256 ahead in 4 of 6 comparisons, by 4% on average); 64-ray batches are 8-15%
 // slower. A baker with 1024 rays per vertex makes 4 calls per vertex. The COHERENT flag and ray packets gain nothing
-// (toolchain.md). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
+// (measured once on this machine). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
 // array.
 #include <cassert>
 #include <cstddef>
@@ -155,6 +155,21 @@ class RayBatch {
   std::size_t occluded_count() const;
   /// After Scene::intersect: the closest hit of ray i.
   HitResult hit(std::size_t i) const;
+  /// After Scene::intersect: whether ray i hit anything (hit(i).hit() without building the result).
+  bool is_hit(std::size_t i) const { return rays_[i].hit.geom_id != kNoHit; }
+  /// After Scene::intersect: whether ray i's closest hit is a FRONT face: the ray runs against the
+  /// geometric normal, which points to the side from which the corners run counter-clockwise (the side
+  /// of (p1 - p0) x (p2 - p0)). False for a miss.
+  bool is_front_hit(std::size_t i) const {
+    const RayHit& r = rays_[i];
+    return r.hit.geom_id != kNoHit && r.hit.ng_x * r.ray.dir_x + r.hit.ng_y * r.ray.dir_y + r.hit.ng_z * r.ray.dir_z < 0.0f;
+  }
+  /// The direction ray i was pushed with.
+  glm::vec3 direction(std::size_t i) const { return glm::vec3(rays_[i].ray.dir_x, rays_[i].ray.dir_y, rays_[i].ray.dir_z); }
+  /// After Scene::intersect: the number of the size() rays that hit a triangle; with `rows` given, also
+  /// prefetches rows + prim_id * `row_bytes` (its first and last byte) of every hit triangle into the
+  /// cache, for callers that next read per-triangle data in hit order (random reads otherwise).
+  std::size_t hit_count(const void* rows = nullptr, std::size_t row_bytes = 0) const;
 
   /// Raw Embree-layout records [0, size()) (for Scene and for callers that fill rays themselves).
   RayHit* data() { return rays_.data(); }
@@ -269,7 +284,7 @@ float ray_offset_for(const std::vector<glm::vec3>& positions);
 /// coordinate is quantised to 10 bits over the bounding box, the 30-bit interleaved codes are sorted
 /// stably (equal codes keep index order). Deterministic. Tracing vertices in this order keeps
 /// consecutive vertices' rays in the same BVH nodes: 1.25x faster than file order on the Stanford
-/// dragon (toolchain.md), 1.05-1.15x on the bench blob, whose subdivision order is already coherent.
+/// dragon (measured once, bench_trace), 1.05-1.15x on the bench blob, whose subdivision order is already coherent.
 std::vector<std::uint32_t> morton_order(const std::vector<glm::vec3>& positions);
 
 /// The 30-bit Morton code of p quantised over [lo, hi] (10 bits per axis, x in the highest bit of each

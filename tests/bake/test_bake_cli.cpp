@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -66,7 +68,7 @@ TEST_CASE("prt bake writes identical files for 1 and 2 threads and prt info read
   CHECK(contains(info.output, "bands: 4 (16 coefficients)"));
 }
 
-TEST_CASE("prt shade under a white light equals the furnace radiance and compare of a file with itself is 0", "[bake][cli]") {
+TEST_CASE("prt shade under a white light equals the furnace radiance and prt compare measures a known change", "[bake][cli]") {
   const std::string dir = test::fresh_temp_dir("shade_white");
   const std::string mesh = write_torus(dir, 24, 12);
   REQUIRE(test::run_prt("bake " + mesh + " --transfer unshadowed --bands 3 --albedo 0.5,0.5,0.5 -q -o " + dir + "/t.prt").exit_code == 0);
@@ -75,9 +77,23 @@ TEST_CASE("prt shade under a white light equals the furnace radiance and compare
   const mesh::ColourPly ply = mesh::read_ply_colours(dir + "/out.ply");
   // Unshadowed Lambert under constant radiance 1 (c_0 = 2 sqrt(pi)): exit radiance = albedo.
   for (const glm::vec3& c : ply.colours) REQUIRE(c.r == Approx(0.5f).epsilon(1e-5));
-  auto same = test::run_prt("compare " + dir + "/out.ply " + dir + "/out.ply");
-  CHECK(same.exit_code == 0);
-  CHECK(contains(same.output, "rms=0 rel_rms=0 max_abs=0 max_rel=0 vertices=" + std::to_string(ply.colours.size())));
+  // B: the same mesh with vertex 0's red halved. Over the n = 3 V values (docs/conventions.md, prt
+  // compare): rms = 0.25 / sqrt(n), rel_rms = rms / sqrt(sum b^2 / n), max_abs = 0.25, max_rel = 1.
+  std::vector<glm::vec3> changed(ply.colours.size(), glm::vec3(0.5f));
+  changed[0].r = 0.25f;
+  mesh::write_ply(dir + "/changed.ply", ply.positions, changed, ply.indices);
+  auto diff = test::run_prt("compare " + dir + "/out.ply " + dir + "/changed.ply");
+  REQUIRE(diff.exit_code == 0);
+  const double n = 3.0 * static_cast<double>(ply.colours.size());
+  const double rms = 0.25 / std::sqrt(n), rms_b = std::sqrt(((n - 1.0) * 0.25 + 0.0625) / n);
+  double got_rms = 0, got_rel = 0, got_abs = 0, got_max_rel = 0;
+  REQUIRE(std::sscanf(diff.output.c_str(), "rms=%lf rel_rms=%lf max_abs=%lf max_rel=%lf", &got_rms, &got_rel, &got_abs,
+                      &got_max_rel) == 4);
+  CHECK(got_rms == Approx(rms).epsilon(1e-5));
+  CHECK(got_rel == Approx(rms / rms_b).epsilon(1e-5));
+  CHECK(got_abs == Approx(0.25).epsilon(1e-5));
+  CHECK(got_max_rel == Approx(1.0).epsilon(1e-5));
+  CHECK(contains(diff.output, "vertices=" + std::to_string(ply.colours.size())));
 }
 
 TEST_CASE("prt bake and shade refuse bad input with one line and leave no file", "[bake][cli]") {

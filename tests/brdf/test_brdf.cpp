@@ -69,16 +69,27 @@ TEST_CASE("normalized phong reflects exactly ks at normal incidence", "[brdf]") 
 }
 
 TEST_CASE("the GGX distribution is normalized and its directional albedo is at most F0 = 1", "[brdf]") {
-  // integral D(h) h.z dh = 1 over the hemisphere (Gauss-Legendre in cos theta_h on graded panels).
+  // integral D(h) h.z dh = 1 over the hemisphere, through brdf::eval: at w_o = n (so Lambda(w_o) = 0)
+  // the height-correlated Smith term is G2 = 1 / (1 + Lambda(w_i)) (Heitz 2014, "Understanding the
+  // Masking-Shadowing Function", eq. 99) with Lambda(w) = (sqrt(1 + alpha^2 tan^2 theta) - 1) / 2, and the
+  // half-vector Jacobian is dw_i = 4 (h.w_o) dh (Walter et al. 2007), so with F = 1
+  //   integral over w_i of f(w_i, n) cos(theta_i) (1 + Lambda(w_i)) dw_i = integral D(h) (h.n) dh
+  // over the half-vectors of the upper hemisphere of w_i, those within 45 degrees of n (theta_i =
+  // 2 theta_h). GGX's measure of that cone is tan^2 / (alpha^2 + tan^2) at 45 degrees = 1 / (1 + alpha^2)
+  // (its CDF, Walter et al. 2007, eq. 35): 1 - alpha^2 for smooth surfaces, 1/2 at alpha = 1.
+  // Gauss-Legendre in cos(theta_i) on panels graded toward the peak at w_i = n; isotropic, so 2 pi in phi.
   for (double roughness : {0.05, 0.3, 0.7, 1.0}) {
     const double alpha2 = std::pow(roughness, 4);
+    const brdf::Brdf furnace = brdf::parse_brdf("ggx:roughness=" + std::to_string(roughness) + ",f0=1");
     const brdf::detail::Rule1D rule = brdf::detail::graded_rule(0.0, 1.0, 1.0, alpha2 / 4 + 1e-9, 0.1, 16);
     double sum = 0.0;
     for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
-      const double c = rule.nodes[k], denom = c * c * (alpha2 - 1.0) + 1.0;
-      sum += rule.weights[k] * 2.0 * M_PI * c * alpha2 / (M_PI * denom * denom);
+      const double c = rule.nodes[k], s2 = 1.0 - c * c;
+      const double lambda = 0.5 * (std::sqrt(1.0 + alpha2 * s2 / (c * c)) - 1.0);
+      const double f = brdf::eval(furnace, {std::sqrt(s2), 0.0, c}, {0.0, 0.0, 1.0}).x;
+      sum += rule.weights[k] * 2.0 * M_PI * f * c * (1.0 + lambda);
     }
-    CHECK(sum == Approx(1.0).epsilon(1e-9));
+    CHECK(sum == Approx(1.0 / (1.0 + alpha2)).epsilon(1e-9));
     // White furnace with F = 1: single-scattering GGX loses energy (multiple scattering is not
     // modelled), never gains any; smooth surfaces at normal incidence lose almost nothing.
     const brdf::Brdf b = brdf::parse_brdf("ggx:roughness=" + std::to_string(roughness) + ",f0=1");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/constants.h"
 #include "light/deringing.h"
 #include "light/disc.h"
 #include "light_test_util.h"
@@ -13,7 +14,6 @@ using namespace prt;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Clamped-cosine factors A_l written out (Ramamoorthi and Hanrahan 2001): pi, 2pi/3, pi/4, 0, -pi/24.
 const double kA[5] = {kPi, 2.0 * kPi / 3.0, kPi / 4.0, 0.0, -kPi / 24.0};

@@ -4,6 +4,9 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
+#include "core/constants.h"
 #include "light/environment.h"
 #include "light/projection.h"
 #include "light_test_util.h"
@@ -14,7 +17,6 @@ using namespace prt;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 image::Image constant_equirect(int width, int height, glm::dvec3 v) {
   image::Image im(width, height, 3);
@@ -178,6 +180,18 @@ TEST_CASE("cube maps and equirect maps of the same lighting agree", "[projection
   }
 }
 
+namespace {
+
+// The direction through (s, t) of cube face f, written out from docs/conventions.md (GL 4.5 table 8.19)
+// rather than taken from light::cube_direction, which project_cube itself uses.
+glm::dvec3 gl_cube_direction(int face, double s, double t) {
+  const double sc = 2.0 * s - 1.0, tc = 2.0 * t - 1.0;
+  const glm::dvec3 d[6] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc}, {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+  return glm::normalize(d[face]);
+}
+
+}  // namespace
+
 TEST_CASE("a real environment gives the same SH from its equirect map and from a cube resampling", "[projection]") {
   const auto env = light::load_environment(std::string(PRT_SOURCE_DIR) + "/assets/env/sunrise.exr");
   // Cube texels smaller than the map's (n = 512: at most 1.5e-5 sr against 3.8e-5 sr at the equator),
@@ -188,7 +202,7 @@ TEST_CASE("a real environment gives the same SH from its equirect map and from a
     faces[f] = image::Image(n, n, 3);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const glm::dvec3 l = env.radiance(light::cube_direction(f, (i + 0.5) / n, (j + 0.5) / n));
+        const glm::dvec3 l = env.radiance(gl_cube_direction(f, (i + 0.5) / n, (j + 0.5) / n));
         for (int c = 0; c < 3; ++c) faces[f].at(i, j, c) = static_cast<float>(l[c]);
       }
   }

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/constants.h"
 #include "light/environment.h"
 #include "light/projection.h"
 #include "light/scene_lighting.h"
@@ -17,7 +18,6 @@ using namespace prt;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // The equirect convention of docs/conventions.md, written out here (not light::equirect_direction).
 glm::dvec3 direction_at(double u, double v) {

@@ -184,7 +184,7 @@ TEST_CASE("the shipped meshes load: outward winding and unit radius and Y up", "
     const char* file;
     std::size_t vertices, triangles;
   };
-  for (const Asset& asset : {Asset{"chinese_dragon_10k.ply", 10000, 19994}, Asset{"armadillo.ply", 26002, 52000}}) {
+  for (const Asset& asset : {Asset{"guardian_lion_10k.ply", 10000, 19994}, Asset{"armadillo.ply", 26002, 52000}}) {
     INFO(asset.file);
     LoadReport report;
     const Mesh mesh = load_mesh(std::string(PRT_SOURCE_DIR) + "/assets/meshes/" + asset.file, &report, true);

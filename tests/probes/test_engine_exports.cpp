@@ -10,10 +10,11 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/constants.h"
 #include "light/analytic.h"
+#include "probes/engine_eval.h"  // tests/probes
 #include "probes/engine_sh.h"
 #include "probes/exporters.h"
-#include "probes/engine_eval.h"  // tests/probes
 #include "sh/sampling.h"
 #include "sh/zonal.h"
 
@@ -22,7 +23,6 @@ using namespace prt;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A probe set of `count` probes on a 2x1x(count/2) grid with the given coefficients per probe.
 probes::ProbeSet make_set(const std::vector<sh::RgbCoefficients>& lighting) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/constants.h"
 #include "light/projection.h"
 #include "reference/estimator.h"
 #include "reference/reference.h"
@@ -22,7 +23,6 @@ using prt::test::ground_grid;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<glm::vec3> run(const mesh::Mesh& mesh, const light::Environment& env, int samples, int bounces,
                            glm::vec3 albedo, std::vector<glm::vec3>* standard_error = nullptr,

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/constants.h"
 #include "light/projection.h"
 #include "reference/estimator.h"
 #include "reference/reference.h"
@@ -24,7 +25,6 @@ using prt::test::equirect_environment;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 reference::ReferenceOptions options_for(int samples, int bounces, glm::vec3 albedo, std::uint32_t seed = 1) {
   reference::ReferenceOptions o;

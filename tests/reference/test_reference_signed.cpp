@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/constants.h"
 #include "light/projection.h"
 #include "reference/estimator.h"
 #include "reference/reference.h"
@@ -18,7 +19,6 @@ using prt::test::equirect_environment;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A dim sky over the upper hemisphere and a bright disc of radius 10 degrees: truncated to a few bands
 // both ring strongly (negative lobes).

@@ -20,7 +20,7 @@ using namespace prt;
 namespace {
 
 const std::string kRoot = PRT_SOURCE_DIR;
-const std::string kLion = kRoot + "/assets/meshes/chinese_dragon_10k.ply";
+const std::string kLion = kRoot + "/assets/meshes/guardian_lion_10k.ply";
 
 double field(const std::string& text, const std::string& key) {
   const std::size_t at = text.find(key + "=");

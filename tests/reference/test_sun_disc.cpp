@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/constants.h"
 #include "image/image.h"
 #include "support/run_prt.h"
 
@@ -18,7 +19,6 @@ using namespace prt;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const std::string kMesh = std::string(PRT_SOURCE_DIR) + "/tests/data/sphere_on_floor.ply";
 
 // Equirect convention of docs/conventions.md, written out.

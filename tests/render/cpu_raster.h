@@ -11,6 +11,7 @@
 
 #include "image/image.h"
 #include "mesh/mesh.h"
+#include <glm/mat3x3.hpp>
 
 namespace prt::render_test {
 
@@ -46,5 +47,41 @@ glm::dvec3 glossy_prt_at(const mesh::Mesh& mesh, const std::vector<glm::vec3>& o
 /// the denominator floored at `floor`; also counts covered pixels.
 double max_relative_error(const image::Image& gpu, const image::Image& cpu, const std::vector<std::uint32_t>& triangle_ids,
                           double floor, std::size_t& covered);
+
+}  // namespace prt::render_test
+
+namespace prt::render_test {
+
+/// What the ray through one pixel centre meets, found without the renderer's matrices or its
+/// triangle-id buffer: `triangle` (kNoTriangle where the ray misses), the hit's barycentric weights
+/// (perspective-correct by construction) and the hit point in the mesh's own (unrotated) coordinates.
+struct PixelHit {
+  std::uint32_t triangle = 0xFFFFFFFFu;
+  double b[3] = {0.0, 0.0, 0.0};
+  glm::dvec3 point{0.0};
+};
+
+/// Casts one ray per pixel centre of a width x height image through the camera of docs/conventions.md
+/// (Rendering), written out here from its formulas: centre c and radius r of the mesh's bounds, vertical
+/// field of view 40 degrees, DIST = auto -> 1.05 r / sin(half the narrower field of view),
+/// eye = c + DIST (sin AZ cos EL, sin EL, cos AZ cos EL) looking at c with up +Y, pixel (x, y) at NDC
+/// ((x + 0.5)/W 2 - 1, 1 - (y + 0.5)/H 2). The object is rotated by `object_rotation` about c; the ray is
+/// intersected (Moller-Trumbore, double) with every triangle, the nearest hit kept. `eye_object`
+/// receives the eye in the mesh's unrotated coordinates.
+std::vector<PixelHit> cast_pixels(const mesh::Mesh& mesh, double azimuth_degrees, double elevation_degrees,
+                                  double distance, const glm::dmat3& object_rotation, int width, int height,
+                                  glm::dvec3* eye_object = nullptr);
+
+/// True where pixel (x, y) and its 4 neighbours all hit a triangle: away from the silhouette, where a
+/// float rasteriser and a double ray may disagree about coverage.
+bool interior_hit(const std::vector<PixelHit>& hits, int width, int height, int x, int y);
+
+/// The barycentric interpolation of `vertex_values` at every hit (0 where none).
+image::Image interpolate_hits(const mesh::Mesh& mesh, const std::vector<glm::vec3>& vertex_values,
+                              const std::vector<PixelHit>& hits, int width, int height);
+
+/// Largest per-channel relative error |gpu - cpu| / max(|cpu|, floor) over interior hits; counts them.
+double max_relative_error_interior(const image::Image& gpu, const image::Image& cpu, const std::vector<PixelHit>& hits,
+                                   double floor, std::size_t& compared);
 
 }  // namespace prt::render_test

@@ -267,7 +267,7 @@ TEST_CASE("shadow-map visibility at the vertices agrees with Embree's disc rays"
   std::vector<Case> cases;
   cases.push_back({"box on a floor", box_on_floor(), {0.6, 0.7, 0.35}});
   cases.push_back({"box on a floor, low sun", box_on_floor(), {-0.8, 0.3, 0.2}});
-  cases.push_back({"lion (chinese_dragon_10k)", mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true),
+  cases.push_back({"lion (guardian_lion_10k)", mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/guardian_lion_10k.ply", nullptr, true),
                    {0.3, 0.8, -0.5}});
   for (const Case& c : cases) {
     SECTION(c.name) {

@@ -3,13 +3,14 @@
 # fixture mesh, opens the viewer under a virtual X server with a glossy and a diffuse transfer, saves an
 # EXR screenshot of the glossy one, and checks it against `prt render` of the same view (the same
 # renderer: rel_rms < 1e-5); then the same with --brdf overriding the baked BRDF.
-# Usage: viewer_glossy_smoke.sh PRT MAKE_FIXTURES. Exit 77 (ctest: skipped) if xvfb-run is not installed.
+# Usage: viewer_glossy_smoke.sh PRT MAKE_FIXTURES. Fails (exit 1) if xvfb-run is not installed:
+# scripts/setup.sh --tests installs it, so its absence is a broken setup, not a reason to skip.
 set -eu
 prt="$1"
 make_fixtures="$2"
 if ! command -v xvfb-run >/dev/null 2>&1; then
-  echo "SKIPPED: xvfb-run is not installed (scripts/setup.sh installs xvfb); the viewer needs an X display"
-  exit 77
+  echo "FAILED: xvfb-run is not installed (scripts/setup.sh --tests installs xvfb); the viewer needs an X display"
+  exit 1
 fi
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT

@@ -2,13 +2,14 @@
 # GLFW smoke test for `prt view` (run by ctest): opens the viewer under a virtual X server, draws a few
 # frames with two transfers and two environments loaded, saves screenshots (PNG and EXR), exits 0; then
 # checks the EXR screenshot against `prt render` of the same view (same renderer, same camera).
-# Usage: viewer_smoke.sh PRT MAKE_FIXTURES. Exit 77 (ctest: skipped) if xvfb-run is not installed.
+# Usage: viewer_smoke.sh PRT MAKE_FIXTURES. Fails (exit 1) if xvfb-run is not installed:
+# scripts/setup.sh --tests installs it, so its absence is a broken setup, not a reason to skip.
 set -eu
 prt="$1"
 make_fixtures="$2"
 if ! command -v xvfb-run >/dev/null 2>&1; then
-  echo "SKIPPED: xvfb-run is not installed (scripts/setup.sh installs xvfb); the viewer needs an X display"
-  exit 77
+  echo "FAILED: xvfb-run is not installed (scripts/setup.sh --tests installs xvfb); the viewer needs an X display"
+  exit 1
 fi
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT

@@ -1,5 +1,5 @@
 // The SH basis against its definition: the closed-form table of the first 9 functions
-// (../shared/reference/sh-conventions.md), the reference evaluation, and the fast paths.
+// (docs/conventions.md), the reference evaluation, and the fast paths.
 #include <catch2/catch.hpp>
 
 #include <cmath>

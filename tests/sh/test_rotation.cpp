@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
+#include "sh/rotation_float.h"
 #include "sh/rotation_x90_table.h"
 
 namespace {
@@ -341,5 +342,35 @@ TEST_CASE("invalid input is reported, small drift from orthonormality is tolerat
     double dot = 0;
     for (int k = 0; k < 15; ++k) dot += b[i * 15 + k] * b[i * 15 + k];
     REQUIRE(std::abs(dot - 1) <= 1e-13);
+  }
+}
+
+TEST_CASE("FloatRotation gives f(R^-1 d) to float precision and its RGB form rotates each channel", "[sh][rotation]") {
+  std::mt19937_64 rng(9);
+  for (int bands : {1, 2, 3, 4, 5, 6, 9, 16}) {
+    for (int trial = 0; trial < 4; ++trial) {
+      const glm::dmat3 r = random_rotation(rng);
+      const std::vector<double> c = random_coefficients(rng, bands);
+      std::vector<float> in(c.begin(), c.end()), out(c.size());
+      const prt::sh::FloatRotation rotation{Rotation(bands, r)};
+      REQUIRE(rotation.bands() == bands);
+      rotation.apply(in.data(), out.data());
+      const std::vector<double> rotated(out.begin(), out.end());
+      for (int k = 0; k < 4; ++k) {
+        const glm::dvec3 d = random_direction(rng);
+        // (2l+1)-term float sums of coefficients in [-1, 1], |Y| <= sqrt((2l+1)/4pi) per term of f.
+        INFO("bands " << bands);
+        REQUIRE(std::abs(expansion(rotated, bands, d) - expansion(c, bands, glm::transpose(r) * d)) <=
+                40.0 * kFloatEps * bands * bands * bands);
+      }
+      std::vector<glm::vec3> rgb(c.size()), rgb_out(c.size());
+      for (std::size_t i = 0; i < c.size(); ++i) rgb[i] = glm::vec3(in[i], 2.0f * in[i], -in[i]);
+      rotation.apply_rgb(rgb.data(), rgb_out.data());
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        REQUIRE(rgb_out[i].x == out[i]);
+        REQUIRE(rgb_out[i].y == Approx(2.0f * out[i]).margin(1e-6));
+        REQUIRE(rgb_out[i].z == Approx(-out[i]).margin(1e-6));
+      }
+    }
   }
 }

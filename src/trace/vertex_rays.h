@@ -1,0 +1,77 @@
+#pragma once
+// The loop every per-vertex hemisphere pass runs (the bake's shadowed, interreflection and glossy
+// passes, the probes' surface passes): vertices in a given order, split over threads in chunks of 64;
+// each vertex traces the same local sample directions turned into its own frame
+// sh::vertex_frame(n, seed, v), from Scene::offset_origin(p, n), in batches of up to
+// kDefaultBatchCapacity rays. What a pass does with the hits is its worker's business.
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "mesh/mesh.h"
+#include "sh/sampling.h"
+#include "trace/scene.h"
+
+namespace prt::trace {
+
+/// Which query a pass runs on its rays.
+enum class Query { occluded, closest_hit };
+
+/// What the loop needs; all pointers must outlive the call.
+struct VertexRays {
+  const Scene* scene = nullptr;
+  const mesh::Mesh* mesh = nullptr;                   ///< unit normals
+  const std::vector<std::uint32_t>* order = nullptr;  ///< vertices to visit, in this order (Morton)
+  const std::vector<glm::vec3>* directions = nullptr; ///< S local directions about +z
+  std::uint32_t seed = 0;                             ///< of sh::vertex_frame
+  int threads = 0;
+  Query query = Query::closest_hit;
+};
+
+/// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
+/// chunk's vertices), with
+///   void start(std::uint32_t v, const glm::mat3& frame);   before v's first batch
+///   void batch(std::uint32_t v, const RayBatch& batch, std::size_t first);
+///        after each batch's query: the batch holds rays first .. first + batch.size() - 1 of v
+///   void finish(std::uint32_t v, const glm::mat3& frame);  after v's last batch
+/// `progress` advances by each chunk's vertices. Returns the rays traced. Deterministic: each vertex's
+/// rays and their order do not depend on the thread that runs them.
+template <class MakeWorker>
+std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWorker make_worker) {
+  const mesh::Mesh& mesh = *r.mesh;
+  const std::vector<glm::vec3>& local = *r.directions;
+  const std::size_t samples = local.size();
+  std::atomic<std::uint64_t> rays{0};
+  parallel_for(r.order->size(), 64, r.threads, [&](std::size_t begin, std::size_t end) {
+    RayBatch batch(std::max<std::size_t>(1, std::min<std::size_t>(samples, kDefaultBatchCapacity)));
+    auto worker = make_worker();
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t v = (*r.order)[k];
+      const glm::mat3 frame = sh::vertex_frame(mesh.normals[v], r.seed, v);
+      const glm::vec3 origin = r.scene->offset_origin(mesh.positions[v], mesh.normals[v]);
+      worker.start(v, frame);
+      for (std::size_t first = 0; first < samples; first += batch.capacity()) {
+        const std::size_t count = std::min(batch.capacity(), samples - first);
+        batch.clear();
+        for (std::size_t s = first; s < first + count; ++s) batch.push(origin, frame * local[s]);
+        if (r.query == Query::occluded) r.scene->occluded(batch);
+        else r.scene->intersect(batch);
+        worker.batch(v, batch, first);
+      }
+      worker.finish(v, frame);
+    }
+    rays += static_cast<std::uint64_t>(end - begin) * samples;
+    progress.advance(end - begin);
+  });
+  progress.finish();
+  return rays.load();
+}
+
+}  // namespace prt::trace
