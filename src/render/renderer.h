@@ -23,6 +23,9 @@
 //               fragment's barycentrics. At a vertex this is prt::shade::shade_glossy exactly; the
 //               per-corner frames avoid interpolating coefficients between different frames (the frame's
 //               singularity at n = +-Y, brdf/frame.h).
+//   prt_cpca    prt_cpca.vert + surface.frag, for a CPCA-compressed transfer (.cprt, add_compressed): the
+//               CPU multiplies each cluster's mean and PCA directions with the lighting (glossy: then B),
+//               the vertex shader blends them with the vertex's weights (renderer_cpca.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
@@ -50,7 +53,13 @@
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
+namespace prt::compress {
+struct CompressedTransfer;
+}
+
 namespace prt::render {
+
+class CpcaTransfer;
 
 // The camera is prt::camera (src/camera, no GL), shared with `prt reference --image`; the renderer's
 // API keeps its names.
@@ -147,6 +156,10 @@ class Renderer {
   /// edits re-project B on the CPU and call this). Throws prt::Error unless `transfer` is a glossy
   /// transfer's index and matrix.bands equals its bands_out.
   void set_brdf(int transfer, const brdf::BrdfMatrix& matrix);
+  /// Uploads a CPCA-compressed transfer (renderer_cpca.h) for the current mesh; returns its index in the
+  /// same list as add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs.
+  int add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin);
+  bool is_compressed(int transfer) const;
   int transfer_count() const { return static_cast<int>(transfers_.size()); }
   const transfer::Header& transfer_header(int index) const;
 
@@ -194,6 +207,10 @@ class Renderer {
   const Program& glossy_draw_program(int out_bands);
   /// The glossy pass (renderer_glossy.cpp): compute O for every vertex, then draw.
   void draw_glossy(const FrameSettings& settings, int bands);
+  /// The CPCA pass (renderer_cpca.cpp).
+  void draw_cpca(const FrameSettings& settings, int bands);
+  /// set_brdf for a compressed transfer (kept on the CPU for the products); false if `transfer` is not one.
+  bool set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix);
 
   Program background_, lambert_, tonemap_;
   std::map<std::tuple<int, int, int, int>, Program> prt_programs_;
@@ -209,7 +226,9 @@ class Renderer {
   std::size_t vertex_count_ = 0;
   mesh::Bounds bounds_;
   bool has_mesh_ = false;
-  std::vector<std::unique_ptr<TransferBuffer>> transfers_;
+  std::vector<std::unique_ptr<TransferBuffer>> transfers_;     // null for compressed transfers
+  std::vector<std::unique_ptr<CpcaTransfer>> compressed_;      // per transfer (may be shorter): non-null for CPCA
+  std::map<std::pair<int, int>, Program> cpca_programs_;       // by (N, output bands or 0)
 
   std::vector<glm::vec3> lighting_;          // environment frame, padded to kMaxBands^2
   int lighting_bands_ = 1;

@@ -1,0 +1,116 @@
+// The acceptance settings of CPCA on real transfer: glossy shadowed transfer of a bowl and of the
+// bundled lion, K in 64..256 and N = 8, and diffuse interreflected transfer of the lion with N = 4.
+// The measure is the shaded radiance (prt::shade, the CPU reference) of the decompressed transfer
+// against the uncompressed one under the bundled sunrise environment: glossy toward three eye points,
+// relative rms over all vertices and channels.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "bake/bake.h"
+#include "brdf/projection.h"
+#include "compress/compressed.h"
+#include "image/compare.h"
+#include "light/environment.h"
+#include "light/projection.h"
+#include "mesh/mesh.h"
+#include "shade/glossy.h"
+#include "shade/shade.h"
+
+using namespace prt;
+
+namespace {
+
+// The inside of the lower unit hemisphere, open toward +Y, normals toward the centre (as the bowl of
+// tests/bake/test_glossy_reference.cpp), finer.
+mesh::Mesh bowl(int rings, int segments) {
+  mesh::Mesh m;
+  for (int i = 0; i < rings; ++i) {
+    const double theta = M_PI / 2 + (M_PI / 2) * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2 * M_PI * j / segments;
+      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+    }
+  }
+  m.positions.push_back(glm::vec3(0, -1, 0));
+  for (const glm::vec3& p : m.positions) m.normals.push_back(-glm::normalize(p));
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * segments + (j % segments)); };
+  const std::uint32_t pole = static_cast<std::uint32_t>(m.positions.size() - 1);
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
+      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+    }
+  for (int j = 0; j < segments; ++j) m.indices.insert(m.indices.end(), {at(rings - 1, j), pole, at(rings - 1, j + 1)});
+  return m;
+}
+
+const sh::RgbCoefficients& sunrise() {
+  static const sh::RgbCoefficients l = light::project(light::load_environment(PRT_SOURCE_DIR "/assets/env/sunrise.exr"), 5);
+  return l;
+}
+
+double rel_rms(const std::vector<glm::vec3>& test, const std::vector<glm::vec3>& reference) {
+  return image::compare_values(&test[0].x, &reference[0].x, 3 * test.size()).rel_rms;
+}
+
+transfer::TransferData bake_glossy(const mesh::Mesh& m, int samples) {
+  bake::BakeOptions o;
+  o.kind = transfer::Kind::glossy_shadowed;
+  o.bands = 5;
+  o.samples = samples;
+  o.brdf = brdf::parse_brdf("phong:exponent=16,ks=0.5,kd=0.4");
+  return bake::bake(m, o);
+}
+
+// Worst rel_rms over three eye points of the decompressed transfer against the original.
+double glossy_error(const mesh::Mesh& m, const transfer::TransferData& original, const compress::CompressedTransfer& c) {
+  const transfer::TransferData approximate = compress::decompress(c);
+  const brdf::BrdfMatrix b = brdf::project(shade::baked_brdf(original.header, "original"), 5);
+  const mesh::Bounds bounds = mesh::bounds(m);
+  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
+  const float radius = glm::length(bounds.max - bounds.min);
+  double worst = 0;
+  for (const glm::vec3 direction : {glm::vec3(0.1f, 1.0f, 0.6f), glm::vec3(1.0f, 0.5f, -0.7f), glm::vec3(-0.9f, 0.3f, 0.3f)}) {
+    const glm::vec3 eye = centre + radius * glm::normalize(direction);
+    const auto test = shade::shade_glossy_eye(approximate, b, sunrise(), m.positions, m.normals, eye);
+    const auto reference = shade::shade_glossy_eye(original, b, sunrise(), m.positions, m.normals, eye);
+    worst = std::max(worst, rel_rms(test, reference));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("CPCA of glossy shadowed transfer, N = 8: shaded radiance within 2% (bowl K = 64, lion K = 128)", "[compress][slow]") {
+  const mesh::Mesh surface = bowl(40, 80);
+  const transfer::TransferData t = bake_glossy(surface, 256);
+  const compress::CompressedTransfer c = compress::compress_transfer(t, {64, 8}, transfer::Scalar::float32, "bowl");
+  const double bowl_error = glossy_error(surface, t, c);
+  INFO("bowl: transfer " << c.total.transfer_relative() << ", radiance " << bowl_error);
+  CHECK(bowl_error <= 0.02);
+
+  const mesh::Mesh lion = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true);
+  const transfer::TransferData lt = bake_glossy(lion, 128);
+  const compress::CompressedTransfer lc = compress::compress_transfer(lt, {128, 8}, transfer::Scalar::float32, "lion");
+  const double lion_error = glossy_error(lion, lt, lc);
+  INFO("lion: transfer " << lc.total.transfer_relative() << ", radiance " << lion_error);
+  CHECK(lion_error <= 0.02);
+}
+
+TEST_CASE("CPCA of diffuse interreflected transfer of the lion, K = 64, N = 4: shaded radiance within 1%", "[compress][slow]") {
+  const mesh::Mesh lion = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true);
+  bake::BakeOptions o;
+  o.kind = transfer::Kind::interreflected;
+  o.bands = 5;
+  o.samples = 256;
+  o.bounces = 2;
+  const transfer::TransferData t = bake::bake(lion, o);
+  compress::CompressedTransfer c = compress::compress_transfer(t, {64, 4}, transfer::Scalar::float32, "lion");
+  const double error = rel_rms(shade::shade_diffuse(compress::decompress(c), sunrise()), shade::shade_diffuse(t, sunrise()));
+  INFO("transfer " << c.total.transfer_relative() << ", radiance " << error);
+  CHECK(error <= 0.01);
+  // The error the compressor records under the same lighting is this one.
+  compress::add_radiance_error(c, t, sunrise(), "lion");
+  CHECK(c.total.radiance_relative() == Approx(error).epsilon(1e-3));
+}
