@@ -260,10 +260,6 @@ std::string describe(const CompressedTransfer& c) {
   return s.str();
 }
 
-}  // namespace prt::compress
-
-namespace prt::compress {
-
 bool is_cprt_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char magic[8] = {};
@@ -273,6 +269,18 @@ bool is_cprt_file(const std::string& path) {
 
 transfer::TransferData read_transfer_or_cprt(const std::string& path) {
   return is_cprt_file(path) ? decompress(read_cprt(path)) : transfer::read_transfer(path);
+}
+
+std::shared_ptr<const CompressedTransfer> read_transfer_or_model(const std::string& path, transfer::TransferData& out) {
+  if (!is_cprt_file(path)) {
+    out = transfer::read_transfer(path);
+    return nullptr;
+  }
+  auto model = std::make_shared<const CompressedTransfer>(read_cprt(path));
+  out = transfer::TransferData{};
+  out.header = model->source;
+  out.header.scalar = transfer::Scalar::float32;
+  return model;
 }
 
 }  // namespace prt::compress

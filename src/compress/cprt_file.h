@@ -1,6 +1,7 @@
 #pragma once
 // Compressed transfer files (.cprt): a CompressedTransfer (compressed.h) on disk. Binary layout in
 // docs/formats.md ("Compressed transfer files"); this header is the reader and writer.
+#include <memory>
 #include <string>
 
 #include "compress/compressed.h"
@@ -27,10 +28,6 @@ std::uint64_t payload_bytes(const CompressedTransfer& compressed);
 /// Multi-line description for `prt info`: the source transfer, K, N, iterations, sizes and errors.
 std::string describe(const CompressedTransfer& compressed);
 
-}  // namespace prt::compress
-
-namespace prt::compress {
-
 /// True if the file at `path` starts with kCprtMagic (false if it cannot be read or is shorter).
 bool is_cprt_file(const std::string& path);
 
@@ -38,5 +35,9 @@ bool is_cprt_file(const std::string& path);
 /// .cprt file (told apart by the magic). What `prt shade` shades: the CPU reference of compressed
 /// transfer.
 transfer::TransferData read_transfer_or_cprt(const std::string& path);
+
+/// For renderers: a .cprt file gives its model (returned) and `header_only` gets its source header
+/// (float32) with no values; a .prt file gives null and `header_only` the whole transfer.
+std::shared_ptr<const CompressedTransfer> read_transfer_or_model(const std::string& path, transfer::TransferData& header_only);
 
 }  // namespace prt::compress

@@ -138,6 +138,11 @@ bool Renderer::is_compressed(int index) const {
   return static_cast<std::size_t>(index) < compressed_.size() && compressed_[static_cast<std::size_t>(index)] != nullptr;
 }
 
+int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i) {
+  if (i < scene.compressed.size() && scene.compressed[i]) return renderer.add_compressed(*scene.compressed[i], scene.transfer_paths[i]);
+  return renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+}
+
 bool Renderer::set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix) {
   if (!is_compressed(transfer)) return false;
   compressed_[static_cast<std::size_t>(transfer)]->set_brdf(matrix);

@@ -14,6 +14,7 @@
 #include "brdf/projection.h"
 #include "compress/compressed.h"
 #include "render/gl.h"
+#include "render/scene_inputs.h"
 
 namespace prt::render {
 
@@ -55,5 +56,10 @@ class CpcaTransfer {
   std::size_t products_bytes_ = 0, vertex_bytes_ = 0;
   std::vector<glm::vec4> scratch_;
 };
+
+class Renderer;
+
+/// Adds scene transfer i to the renderer: add_compressed for a .cprt file, add_transfer otherwise.
+int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i);
 
 }  // namespace prt::render

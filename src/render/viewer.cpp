@@ -15,6 +15,7 @@
 #include "brdf/projection.h"
 #include "core/error.h"
 #include "shade/glossy.h"
+#include "render/renderer_cpca.h"
 #include "render/viewer_state.h"
 #include "sh/rotation.h"
 
@@ -301,7 +302,7 @@ void run_viewer(const ViewerOptions& options) {
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
-    const int index = renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+    const int index = add_scene_transfer(renderer, scene, i);
     if (!state.transfer_brdfs[i].empty())
       renderer.set_brdf(index, brdf::project(state.transfer_brdfs[i], state.transfer_bands_out[i]));
   }

@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "bake/bake.h"
 #include "brdf/projection.h"
 #include "compress/compressed.h"
@@ -68,8 +70,8 @@ double glossy_error(const mesh::Mesh& m, const transfer::TransferData& original,
   const transfer::TransferData approximate = compress::decompress(c);
   const brdf::BrdfMatrix b = brdf::project(shade::baked_brdf(original.header, "original"), 5);
   const mesh::Bounds bounds = mesh::bounds(m);
-  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
-  const float radius = glm::length(bounds.max - bounds.min);
+  const glm::vec3 centre = 0.5f * (bounds.lo + bounds.hi);
+  const float radius = bounds.diagonal();
   double worst = 0;
   for (const glm::vec3 direction : {glm::vec3(0.1f, 1.0f, 0.6f), glm::vec3(1.0f, 0.5f, -0.7f), glm::vec3(-0.9f, 0.3f, 0.3f)}) {
     const glm::vec3 eye = centre + radius * glm::normalize(direction);
