@@ -24,6 +24,9 @@ mesh::Mesh icosphere(int levels, float radius = 1.0f, const glm::vec3& center = 
 /// so triangles keep their outward orientation.
 mesh::Mesh bumpy_icosphere(int levels, float amplitude);
 
+/// A latitude-longitude unit sphere of rings x segments vertices plus the two poles, radial normals
+/// (lat_long_sphere(200, 250): the 50,002-vertex sphere of the frame-time benchmarks).
+mesh::Mesh lat_long_sphere(int rings, int segments);
 /// The benchmark mesh: bumpy_icosphere(8, 0.35): 655,362 vertices, 1,310,720 triangles, about 1.5
 /// units across.
 mesh::Mesh detailed_blob();

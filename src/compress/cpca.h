@@ -15,7 +15,7 @@
 //   4. refit: per cluster, mean and top-N principal directions of its members (exact symmetric
 //      eigensolver of the covariance for D <= 96, else subspace iteration with Rayleigh-Ritz warm-started
 //      from the previous directions; the previous directions are kept if they capture more variance);
-//   5. repeat 2-4 until the total squared residual falls by less than 1e-6 of itself, or `iterations`.
+//   5. repeat 2-4 until the total squared residual falls by less than 1e-4 of itself, or `iterations`.
 // Every step cannot increase the total squared residual, so error_history is non-increasing.
 //
 // Deterministic: work is split into fixed chunks of points or single clusters and every sum runs in a
