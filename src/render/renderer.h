@@ -23,9 +23,10 @@
 //               fragment's barycentrics. At a vertex this is prt::shade::shade_glossy exactly; the
 //               per-corner frames avoid interpolating coefficients between different frames (the frame's
 //               singularity at n = +-Y, brdf/frame.h).
-//   prt_cpca    prt_cpca.vert + surface.frag, for a CPCA-compressed transfer (.cprt, add_compressed): the
-//               CPU multiplies each cluster's mean and PCA directions with the lighting (glossy: then B),
-//               the vertex shader blends them with the vertex's weights (renderer_cpca.h).
+//   prt_cpca    prt_cpca.comp, then prt_cpca.vert + surface.frag, for a CPCA-compressed transfer (.cprt,
+//               add_compressed): the CPU multiplies each cluster's mean and PCA directions with the
+//               lighting (glossy: then B), the compute pass blends them per vertex with its weights
+//               (glossy: evaluated toward the eye at the vertex), the draw interpolates (renderer_cpca.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
@@ -228,7 +229,7 @@ class Renderer {
   bool has_mesh_ = false;
   std::vector<std::unique_ptr<TransferBuffer>> transfers_;     // null for compressed transfers
   std::vector<std::unique_ptr<CpcaTransfer>> compressed_;      // per transfer (may be shorter): non-null for CPCA
-  std::map<std::pair<int, int>, Program> cpca_programs_;       // by (N, output bands or 0)
+  std::map<std::pair<int, int>, Program> cpca_programs_;       // compute by (N, output bands or 0); draw at (-1, 0)
 
   std::vector<glm::vec3> lighting_;          // environment frame, padded to kMaxBands^2
   int lighting_bands_ = 1;

@@ -1,9 +1,12 @@
 // The renderer's CPCA pass (renderer_cpca.h; renderer.h, PASSES: prt_cpca).
 #include "render/renderer_cpca.h"
 
+#include <cstdio>
+
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
 
+#include "compress/cprt_file.h"
 #include "core/error.h"
 #include "render/renderer.h"
 
@@ -11,9 +14,13 @@ namespace prt::render {
 
 namespace {
 
-constexpr GLuint kProductsBinding = 6;  // prt_cpca.vert
+constexpr GLuint kProductsUnit = 0;      // prt_cpca.comp: samplerBuffer products
+constexpr GLuint kPositionsBinding = 4;  // prt_cpca.comp
+constexpr GLuint kNormalsBinding = 5;
 constexpr GLuint kClustersBinding = 7;
 constexpr GLuint kWeightsBinding = 8;
+constexpr GLuint kRadianceBinding = 9;   // prt_cpca.comp (written), prt_cpca.vert (read)
+constexpr GLuint kWorkgroupSize = 64;    // prt_cpca.comp: local_size_x
 
 // Diffuse: one rgb per vector.
 glm::vec4 diffuse_product(const float* a, int channels, int in_count, int used, const glm::vec3* lighting) {
@@ -87,8 +94,9 @@ CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::str
       c.bases.size() != c.means.size() * N)
     fail_file(origin, "compressed transfer arrays do not match its header");
   clusters_ = storage(c.cluster.data(), c.cluster.size() * sizeof(std::uint32_t), 0);
+  radiance_ = storage(nullptr, P * sizeof(glm::vec4), 0);
   weights_ = storage(c.weights.data(), c.weights.size() * sizeof(float), 0);
-  vertex_bytes_ = (c.cluster.size() + c.weights.size()) * 4;
+  vertex_bytes_ = (c.cluster.size() + c.weights.size()) * 4 + P * sizeof(glm::vec4);
   model_.source = c.source;
   model_.clusters = c.clusters;
   model_.pca = c.pca;
@@ -98,8 +106,9 @@ CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::str
 }
 
 CpcaTransfer::~CpcaTransfer() {
-  for (GLuint* b : {&products_, &clusters_, &weights_})
+  for (GLuint* b : {&products_, &clusters_, &weights_, &radiance_})
     if (*b != 0) glDeleteBuffers(1, b);
+  if (products_view_ != 0) glDeleteTextures(1, &products_view_);
 }
 
 void CpcaTransfer::prepare(const glm::vec3* lighting, int bands) {
@@ -109,11 +118,14 @@ void CpcaTransfer::prepare(const glm::vec3* lighting, int bands) {
     if (products_ != 0) glDeleteBuffers(1, &products_);
     products_ = storage(nullptr, bytes, GL_DYNAMIC_STORAGE_BIT);
     products_bytes_ = bytes;
+    if (products_view_ == 0) glCreateTextures(GL_TEXTURE_BUFFER, 1, &products_view_);
+    glTextureBuffer(products_view_, GL_RGBA32F, products_);
   }
   glNamedBufferSubData(products_, 0, static_cast<GLsizeiptr>(bytes), scratch_.data());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProductsBinding, products_);
+  glBindTextureUnit(kProductsUnit, products_view_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClustersBinding, clusters_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWeightsBinding, weights_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRadianceBinding, radiance_);
 }
 
 std::size_t CpcaTransfer::gpu_bytes() const {
@@ -143,6 +155,23 @@ int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t
   return renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
 }
 
+std::string transfer_memory_label(const SceneInputs& scene, std::size_t i) {
+  char text[160];
+  if (i < scene.compressed.size() && scene.compressed[i]) {
+    const compress::CompressedTransfer& c = *scene.compressed[i];
+    std::snprintf(text, sizeof text, ", CPCA K %d N %d, %.1f MB, error %.2f%%", c.clusters, c.pca, compress::payload_bytes(c) * 1e-6,
+                  100.0 * c.total.transfer_relative());
+    std::string label = text;
+    if (c.has_radiance_error) {
+      std::snprintf(text, sizeof text, " (radiance %.2f%%)", 100.0 * c.total.radiance_relative());
+      label += text;
+    }
+    return label;
+  }
+  std::snprintf(text, sizeof text, ", %.1f MB", compress::uncompressed_bytes(scene.transfers[i].header, transfer::Scalar::float32) * 1e-6);
+  return text;
+}
+
 bool Renderer::set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix) {
   if (!is_compressed(transfer)) return false;
   compressed_[static_cast<std::size_t>(transfer)]->set_brdf(matrix);
@@ -153,23 +182,35 @@ void Renderer::draw_cpca(const FrameSettings& settings, int bands) {
   CpcaTransfer& t = *compressed_[static_cast<std::size_t>(settings.transfer)];
   const bool glossy = transfer::is_glossy(t.header().kind);
   if (glossy && !t.has_brdf()) fail("renderer: glossy transfer " + std::to_string(settings.transfer) + " has no BRDF matrix (set_brdf)");
+  // Per vertex: blend the products (and, glossy, evaluate toward the eye) into the radiance buffer.
   t.prepare(rotated_.data(), bands);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glBindVertexArray(mesh_vao_);
   const int out_bands = glossy ? static_cast<int>(t.header().bands_out) : 0;
   auto found = cpca_programs_.find({t.pca(), out_bands});
   if (found == cpca_programs_.end()) {
     const std::string defines = "#define PCA " + std::to_string(t.pca()) + "\n#define OUT_BANDS " + std::to_string(out_bands) + "\n";
-    found = cpca_programs_.emplace(std::make_pair(t.pca(), out_bands), Program({"prt_cpca.vert", "surface.frag"}, defines)).first;
+    found = cpca_programs_.emplace(std::make_pair(t.pca(), out_bands), Program({"prt_cpca.comp"}, defines)).first;
   }
-  const Program& program = found->second;
-  glUseProgram(program.id());
-  glUniformMatrix4fv(program.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
+  const Program& compute = found->second;
+  glUseProgram(compute.id());
   // The eye in mesh coordinates, as the glossy pass: p = c + R_object^T (eye - c).
   const glm::dvec3 eye_object = view_.centre + glm::transpose(settings.object_rotation) * (view_.eye - view_.centre);
-  glUniform3f(program.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
+  glUniform3f(compute.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
               static_cast<float>(eye_object.z));
+  glUniform1i(compute.uniform("vertex_count"), static_cast<GLint>(vertex_count_));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, positions_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, normals_);
+  glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  // Draw with the per-vertex radiance, interpolated as the diffuse pass's.
+  found = cpca_programs_.find({-1, 0});
+  if (found == cpca_programs_.end()) found = cpca_programs_.emplace(std::make_pair(-1, 0), Program({"prt_cpca.vert", "surface.frag"})).first;
+  const Program& draw = found->second;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindVertexArray(mesh_vao_);
+  glUseProgram(draw.id());
+  glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
 }
 

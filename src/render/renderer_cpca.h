@@ -2,9 +2,11 @@
 // CPCA-compressed transfer on the GPU (renderer.h, PASSES: prt_cpca). Per frame, on the CPU, the
 // K x (N+1) products of every cluster's mean and PCA directions with the object-frame lighting
 // (glossy: then through the BRDF matrix B, as O = B (M L) of the uncompressed glossy pass; B is linear,
-// so B applied to each product equals B applied to the blend); then prt_cpca.vert blends each vertex's
-// N + 1 products with its weights (and, glossy, evaluates the outgoing radiance coefficients toward the
-// eye at the vertex, as prt::shade::shade_glossy does), and the rasteriser interpolates the radiance.
+// so B applied to each product equals B applied to the blend); then a compute pass, prt_cpca.comp,
+// blends each vertex's N + 1 products with its weights (and, glossy, evaluates the outgoing radiance
+// coefficients toward the eye at the vertex, as prt::shade::shade_glossy does) into a per-vertex
+// radiance buffer, and prt_cpca.vert + surface.frag draw it, interpolated like the diffuse pass (glossy
+// shading is per vertex here, not per fragment as in the uncompressed glossy pass).
 // At vertices this is `prt shade` of the .cprt (prt::shade of compress::decompress).
 #include <vector>
 
@@ -41,8 +43,8 @@ class CpcaTransfer {
   int pca() const { return model_.pca; }
   void set_brdf(const brdf::BrdfMatrix& matrix) { brdf_ = matrix, has_brdf_ = true; }
   bool has_brdf() const { return has_brdf_; }
-  /// This frame's products (first `bands` bands of the object-frame lighting), uploaded; then binds the
-  /// three storage buffers of prt_cpca.vert.
+  /// This frame's products (first `bands` bands of the object-frame lighting), uploaded; then binds
+  /// them (texture unit 0), the cluster ids, weights and the per-vertex radiance buffer of prt_cpca.comp.
   void prepare(const glm::vec3* lighting, int bands);
   /// Bytes on the GPU: ids, weights and one frame's products.
   std::size_t gpu_bytes() const;
@@ -52,7 +54,7 @@ class CpcaTransfer {
   transfer::Header header_;
   brdf::BrdfMatrix brdf_;
   bool has_brdf_ = false;
-  GLuint products_ = 0, clusters_ = 0, weights_ = 0;
+  GLuint products_ = 0, products_view_ = 0, clusters_ = 0, weights_ = 0, radiance_ = 0;
   std::size_t products_bytes_ = 0, vertex_bytes_ = 0;
   std::vector<glm::vec4> scratch_;
 };
@@ -61,5 +63,10 @@ class Renderer;
 
 /// Adds scene transfer i to the renderer: add_compressed for a .cprt file, add_transfer otherwise.
 int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i);
+
+/// For the viewer's transfer list: ", 25.0 MB" for a .prt transfer (float32 on the GPU), or
+/// ", CPCA K 128 N 8, 2.9 MB, error 1.23%" for a compressed one (its payload; the recorded relative
+/// transfer-space error, and the shaded-radiance error if recorded).
+std::string transfer_memory_label(const SceneInputs& scene, std::size_t i);
 
 }  // namespace prt::render

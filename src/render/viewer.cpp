@@ -270,7 +270,8 @@ void run_viewer(const ViewerOptions& options) {
     const transfer::Header& h = scene.transfers[i].header;
     state.transfer_names.push_back(std::filesystem::path(scene.transfer_paths[i]).filename().string() + " (" +
                                    transfer::kind_name(h.kind) + ", " + std::to_string(h.bands) + " bands, " +
-                                   std::to_string(h.channels) + (h.channels == 1 ? " channel)" : " channels)"));
+                                   std::to_string(h.channels) + (h.channels == 1 ? " channel" : " channels") +
+                                   transfer_memory_label(scene, i) + ")");
     state.transfer_bands.push_back(static_cast<int>(h.bands));
     const bool glossy = transfer::is_glossy(h.kind);
     state.transfer_brdfs.push_back(glossy ? (options.brdf.empty() ? shade::baked_brdf(h, scene.transfer_paths[i])

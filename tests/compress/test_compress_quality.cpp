@@ -18,34 +18,11 @@
 #include "mesh/mesh.h"
 #include "shade/glossy.h"
 #include "shade/shade.h"
+#include "support/shapes.h"
 
 using namespace prt;
 
 namespace {
-
-// The inside of the lower unit hemisphere, open toward +Y, normals toward the centre (as the bowl of
-// tests/bake/test_glossy_reference.cpp), finer.
-mesh::Mesh bowl(int rings, int segments) {
-  mesh::Mesh m;
-  for (int i = 0; i < rings; ++i) {
-    const double theta = M_PI / 2 + (M_PI / 2) * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double phi = 2 * M_PI * j / segments;
-      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
-    }
-  }
-  m.positions.push_back(glm::vec3(0, -1, 0));
-  for (const glm::vec3& p : m.positions) m.normals.push_back(-glm::normalize(p));
-  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * segments + (j % segments)); };
-  const std::uint32_t pole = static_cast<std::uint32_t>(m.positions.size() - 1);
-  for (int i = 0; i + 1 < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
-      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
-    }
-  for (int j = 0; j < segments; ++j) m.indices.insert(m.indices.end(), {at(rings - 1, j), pole, at(rings - 1, j + 1)});
-  return m;
-}
 
 const sh::RgbCoefficients& sunrise() {
   static const sh::RgbCoefficients l = light::project(light::load_environment(PRT_SOURCE_DIR "/assets/env/sunrise.exr"), 5);
@@ -85,7 +62,7 @@ double glossy_error(const mesh::Mesh& m, const transfer::TransferData& original,
 }  // namespace
 
 TEST_CASE("CPCA of glossy shadowed transfer, N = 8: shaded radiance within 2% (bowl K = 64, lion K = 128)", "[compress][slow]") {
-  const mesh::Mesh surface = bowl(40, 80);
+  const mesh::Mesh surface = test::bowl(40, 80);
   const transfer::TransferData t = bake_glossy(surface, 256);
   const compress::CompressedTransfer c = compress::compress_transfer(t, {64, 8}, transfer::Scalar::float32, "bowl");
   const double bowl_error = glossy_error(surface, t, c);
