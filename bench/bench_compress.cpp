@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <random>
 
 #include <sys/resource.h>
 
@@ -33,14 +32,7 @@ namespace {
 constexpr int kBands = 5;
 const char* const kBrdf = "phong:exponent=32,ks=0.5,kd=0.3";
 
-sh::RgbCoefficients test_lighting() {
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> gauss;
-  sh::RgbCoefficients l(kBands);
-  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * 0.3;
-  l.values[0] += glm::dvec3(3.0);
-  return l;
-}
+sh::RgbCoefficients test_lighting() { return bench::random_lighting(kBands); }
 
 double median_frame_ms(render::Renderer& renderer, const render::FrameSettings& settings) {
   std::vector<double> ms;

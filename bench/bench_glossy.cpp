@@ -124,14 +124,7 @@ void BM_ProjectGgx(benchmark::State& s) {
   timed(s, "project ggx 5 bands", [] { benchmark::DoNotOptimize(brdf::project(brdf::parse_brdf("ggx:roughness=0.3,f0=0.04,albedo=0.5"), kBands)); });
 }
 
-sh::RgbCoefficients test_lighting() {
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> gauss;
-  sh::RgbCoefficients l(kBands);
-  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * 0.3;
-  l.values[0] += glm::dvec3(3.0);
-  return l;
-}
+sh::RgbCoefficients test_lighting() { return bench::random_lighting(kBands); }
 
 void BM_ShadeDiffuse(benchmark::State& s) {
   Fixture& f = fixture();

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <ctime>
 #include <glm/geometric.hpp>
 #include <map>
@@ -340,6 +341,15 @@ mesh::Mesh lat_long_sphere(int rings, int segments) {
     }
   m.positions.reserve(m.positions.size() + 1);
   return m;
+}
+
+sh::RgbCoefficients random_lighting(int bands) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss;
+  sh::RgbCoefficients l(bands);
+  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * 0.3;
+  l.values[0] += glm::dvec3(3.0);
+  return l;
 }
 
 }  // namespace prt::bench
