@@ -124,14 +124,7 @@ void BM_ProjectGgx(benchmark::State& s) {
   timed(s, "project ggx 5 bands", [] { benchmark::DoNotOptimize(brdf::project(brdf::parse_brdf("ggx:roughness=0.3,f0=0.04,albedo=0.5"), kBands)); });
 }
 
-sh::RgbCoefficients test_lighting() {
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> gauss;
-  sh::RgbCoefficients l(kBands);
-  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * 0.3;
-  l.values[0] += glm::dvec3(3.0);
-  return l;
-}
+sh::RgbCoefficients test_lighting() { return bench::random_lighting(kBands); }
 
 void BM_ShadeDiffuse(benchmark::State& s) {
   Fixture& f = fixture();
@@ -148,34 +141,6 @@ void BM_ShadeGlossy(benchmark::State& s) {
 }
 
 #ifdef PRT_WITH_GL
-// A latitude-longitude unit sphere of rings x segments vertices plus the two poles, radial normals.
-mesh::Mesh lat_long_sphere(int rings, int segments) {
-  mesh::Mesh m;
-  m.positions.push_back({0, 1, 0});
-  for (int i = 1; i <= rings; ++i) {
-    const double theta = M_PI * i / (rings + 1);
-    for (int j = 0; j < segments; ++j) {
-      const double phi = 2 * M_PI * j / segments;
-      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
-    }
-  }
-  m.positions.push_back({0, -1, 0});
-  m.normals = m.positions;
-  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments)); };
-  const std::uint32_t bottom = static_cast<std::uint32_t>(m.positions.size() - 1);
-  for (int j = 0; j < segments; ++j) {
-    m.indices.insert(m.indices.end(), {0u, at(1, j + 1), at(1, j)});
-    m.indices.insert(m.indices.end(), {bottom, at(rings, j), at(rings, j + 1)});
-  }
-  for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)});
-      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
-    }
-  m.positions.reserve(m.positions.size() + 1);
-  return m;
-}
-
 struct FrameTimes {
   double diffuse_ms = 0.0, glossy_ms = 0.0, glossy_compute_only_ms = 0.0;
   std::size_t vertices = 0;
@@ -197,7 +162,7 @@ double median_frame_ms(render::Renderer& renderer, const render::FrameSettings& 
 
 void BM_FrameTime(benchmark::State& state) {
   for (auto _ : state) {
-    const mesh::Mesh sphere = lat_long_sphere(200, 250);  // 50,002 vertices
+    const mesh::Mesh sphere = bench::lat_long_sphere(200, 250);  // 50,002 vertices
     bake::BakeOptions diffuse_options;
     diffuse_options.kind = transfer::Kind::unshadowed;
     diffuse_options.bands = kBands;

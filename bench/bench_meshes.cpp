@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <ctime>
 #include <glm/geometric.hpp>
 #include <map>
@@ -312,6 +313,43 @@ PassResult closest_hit_pass(const trace::Scene& scene, const mesh::Mesh& mesh, c
     for (std::size_t i = 0; i < batch.size(); ++i) hits += batch.hit(i).hit() ? 1 : 0;
     return hits;
   });
+}
+
+// A latitude-longitude unit sphere of rings x segments vertices plus the two poles, radial normals.
+mesh::Mesh lat_long_sphere(int rings, int segments) {
+  mesh::Mesh m;
+  m.positions.push_back({0, 1, 0});
+  for (int i = 1; i <= rings; ++i) {
+    const double theta = M_PI * i / (rings + 1);
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2 * M_PI * j / segments;
+      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+    }
+  }
+  m.positions.push_back({0, -1, 0});
+  m.normals = m.positions;
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments)); };
+  const std::uint32_t bottom = static_cast<std::uint32_t>(m.positions.size() - 1);
+  for (int j = 0; j < segments; ++j) {
+    m.indices.insert(m.indices.end(), {0u, at(1, j + 1), at(1, j)});
+    m.indices.insert(m.indices.end(), {bottom, at(rings, j), at(rings, j + 1)});
+  }
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)});
+      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  m.positions.reserve(m.positions.size() + 1);
+  return m;
+}
+
+sh::RgbCoefficients random_lighting(int bands) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss;
+  sh::RgbCoefficients l(bands);
+  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * 0.3;
+  l.values[0] += glm::dvec3(3.0);
+  return l;
 }
 
 }  // namespace prt::bench

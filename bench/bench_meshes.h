@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "sh/coefficients.h"
 #include "trace/scene.h"
 
 namespace prt::bench {
@@ -24,6 +25,12 @@ mesh::Mesh icosphere(int levels, float radius = 1.0f, const glm::vec3& center = 
 /// so triangles keep their outward orientation.
 mesh::Mesh bumpy_icosphere(int levels, float amplitude);
 
+/// Lighting of `bands` bands: Gaussian coefficients (sigma 0.3 per channel, std::mt19937_64 seed 5) plus
+/// 3 on every channel of the constant term, so the radiance it gives stays positive.
+sh::RgbCoefficients random_lighting(int bands);
+/// A latitude-longitude unit sphere of rings x segments vertices plus the two poles, radial normals
+/// (lat_long_sphere(200, 250): the 50,002-vertex sphere of the frame-time benchmarks).
+mesh::Mesh lat_long_sphere(int rings, int segments);
 /// The benchmark mesh: bumpy_icosphere(8, 0.35): 655,362 vertices, 1,310,720 triangles, about 1.5
 /// units across.
 mesh::Mesh detailed_blob();

@@ -7,6 +7,7 @@ find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json 3 CONFIG REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
+find_package(Eigen3 3.3 CONFIG REQUIRED)
 
 # Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist; generation fails as
 # soon as anything links it. Drop that entry.

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 all=(bench_sh_eval bench_sh_rotation bench_sh_zonal bench_projection bench_trace bench_bake bench_render
-     bench_glossy bench_probes)
+     bench_glossy bench_probes bench_compress)
 selected=("$@")
 if ((${#selected[@]} == 0)); then selected=("${all[@]}"); fi
 for b in "${selected[@]}"; do

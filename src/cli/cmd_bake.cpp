@@ -5,7 +5,9 @@
 #include "bake/bake.h"
 #include "brdf/brdf.h"
 #include "cli/arguments.h"
+#include "cli/cmd_compress.h"
 #include "cli/commands.h"
+#include "compress/cprt_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
@@ -23,6 +25,7 @@ struct BakeCommandOptions {
   std::string kind = "shadowed";
   std::string albedo;
   std::string brdf;
+  std::string compress;  // "K,N": write a .cprt instead of the .prt
   int bands = 5;
   int bands_out = 0;
   int samples = 1024;
@@ -50,6 +53,9 @@ void run_bake(const BakeCommandOptions& o) {
   }
   options.bands_out = o.bands_out;
   bake::validate_options(options);
+  int clusters = 0, pca = 0;
+  if (!o.compress.empty() && !parse_compress_setting(o.compress, clusters, pca))
+    fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
   if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
     fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
   // Check the output folders before spending minutes baking.
@@ -63,7 +69,14 @@ void run_bake(const BakeCommandOptions& o) {
   transfer::TransferData data = bake::bake(mesh, options, &report);
   if (o.float16) data.header.scalar = transfer::Scalar::float16;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  transfer::write_transfer(o.output, data);
+  if (o.compress.empty()) {
+    transfer::write_transfer(o.output, data);
+  } else {
+    CompressionRequest request;
+    request.options = {clusters, pca, 20, o.seed, o.threads};
+    request.scalar = data.header.scalar;
+    compress::write_cprt(o.output, compress_for_cli(data, o.output, request));
+  }
   if (!o.gltf_output.empty()) mesh::write_glb(o.gltf_output, mesh, bake::pack_transfer_attributes(data));
 
   if (!o.quiet) {
@@ -104,6 +117,8 @@ void add_bake_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");
   cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
+  cmd->add_option("--compress", options->compress,
+                  "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar or summary");
   cmd->callback([options] { run_bake(*options); });
 }

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "cli/commands.h"
+#include "compress/cprt_file.h"
 #include "core/error.h"
 #include "light/light_file.h"
 #include "transfer/transfer_file.h"
@@ -19,6 +20,10 @@ void run_info(const std::string& path) {
   const std::string head(magic, static_cast<std::size_t>(in.gcount()));
   if (head == std::string("PRTXFER\0", 8)) {
     std::printf("%s: prt transfer file\n%s", path.c_str(), transfer::describe(transfer::read_transfer_header(path)).c_str());
+    return;
+  }
+  if (head == std::string(compress::kCprtMagic, 8)) {
+    std::printf("%s: prt compressed transfer file\n%s", path.c_str(), compress::describe(compress::read_cprt_header(path)).c_str());
     return;
   }
   if (!head.empty() && head[0] == '{') {

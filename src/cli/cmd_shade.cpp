@@ -8,6 +8,7 @@
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "cli/lighting_input.h"
+#include "compress/cprt_file.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
@@ -38,7 +39,7 @@ void run_shade(const ShadeCommandOptions& o) {
   if (!glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
   const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, true);
-  const transfer::TransferData transfer = transfer::read_transfer(o.transfer_path);
+  const transfer::TransferData transfer = compress::read_transfer_or_cprt(o.transfer_path);  // .prt or .cprt
   transfer::check_mesh_match(o.transfer_path, transfer.header, mesh.positions.size(), mesh.indices.size() / 3,
                              mesh::fingerprint(mesh));
   const bool glossy = transfer::is_glossy(transfer.header.kind);
@@ -76,7 +77,7 @@ void add_shade_command(CLI::App& app) {
   auto options = std::make_shared<ShadeCommandOptions>();
   CLI::App* cmd = app.add_subcommand("shade", "Per-vertex outgoing radiance (transfer . lighting) as a colour PLY or .glb (COLOR_0)");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfer was baked for")->required();
-  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt)")->required();
+  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt) or compressed transfer (.cprt)")->required();
   cmd->add_option("--env", options->env, "Environment image (equirect 2:1, cross, or six faces) projected to the transfer's bands");
   cmd->add_option("--light", options->light, "SH lighting JSON written by `prt light`");
   cmd->add_option("--rotate", options->rotate, "YAW,PITCH,ROLL degrees: rotate the lighting by Ry Rx Rz");

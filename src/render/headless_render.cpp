@@ -1,4 +1,5 @@
 #include "render/headless_render.h"
+#include "render/renderer_cpca.h"
 
 #include <chrono>
 #include <cctype>
@@ -58,9 +59,9 @@ void render_to_file(const RenderOptions& options) {
   HeadlessContext context;
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
-  const int index = renderer.add_transfer(scene.transfers[0], scene.transfer_paths[0]);
+  const int index = add_scene_transfer(renderer, scene, 0);
   if (glossy) renderer.set_brdf(index, *glossy, surface);
-  if (!lighting.discs.empty() && !glossy)
+  if (!lighting.discs.empty() && !glossy && !renderer.is_compressed(index))
     renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[0].header, scene.transfer_paths[0]));
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
   renderer.set_discs(lighting.discs);

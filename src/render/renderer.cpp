@@ -1,4 +1,5 @@
 #include "render/renderer.h"
+#include "render/renderer_cpca.h"
 
 #include <algorithm>
 #include <cmath>
@@ -151,6 +152,7 @@ Renderer::Renderer()
 Renderer::~Renderer() {
   sun_.reset();
   transfers_.clear();
+  compressed_.clear();
   for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
   delete_buffer(outgoing_);
   delete_buffer(positions_);
@@ -171,6 +173,7 @@ Renderer::~Renderer() {
 void Renderer::set_mesh(const mesh::Mesh& mesh) {
   sun_->clear_mesh();
   transfers_.clear();
+  compressed_.clear();
   for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
   brdf_buffers_.clear();
   brdf_bands_.clear();
@@ -223,6 +226,7 @@ int Renderer::add_transfer(const transfer::TransferData& transfer, const std::st
 
 const transfer::Header& Renderer::transfer_header(int index) const {
   if (index < 0 || index >= transfer_count()) fail("renderer: no transfer " + std::to_string(index));
+  if (is_compressed(index)) return compressed_[static_cast<std::size_t>(index)]->header();
   return transfers_[static_cast<std::size_t>(index)]->header();
 }
 
@@ -333,7 +337,9 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
   glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &far_depth);
 
   draw_background(settings, bands);
-  if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))
+  if (prt && is_compressed(settings.transfer))
+    draw_cpca(settings, bands);
+  else if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))
     draw_glossy(settings, bands, sun);
   else
     draw_mesh(settings, bands, sun);

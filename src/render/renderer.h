@@ -23,6 +23,10 @@
 //               fragment's barycentrics. At a vertex this is prt::shade::shade_glossy exactly; the
 //               per-corner frames avoid interpolating coefficients between different frames (the frame's
 //               singularity at n = +-Y, brdf/frame.h).
+//   prt_cpca    prt_cpca.comp, then prt_cpca.vert + surface.frag, for a CPCA-compressed transfer (.cprt,
+//               add_compressed): the CPU multiplies each cluster's mean and PCA directions with the
+//               lighting (glossy: then B), the compute pass blends them per vertex with its weights
+//               (glossy: evaluated toward the eye at the vertex), the draw interpolates (renderer_cpca.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
 //   sun         discs (light/disc.h: a sun, lamps; set_discs), renderer_sun.cpp: when the lighting
@@ -64,7 +68,13 @@
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
+namespace prt::compress {
+struct CompressedTransfer;
+}
+
 namespace prt::render {
+
+class CpcaTransfer;
 
 // The camera is prt::camera (src/camera, no GL), shared with `prt reference --image`; the renderer's
 // API keeps its names.
@@ -173,6 +183,10 @@ class Renderer {
   /// (shade::surface_albedo: the albedo it was baked with). Until set: the mesh's albedo (0.8 grey
   /// where it has none). Throws prt::Error for a wrong size or index.
   void set_surface_albedo(int transfer, const std::vector<glm::vec3>& albedo);
+  /// Uploads a CPCA-compressed transfer (renderer_cpca.h) for the current mesh; returns its index in the
+  /// same list as add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs.
+  int add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin);
+  bool is_compressed(int transfer) const;
   int transfer_count() const { return static_cast<int>(transfers_.size()); }
   const transfer::Header& transfer_header(int index) const;
 
@@ -244,6 +258,10 @@ class Renderer {
   /// Binds the glossy bounce coefficients for prt_glossy.comp with SUN.
   void bind_sun_bounce();
   std::unique_ptr<SunPass> sun_;
+  /// The CPCA pass (renderer_cpca.cpp).
+  void draw_cpca(const FrameSettings& settings, int bands);
+  /// set_brdf for a compressed transfer (kept on the CPU for the products); false if `transfer` is not one.
+  bool set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix);
 
   Program background_, lambert_, tonemap_;
   std::map<std::tuple<int, int, int, int, bool>, Program> prt_programs_;
@@ -259,7 +277,9 @@ class Renderer {
   std::size_t vertex_count_ = 0;
   mesh::Bounds bounds_;
   bool has_mesh_ = false;
-  std::vector<std::unique_ptr<TransferBuffer>> transfers_;
+  std::vector<std::unique_ptr<TransferBuffer>> transfers_;     // null for compressed transfers
+  std::vector<std::unique_ptr<CpcaTransfer>> compressed_;      // per transfer (may be shorter): non-null for CPCA
+  std::map<std::pair<int, int>, Program> cpca_programs_;       // compute by (N, output bands or 0); draw at (-1, 0)
 
   std::vector<glm::vec3> lighting_;          // environment frame, padded to kMaxBands^2
   int lighting_bands_ = 1;

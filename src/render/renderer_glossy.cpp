@@ -30,6 +30,7 @@ void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix) {
   if (matrix.bands != static_cast<int>(header.bands_out))
     fail("renderer: the BRDF matrix has " + std::to_string(matrix.bands) + " bands, the transfer's output " +
          std::to_string(header.bands_out));
+  if (set_compressed_brdf(transfer, matrix)) return;
   const int n = matrix.coefficients();
   std::vector<glm::vec4> entries(static_cast<std::size_t>(n) * n);
   for (int c = 0; c < 3; ++c) {

@@ -1,5 +1,7 @@
 #include "render/scene_inputs.h"
 
+#include "compress/cprt_file.h"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -37,7 +39,8 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
   scene.mesh = mesh::load_mesh(mesh_path, nullptr, /*quiet=*/true);
   const std::uint64_t fingerprint = mesh::fingerprint(scene.mesh);
   for (const std::string& path : transfer_paths) {
-    transfer::TransferData data = transfer::read_transfer(path);
+    transfer::TransferData data;
+    scene.compressed.push_back(compress::read_transfer_or_model(path, data));
     transfer::check_mesh_match(path, data.header, scene.mesh.vertex_count(), scene.mesh.triangle_count(),
                                fingerprint);
     scene.transfers.push_back(std::move(data));

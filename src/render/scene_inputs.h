@@ -4,8 +4,11 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
+#include "compress/compressed.h"
 #include "image/image.h"
 #include "light/scene_lighting.h"
 #include "mesh/mesh.h"
@@ -19,9 +22,12 @@ struct SceneInputs {
   mesh::Mesh mesh;
   std::vector<transfer::TransferData> transfers;
   std::vector<std::string> transfer_paths;
+  /// Per transfer: the model of a compressed (.cprt) file, whose entry in `transfers` then has the
+  /// header only (no values); null for a .prt file.
+  std::vector<std::shared_ptr<const compress::CompressedTransfer>> compressed;
 };
 
-/// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer, checks every transfer against the mesh
+/// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer (.prt, or .cprt: compressed), checks every transfer against the mesh
 /// (transfer::check_mesh_match with mesh::fingerprint). Throws prt::Error("<file>: <problem>") for the
 /// first file that fails.
 SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths);

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "shade/glossy.h"
 #include "shade/surface_albedo.h"
+#include "render/renderer_cpca.h"
 #include "render/viewer_state.h"
 #include "sh/rotation.h"
 
@@ -273,7 +274,8 @@ void run_viewer(const ViewerOptions& options) {
     const transfer::Header& h = scene.transfers[i].header;
     state.transfer_names.push_back(std::filesystem::path(scene.transfer_paths[i]).filename().string() + " (" +
                                    transfer::kind_name(h.kind) + ", " + std::to_string(h.bands) + " bands, " +
-                                   std::to_string(h.channels) + (h.channels == 1 ? " channel)" : " channels)"));
+                                   std::to_string(h.channels) + (h.channels == 1 ? " channel" : " channels") +
+                                   transfer_memory_label(scene, i) + ")");
     state.transfer_bands.push_back(static_cast<int>(h.bands));
     const bool glossy = transfer::is_glossy(h.kind);
     state.transfer_brdfs.push_back(glossy ? (options.brdf.empty() ? shade::baked_brdf(h, scene.transfer_paths[i])
@@ -305,7 +307,7 @@ void run_viewer(const ViewerOptions& options) {
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
-    const int index = renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+    const int index = add_scene_transfer(renderer, scene, i);
     if (!state.transfer_brdfs[i].empty())
       renderer.set_brdf(index, brdf::project(state.transfer_brdfs[i], state.transfer_bands_out[i]), state.transfer_brdfs[i]);
     else

@@ -50,31 +50,6 @@ mesh::Mesh welded_cup(int cells) {
   return out;
 }
 
-// The inside of the lower unit hemisphere (a bowl open toward +Y), normals toward the centre: smooth
-// and concave, every point sees most of the others. Ring 0 is the rim, the pole comes last.
-mesh::Mesh bowl(int rings, int segments) {
-  mesh::Mesh m;
-  for (int i = 0; i < rings; ++i) {
-    const double theta = M_PI / 2 + (M_PI / 2) * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double phi = 2 * M_PI * j / segments;
-      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
-    }
-  }
-  m.positions.push_back(glm::vec3(0, -1, 0));
-  for (const glm::vec3& p : m.positions) m.normals.push_back(-glm::normalize(p));
-  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * segments + (j % segments)); };
-  const std::uint32_t pole = static_cast<std::uint32_t>(m.positions.size() - 1);
-  for (int i = 0; i + 1 < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
-      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
-    }
-  for (int j = 0; j < segments; ++j) m.indices.insert(m.indices.end(), {at(rings - 1, j), pole, at(rings - 1, j + 1)});
-  m.positions.reserve(m.positions.size() + 1);
-  return m;
-}
-
 // Sky gradient, a bright broad lobe (a low sun) and a coloured horizon band: strongly directional.
 light::Environment sky() {
   const glm::dvec3 sun = glm::normalize(glm::dvec3(0.6, 0.7, 0.4));
@@ -115,7 +90,7 @@ TEST_CASE("glossy PRT agrees with the glossy reference under band-limited lighti
   // the BRDF at the interpolated normal, and near a 45-degree crease normal a glossy lobe differs a lot
   // between the two (reported in the note; Lambert shows 0.8% there).
   const int bands = 5;
-  const mesh::Mesh surface = bowl(10, 20);
+  const mesh::Mesh surface = test::bowl(10, 20);
   const light::Environment env = sky();
   const sh::RgbCoefficients lighting = light::project(env, bands);
   const reference::EnvironmentSampler limited(reference::band_limited_environment(env, bands));
@@ -161,7 +136,7 @@ TEST_CASE("report: glossy PRT against the reference per band count", "[.report]"
     const char* name;
     mesh::Mesh mesh;
   };
-  for (const Surface& s : {Surface{"bowl", bowl(10, 20)}, Surface{"cup", welded_cup(8)}}) {
+  for (const Surface& s : {Surface{"bowl", test::bowl(10, 20)}, Surface{"cup", welded_cup(8)}}) {
     for (const char* spec : {"lambert:albedo=0.8", "phong:exponent=16,ks=0.5,kd=0.4", "blinn:exponent=32,ks=0.5,kd=0.4",
                              "ggx:roughness=0.4,f0=0.5/0.4/0.3,albedo=0.3"}) {
       for (int bounces : {0, 1}) {

@@ -36,33 +36,10 @@ reference::ReferenceOptions options_for(int samples, int bounces, glm::vec3 albe
   return o;
 }
 
-// The inside of the lower unit hemisphere (y <= 0), open at the top, normals toward the centre.
-mesh::Mesh hemispherical_bowl(int rings, int segments) {
-  mesh::Mesh m;
-  for (int i = 0; i < rings; ++i) {  // ring 0 is the rim (theta = pi/2), the pole comes last
-    const double theta = kPi / 2 + (kPi / 2) * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double phi = 2 * kPi * j / segments;
-      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
-    }
-  }
-  m.positions.push_back(glm::vec3(0, -1, 0));
-  for (const glm::vec3& p : m.positions) m.normals.push_back(-glm::normalize(p));
-  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * segments + (j % segments)); };
-  const std::uint32_t pole = static_cast<std::uint32_t>(m.positions.size() - 1);
-  for (int i = 0; i + 1 < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
-      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
-    }
-  for (int j = 0; j < segments; ++j) m.indices.insert(m.indices.end(), {at(rings - 1, j), pole, at(rings - 1, j + 1)});
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("hemispherical bowl: L_K = albedo c / 2 * sum_{k<=K} (albedo / 2)^k for every bounce count", "[reference]") {
-  const mesh::Mesh bowl = hemispherical_bowl(24, 64);
+  const mesh::Mesh bowl = test::bowl(24, 64);
   // Front faces look at the centre (inward).
   for (std::size_t t = 0; t < bowl.triangle_count(); ++t) {
     const glm::vec3 a = bowl.positions[bowl.indices[3 * t]], b = bowl.positions[bowl.indices[3 * t + 1]],

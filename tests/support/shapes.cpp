@@ -87,4 +87,26 @@ mesh::Mesh open_box(float height, int cells) {
   return m;
 }
 
+mesh::Mesh bowl(int rings, int segments) {
+  mesh::Mesh m;
+  for (int i = 0; i < rings; ++i) {
+    const double theta = M_PI / 2 + (M_PI / 2) * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2 * M_PI * j / segments;
+      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+    }
+  }
+  m.positions.push_back(glm::vec3(0, -1, 0));
+  for (const glm::vec3& p : m.positions) m.normals.push_back(-glm::normalize(p));
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * segments + (j % segments)); };
+  const std::uint32_t pole = static_cast<std::uint32_t>(m.positions.size() - 1);
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
+      m.indices.insert(m.indices.end(), {at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+    }
+  for (int j = 0; j < segments; ++j) m.indices.insert(m.indices.end(), {at(rings - 1, j), pole, at(rings - 1, j + 1)});
+  return m;
+}
+
 }  // namespace prt::test

@@ -15,6 +15,10 @@ mesh::Mesh torus(float major_radius, float minor_radius, int major_segments, int
 /// (into the box), each face a grid of cells x cells quads. No lid: concave, open to the sky.
 mesh::Mesh open_box(float height, int cells);
 
+/// The inside of the lower unit hemisphere (a bowl open toward +Y), `rings` x `segments` vertices plus
+/// the pole (last), normals toward the centre: smooth and concave. Ring 0 is the rim.
+mesh::Mesh bowl(int rings, int segments);
+
 /// A closed mesh seen from inside is not something the baker handles (single-sided); these shapes
 /// are all meant to be seen from the side of their normals.
 

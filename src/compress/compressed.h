@@ -1,0 +1,68 @@
+#pragma once
+// A transfer file compressed by CPCA (cpca.h): per-cluster means and principal directions, per-vertex
+// cluster and weights, and how well it reconstructs the original. Each vertex's whole block of
+// values (TransferData: channels x bands^2 for diffuse, channels x bands_out^2 x bands^2 for glossy)
+// is one point of dimension D = Header::values_per_vertex(), so
+//   T_p ~ mu_k + sum_n w_pn b_kn   (k = cluster of p),
+// and, transfer being linear in the lighting, shading with T_p is the same blend of the shadings with
+// mu_k and b_kn (what the renderer computes per frame: K x (N+1) products, then a blend per vertex).
+//
+// Errors: sums of squares, relative error = sqrt(error2 / norm2).
+//   transfer space: |T_p - T~_p|^2 and |T_p|^2 over the vertex's values;
+//   shaded radiance (optional, under one lighting): diffuse, the outgoing RGB radiance
+//   (shade::shade_diffuse); glossy, the outgoing radiance coefficients O_p = B (M_p L) with the BRDF the
+//   transfer was baked with (shade::glossy_outgoing_coefficients) -- by the orthonormality of the SH
+//   basis, |O_p|^2 is the integral over all view directions of the squared outgoing radiance.
+#include <cstdint>
+#include <vector>
+
+#include "compress/cpca.h"
+#include "sh/coefficients.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::compress {
+
+struct ErrorSums {
+  double transfer_error2 = 0.0, transfer_norm2 = 0.0;
+  double radiance_error2 = 0.0, radiance_norm2 = 0.0;
+  double transfer_relative() const;   ///< sqrt(error2 / norm2); 0 when norm2 is 0
+  double radiance_relative() const;
+};
+
+struct CompressedTransfer {
+  /// The uncompressed transfer's header (kind, bands, bands_out, channels, vertex and triangle count,
+  /// mesh fingerprint, parameters JSON); `source.scalar` is the scalar type of the compressed values.
+  transfer::Header source;
+  int clusters = 0;                     ///< K
+  int pca = 0;                          ///< N
+  int iterations = 0;                   ///< CPCA rounds run
+  std::vector<float> means;             ///< K x D (already rounded to source.scalar)
+  std::vector<float> bases;             ///< K x N x D
+  std::vector<std::uint32_t> cluster;   ///< per vertex, < K
+  std::vector<float> weights;           ///< per vertex, N
+  bool has_radiance_error = false;
+  ErrorSums total;
+  std::vector<ErrorSums> per_cluster;   ///< K entries
+  std::size_t dimension() const { return static_cast<std::size_t>(source.values_per_vertex()); }
+};
+
+/// Compresses `transfer` (any kind, 1 or 3 channels) with CPCA, stores the model as `scalar` (float16
+/// rounds means, directions and weights to nearest even) and fills the transfer-space error sums of
+/// the stored model. `what` names the input in errors (bad K, N, iterations).
+CompressedTransfer compress_transfer(const transfer::TransferData& transfer, const CpcaOptions& options, transfer::Scalar scalar,
+                                     const std::string& what);
+
+/// The reconstruction mu_k + sum_n w_pn b_kn of every vertex, as a float32 TransferData with the
+/// source header.
+transfer::TransferData decompress(const CompressedTransfer& compressed);
+
+/// Adds the shaded-radiance error sums under `lighting` (world-frame radiance coefficients) against the
+/// uncompressed `original` (see the header comment). Throws prt::Error naming `what` if a glossy
+/// transfer records no BRDF.
+void add_radiance_error(CompressedTransfer& compressed, const transfer::TransferData& original,
+                        const sh::RgbCoefficients& lighting, const std::string& what);
+
+/// Payload bytes of the uncompressed transfer stored as `scalar` (cprt_file.h gives the compressed).
+std::uint64_t uncompressed_bytes(const transfer::Header& header, transfer::Scalar scalar);
+
+}  // namespace prt::compress

@@ -1,0 +1,219 @@
+// The renderer's CPCA pass (renderer_cpca.h; renderer.h, PASSES: prt_cpca).
+#include "render/renderer_cpca.h"
+#include "render/renderer_sun.h"
+
+#include <cstdio>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/matrix.hpp>
+
+#include "compress/cprt_file.h"
+#include "core/error.h"
+#include "render/renderer.h"
+
+namespace prt::render {
+
+namespace {
+
+constexpr GLuint kProductsUnit = 0;      // prt_cpca.comp: samplerBuffer products
+constexpr GLuint kPositionsBinding = 4;  // prt_cpca.comp
+constexpr GLuint kNormalsBinding = 5;
+constexpr GLuint kClustersBinding = 7;
+constexpr GLuint kWeightsBinding = 8;
+constexpr GLuint kRadianceBinding = 9;   // prt_cpca.comp (written), prt_cpca.vert (read)
+constexpr GLuint kWorkgroupSize = 64;    // prt_cpca.comp: local_size_x
+
+// Diffuse: one rgb per vector.
+glm::vec4 diffuse_product(const float* a, int channels, int in_count, int used, const glm::vec3* lighting) {
+  glm::vec3 sum(0.0f);
+  for (int c = 0; c < 3; ++c) {
+    const float* row = a + (channels == 3 ? c : 0) * in_count;
+    float s = 0.0f;
+    for (int i = 0; i < used; ++i) s += row[i] * lighting[i][c];
+    sum[c] = s;
+  }
+  return glm::vec4(sum, 0.0f);
+}
+
+// Glossy: O = B (A L), out_count rgb per vector; `t` is scratch of out_count.
+void glossy_product(const float* a, int channels, int in_count, int used, int out_count, const glm::vec3* lighting,
+                    const brdf::BrdfMatrix& b, std::vector<glm::vec3>& t, glm::vec4* out) {
+  const std::size_t matrix = static_cast<std::size_t>(out_count) * in_count;
+  for (int o = 0; o < out_count; ++o)
+    for (int c = 0; c < 3; ++c) {
+      const float* row = a + (channels == 3 ? c : 0) * matrix + static_cast<std::size_t>(o) * in_count;
+      float s = 0.0f;
+      for (int i = 0; i < used; ++i) s += row[i] * lighting[i][c];
+      t[static_cast<std::size_t>(o)][c] = s;
+    }
+  for (int o = 0; o < out_count; ++o) {
+    glm::vec3 sum(0.0f);
+    for (int c = 0; c < 3; ++c) {
+      const double* brow = b.for_colour(c) + static_cast<std::size_t>(o) * out_count;
+      float s = 0.0f;
+      for (int q = 0; q < out_count; ++q) s += static_cast<float>(brow[q]) * t[static_cast<std::size_t>(q)][c];
+      sum[c] = s;
+    }
+    out[o] = glm::vec4(sum, 0.0f);
+  }
+}
+
+GLuint storage(const void* data, std::size_t bytes, GLbitfield flags) {
+  GLuint buffer = 0;
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 16)), data, flags);
+  return buffer;
+}
+
+}  // namespace
+
+void cpca_products(const compress::CompressedTransfer& c, const glm::vec3* lighting, int bands, const brdf::BrdfMatrix* b,
+                   std::vector<glm::vec4>& out) {
+  const transfer::Header& h = c.source;
+  const bool glossy = transfer::is_glossy(h.kind);
+  if (glossy && (b == nullptr || b->bands != static_cast<int>(h.bands_out)))
+    fail("renderer: compressed glossy transfer needs a BRDF matrix of its output bands");
+  const int channels = static_cast<int>(h.channels), in_count = static_cast<int>(h.bands * h.bands), used = bands * bands;
+  const int out_count = glossy ? static_cast<int>(h.bands_out * h.bands_out) : 1;
+  const std::size_t D = c.dimension(), vectors = static_cast<std::size_t>(c.clusters) * (c.pca + 1);
+  out.resize(vectors * out_count);
+  std::vector<glm::vec3> t(static_cast<std::size_t>(out_count));
+  for (std::size_t v = 0; v < vectors; ++v) {
+    const std::size_t k = v / (c.pca + 1), j = v % (c.pca + 1);
+    const float* a = j == 0 ? &c.means[k * D] : &c.bases[(k * c.pca + j - 1) * D];
+    if (glossy)
+      glossy_product(a, channels, in_count, used, out_count, lighting, *b, t, &out[v * out_count]);
+    else
+      out[v] = diffuse_product(a, channels, in_count, used, lighting);
+  }
+}
+
+CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::string& origin) : header_(c.source) {
+  header_.scalar = transfer::Scalar::float32;
+  const std::size_t P = static_cast<std::size_t>(c.source.vertex_count), N = static_cast<std::size_t>(c.pca);
+  if (c.cluster.size() != P || c.weights.size() != P * N || c.means.size() != static_cast<std::size_t>(c.clusters) * c.dimension() ||
+      c.bases.size() != c.means.size() * N)
+    fail_file(origin, "compressed transfer arrays do not match its header");
+  clusters_ = storage(c.cluster.data(), c.cluster.size() * sizeof(std::uint32_t), 0);
+  radiance_ = storage(nullptr, P * sizeof(glm::vec4), 0);
+  weights_ = storage(c.weights.data(), c.weights.size() * sizeof(float), 0);
+  vertex_bytes_ = (c.cluster.size() + c.weights.size()) * 4 + P * sizeof(glm::vec4);
+  model_.source = c.source;
+  model_.clusters = c.clusters;
+  model_.pca = c.pca;
+  model_.means = c.means;
+  model_.bases = c.bases;
+  check_gl("uploading a compressed transfer");
+}
+
+CpcaTransfer::~CpcaTransfer() {
+  for (GLuint* b : {&products_, &clusters_, &weights_, &radiance_})
+    if (*b != 0) glDeleteBuffers(1, b);
+  if (products_view_ != 0) glDeleteTextures(1, &products_view_);
+}
+
+void CpcaTransfer::prepare(const glm::vec3* lighting, int bands) {
+  cpca_products(model_, lighting, bands, has_brdf_ ? &brdf_ : nullptr, scratch_);
+  const std::size_t bytes = scratch_.size() * sizeof(glm::vec4);
+  if (products_ == 0 || products_bytes_ != bytes) {
+    if (products_ != 0) glDeleteBuffers(1, &products_);
+    products_ = storage(nullptr, bytes, GL_DYNAMIC_STORAGE_BIT);
+    products_bytes_ = bytes;
+    if (products_view_ == 0) glCreateTextures(GL_TEXTURE_BUFFER, 1, &products_view_);
+    glTextureBuffer(products_view_, GL_RGBA32F, products_);
+  }
+  glNamedBufferSubData(products_, 0, static_cast<GLsizeiptr>(bytes), scratch_.data());
+  glBindTextureUnit(kProductsUnit, products_view_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClustersBinding, clusters_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWeightsBinding, weights_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRadianceBinding, radiance_);
+}
+
+std::size_t CpcaTransfer::gpu_bytes() const {
+  const std::size_t out_count = transfer::is_glossy(header_.kind) ? header_.bands_out * header_.bands_out : 1;
+  return vertex_bytes_ + static_cast<std::size_t>(model_.clusters) * (model_.pca + 1) * out_count * sizeof(glm::vec4);
+}
+
+int Renderer::add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin) {
+  if (!has_mesh_) fail("renderer: set_mesh before add_compressed");
+  if (compressed.source.vertex_count != vertex_count_)
+    fail_file(origin, "compressed transfer has " + std::to_string(compressed.source.vertex_count) + " vertices, the mesh " +
+                          std::to_string(vertex_count_));
+  compressed_.resize(transfers_.size());
+  compressed_.push_back(std::make_unique<CpcaTransfer>(compressed, origin));
+  transfers_.push_back(nullptr);
+  sun_->transfers.emplace_back();  // no discs' pass for compressed transfer (Renderer::sun_active)
+  brdf_buffers_.push_back(0);
+  brdf_bands_.push_back(0);
+  return static_cast<int>(transfers_.size()) - 1;
+}
+
+bool Renderer::is_compressed(int index) const {
+  return static_cast<std::size_t>(index) < compressed_.size() && compressed_[static_cast<std::size_t>(index)] != nullptr;
+}
+
+int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i) {
+  if (i < scene.compressed.size() && scene.compressed[i]) return renderer.add_compressed(*scene.compressed[i], scene.transfer_paths[i]);
+  return renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+}
+
+std::string transfer_memory_label(const SceneInputs& scene, std::size_t i) {
+  char text[160];
+  if (i < scene.compressed.size() && scene.compressed[i]) {
+    const compress::CompressedTransfer& c = *scene.compressed[i];
+    std::snprintf(text, sizeof text, ", CPCA K %d N %d, %.1f MB, error %.2f%%", c.clusters, c.pca, compress::payload_bytes(c) * 1e-6,
+                  100.0 * c.total.transfer_relative());
+    std::string label = text;
+    if (c.has_radiance_error) {
+      std::snprintf(text, sizeof text, " (radiance %.2f%%)", 100.0 * c.total.radiance_relative());
+      label += text;
+    }
+    return label;
+  }
+  std::snprintf(text, sizeof text, ", %.1f MB", compress::uncompressed_bytes(scene.transfers[i].header, transfer::Scalar::float32) * 1e-6);
+  return text;
+}
+
+bool Renderer::set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix) {
+  if (!is_compressed(transfer)) return false;
+  compressed_[static_cast<std::size_t>(transfer)]->set_brdf(matrix);
+  return true;
+}
+
+void Renderer::draw_cpca(const FrameSettings& settings, int bands) {
+  CpcaTransfer& t = *compressed_[static_cast<std::size_t>(settings.transfer)];
+  const bool glossy = transfer::is_glossy(t.header().kind);
+  if (glossy && !t.has_brdf()) fail("renderer: glossy transfer " + std::to_string(settings.transfer) + " has no BRDF matrix (set_brdf)");
+  // Per vertex: blend the products (and, glossy, evaluate toward the eye) into the radiance buffer.
+  t.prepare(rotated_.data(), bands);
+  const int out_bands = glossy ? static_cast<int>(t.header().bands_out) : 0;
+  auto found = cpca_programs_.find({t.pca(), out_bands});
+  if (found == cpca_programs_.end()) {
+    const std::string defines = "#define PCA " + std::to_string(t.pca()) + "\n#define OUT_BANDS " + std::to_string(out_bands) + "\n";
+    found = cpca_programs_.emplace(std::make_pair(t.pca(), out_bands), Program({"prt_cpca.comp"}, defines)).first;
+  }
+  const Program& compute = found->second;
+  glUseProgram(compute.id());
+  // The eye in mesh coordinates, as the glossy pass: p = c + R_object^T (eye - c).
+  const glm::dvec3 eye_object = view_.centre + glm::transpose(settings.object_rotation) * (view_.eye - view_.centre);
+  glUniform3f(compute.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
+              static_cast<float>(eye_object.z));
+  glUniform1i(compute.uniform("vertex_count"), static_cast<GLint>(vertex_count_));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, positions_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, normals_);
+  glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  // Draw with the per-vertex radiance, interpolated as the diffuse pass's.
+  found = cpca_programs_.find({-1, 0});
+  if (found == cpca_programs_.end()) found = cpca_programs_.emplace(std::make_pair(-1, 0), Program({"prt_cpca.vert", "surface.frag"})).first;
+  const Program& draw = found->second;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindVertexArray(mesh_vao_);
+  glUseProgram(draw.id());
+  glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace prt::render
