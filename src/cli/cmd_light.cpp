@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/analytic_light_spec.h"
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -103,8 +104,10 @@ void run_light(const LightOptions& o) {
   std::unique_ptr<AtomicFile> preview_file;
   if (!o.preview.empty()) preview_file = std::make_unique<AtomicFile>(o.preview);
 
-  const light::Environment env = light::load_environment(o.environment);
-  sh::RgbCoefficients coefficients = light::project(env, o.bands, o.threads);
+  const bool analytic = is_analytic_light_spec(o.environment);
+  const light::Environment env = analytic ? light::Environment{} : light::load_environment(o.environment);
+  sh::RgbCoefficients coefficients =
+      analytic ? analytic_light_coefficients(o.environment, o.bands) : light::project(env, o.bands, o.threads);
   const bool rotated = checked.yaw != 0.0 || checked.pitch != 0.0 || checked.roll != 0.0;
   if (rotated) {
     const glm::dmat3 r = sh::rotation_from_yaw_pitch_roll(checked.yaw, checked.pitch, checked.roll);
@@ -128,7 +131,7 @@ void run_light(const LightOptions& o) {
   json_file.commit();
   if (preview_file) preview_file->commit();
   std::printf("%s: %d bands from %s (%s)%s%s\n", o.output.c_str(), o.bands, o.environment.c_str(),
-              describe_environment(env).c_str(), preview_file ? ", preview " : "", o.preview.c_str());
+              analytic ? "analytic lights" : describe_environment(env).c_str(), preview_file ? ", preview " : "", o.preview.c_str());
 }
 
 }  // namespace
@@ -138,7 +141,9 @@ void add_light_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("light", "Project an environment map to SH radiance coefficients (JSON)");
   cmd->add_option("environment", options->environment,
                   "Equirect (2:1) or cube-cross (4:3, 3:4) image, six faces 'px,nx,py,ny,pz,nz', or a "
-                  "path with {face}; any float format OpenImageIO reads (.exr, .hdr, ...)")
+                  "path with {face}; any float format OpenImageIO reads (.exr, .hdr, ...); or analytic lights "
+                  "'directional:DX,DY,DZ:R,G,B', 'cone:DX,DY,DZ:DEGREES:R,G,B', "
+                  "'hemisphere:UX,UY,UZ:R,G,B:R,G,B', 'constant:R,G,B', joined with '+'")
       ->required();
   cmd->add_option("-o,--output", options->output, "SH lighting JSON to write")->required();
   cmd->add_option("--bands", options->bands, "SH bands (l < bands), 1.." + std::to_string(sh::kMaxBands))

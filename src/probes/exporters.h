@@ -39,10 +39,11 @@ struct ExportOptions {
 /// (e.g. a Filament probe index out of range or invalid; a Bevy export of a point list).
 void export_probes(const ProbeSet& probes, Format format, const std::string& path, const ExportOptions& options);
 
-/// three.js Object JSON (ObjectLoader.parse): a Group whose userData describes the layout, with one
-/// LightProbe child per VALID probe (name "probe <i>", matrix = translation to the probe,
-/// "sh" = threejs_coefficients as 27 floats coefficient-major, intensity 1, userData {index,
-/// backface_fraction}); invalid probes are listed in the group's userData.invalid and have no child.
+/// three.js probe volume (probes/threejs/README.md), read by probes/threejs/prt_probe_volume.js:
+/// JSON {"format": "prt-probe-volume-threejs", "version": 2, "frame", "sh_layout", "count", "layout"
+/// (grid counts, bounds, order, cell centres; or points), "positions" (3 floats per probe), "valid"
+/// (1/0 per probe), "sh" (27 floats per probe: threejs_coefficients, SphericalHarmonics3 order),
+/// "sky" (27 floats)}. Every probe is listed; invalid ones (inside geometry) have valid 0.
 std::string format_threejs(const ProbeSet& probes);
 
 /// Unity: JSON for probes/unity/PrtProbeImporter.cs: per probe "index", "position" (Unity frame),
