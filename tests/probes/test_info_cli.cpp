@@ -16,7 +16,7 @@ TEST_CASE("prt info describes probe files and BRDF matrix files", "[probes][cli]
     obj << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 3 2\nf 1 4 3\n";
   }
   const test::RunResult baked = test::run_prt("probes " + dir + "/quad.obj --env " + std::string(PRT_SOURCE_DIR) +
-                                              "/assets/env/city.exr --grid 2,1,3 --bands 2 --rays 64 --surface-samples 4 -q --format prt -o " +
+                                              "/assets/env/city.exr --grid 2,1,3 --bounds -1,0,-1,1,1,1 --bands 2 --rays 64 --surface-samples 4 -q --format prt -o " +
                                               dir + "/p.prtprobes");
   INFO(baked.output);
   REQUIRE(baked.exit_code == 0);
