@@ -13,17 +13,22 @@ bool Brdf::is_grey() const {
   return true;
 }
 
+bool lambert_weight(const Brdf& brdf, bool fresnel_mix, glm::dvec3& sum) {
+  sum = glm::dvec3(0.0);
+  bool any = false;
+  for (const Lobe& lobe : brdf.lobes)
+    if (lobe.type == LobeType::lambert && lobe.fresnel_mix == fresnel_mix) {
+      sum += lobe.weight;
+      any = true;
+    }
+  return any;
+}
+
 std::vector<Term> terms(const Brdf& brdf) {
   std::vector<Term> out;
   for (const bool fresnel : {false, true}) {
-    glm::dvec3 lambert(0.0);
-    bool has_lambert = false;
-    for (const Lobe& lobe : brdf.lobes)
-      if (lobe.type == LobeType::lambert && lobe.fresnel_mix == fresnel) {
-        lambert += lobe.weight;
-        has_lambert = true;
-      }
-    if (has_lambert) out.push_back({fresnel ? Shape::lambert_fresnel : Shape::lambert, 0.0, lambert});
+    glm::dvec3 lambert;
+    if (lambert_weight(brdf, fresnel, lambert)) out.push_back({fresnel ? Shape::lambert_fresnel : Shape::lambert, 0.0, lambert});
   }
   for (const Lobe& lobe : brdf.lobes) {
     switch (lobe.type) {

@@ -85,6 +85,10 @@ struct Brdf {
 /// a malformed number, a value out of range, or an empty spec.
 Brdf parse_brdf(const std::string& spec);
 
+/// Sum of the weights of the lambert lobes whose fresnel_mix equals `fresnel_mix` into `sum`; false
+/// (and sum 0) if there is no such lobe.
+bool lambert_weight(const Brdf& brdf, bool fresnel_mix, glm::dvec3& sum);
+
 /// The canonical SPEC string of a BRDF (numbers with 9 significant digits, every parameter written):
 /// parse_brdf(to_spec(b)) gives b back to within 1e-9 relative.
 std::string to_spec(const Brdf& brdf);

@@ -209,14 +209,8 @@ Brdf canonical(const Brdf& in) {
   Brdf out;
   glm::dvec3 total(0.0);
   for (const bool fresnel : {false, true}) {
-    glm::dvec3 lambert(0.0);
-    bool has_lambert = false;
-    for (const Lobe& lobe : in.lobes)
-      if (lobe.type == LobeType::lambert && lobe.fresnel_mix == fresnel) {
-        lambert += lobe.weight;
-        has_lambert = true;
-      }
-    if (has_lambert) out.lobes.push_back({LobeType::lambert, lambert, 0.0, 0.0, fresnel});
+    glm::dvec3 lambert;
+    if (lambert_weight(in, fresnel, lambert)) out.lobes.push_back({LobeType::lambert, lambert, 0.0, 0.0, fresnel});
     total += lambert;
   }
   if (!(total.r <= 1.0 && total.g <= 1.0 && total.b <= 1.0)) fail("--brdf: the lambert albedos (albedo, kd) sum to more than 1");

@@ -113,7 +113,7 @@ export class Checker {
   }
   /** Prints the summary and exits 0 (pass) or 1. */
   finish() {
-    for (const f of this.failures.slice(0, 20)) console.log(`FAIL ${f}`);
+    for (const f of this.failures.slice(0, Number(process.env.PRT_SHOW_FAILURES || 20))) console.log(`FAIL ${f}`);
     if (this.failures.length > 20) console.log(`... and ${this.failures.length - 20} more failures`);
     console.log(`${this.name}: ${this.count - this.failures.length} passed, ${this.failures.length} failed (worst relative error ${this.worst.toExponential(2)})`);
     process.exit(this.failures.length ? 1 : 0);

@@ -26,21 +26,19 @@ for (const env of environments) {
   names.push(name);
 }
 
-// The constant environment, as prt's own preview of an analytic constant light (exactly 3, 1.5, 0.75).
-const constant = join(work, 'constant');
-mkdirSync(constant, { recursive: true });
-run(prt, ['light', 'constant:3,1.5,0.75', '--bands', '1', '-o', join(constant, 'constant.json'), '--preview', join(constant, 'constant.exr'), '--preview-width', '64']);
-const constantProbes = join(constant, 'probes.prtprobes');
-run(prt, ['probes', scene, '--env', join(constant, 'constant.exr'), '--points', writePoints(join(constant, 'points.json')), '--bands', '3', '--rays', '256', '--surface-samples', '16', '--format', 'prt', '-o', constantProbes, '-q']);
-run(fixture, [constantProbes, scene, join(constant, 'constant.exr'), constant]);
-
-// A smooth (3-band) environment, where a 16-pixel specular cube resolves the lighting.
-const smooth = join(work, 'smooth');
-mkdirSync(smooth, { recursive: true });
-run(prt, ['light', 'directional:1,0.5,0.3:1,0.8,0.6+constant:0.6,0.6,0.6', '--bands', '3', '-o', join(smooth, 'smooth.json'), '--preview', join(smooth, 'smooth.exr'), '--preview-width', '256']);
-const smoothProbes = join(smooth, 'probes.prtprobes');
-run(prt, ['probes', scene, '--env', join(smooth, 'smooth.exr'), '--points', writePoints(join(smooth, 'points.json')), '--bands', '3', '--rays', '256', '--surface-samples', '16', '--format', 'prt', '-o', smoothProbes, '-q']);
-run(fixture, [smoothProbes, scene, join(smooth, 'smooth.exr'), smooth]);
+// An analytic environment rendered by prt's own preview of it, and one probe baked under it.
+function analyticFixture(name, spec, bands, width) {
+  const dir = join(work, name);
+  mkdirSync(dir, { recursive: true });
+  const env = join(dir, `${name}.exr`), probes = join(dir, 'probes.prtprobes');
+  run(prt, ['light', spec, '--bands', String(bands), '-o', join(dir, `${name}.json`), '--preview', env, '--preview-width', String(width)]);
+  run(prt, ['probes', scene, '--env', env, '--points', writePoints(join(dir, 'points.json')), '--bands', '3', '--rays', '256', '--surface-samples', '16', '--format', 'prt', '-o', probes, '-q']);
+  run(fixture, [probes, scene, env, dir]);
+}
+// The constant environment (exactly 3, 1.5, 0.75), and a smooth (3-band) one, where a 16-pixel
+// specular cube resolves the lighting.
+analyticFixture('constant', 'constant:3,1.5,0.75', 1, 64);
+analyticFixture('smooth', 'directional:1,0.5,0.3:1,0.8,0.6+constant:0.6,0.6,0.6', 3, 256);
 
 // The other GLB writers: transfer in glTF (prt bake --gltf) and shaded radiance (prt shade -o .glb),
 // lit brightly enough that the radiance exceeds 1.

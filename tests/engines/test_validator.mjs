@@ -34,6 +34,8 @@ const floats = (accessor) => {
   return new Float32Array(bin.buffer.slice(bin.byteOffset + v.byteOffset, bin.byteOffset + v.byteOffset + v.byteLength));
 };
 const attributes = doc.meshes[0].primitives[0].attributes;
+check.check('shaded.glb: has COLOR_0 and _PRT_RADIANCE', 'COLOR_0' in attributes && '_PRT_RADIANCE' in attributes, JSON.stringify(attributes));
+if (!('_PRT_RADIANCE' in attributes) || !('COLOR_0' in attributes)) check.finish();
 const colour = floats(attributes.COLOR_0), radiance = floats(attributes._PRT_RADIANCE);
 check.check('shaded.glb: the radiance exceeds 1 somewhere', radiance.some((v) => v > 1), `max ${Math.max(...radiance)}`);
 check.check('shaded.glb: COLOR_0 = L / (1 + L) of _PRT_RADIANCE, in [0, 1]',
