@@ -79,7 +79,8 @@ Ktx2Texture read_bevy_ktx2(const std::string& bytes, const std::string& name);
 
 /// glTF: writes a .glb (path must end in .glb) of the scene with EXT_lights_image_based (one light,
 /// "irradianceCoefficients" = gltf_irradiance_coefficients of the sky probe, intensity 1, rotation
-/// identity, specular cube images RGBD-encoded PNGs) referenced by every scene.
+/// identity, specular cube images RGBD-encoded PNGs with straight alpha, each face mirrored in x into
+/// Babylon.js's frame and stored bottom row first; see probes/gltf/README.md) referenced by every scene.
 void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOptions& options);
 
 }  // namespace prt::probes

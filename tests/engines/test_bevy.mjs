@@ -1,5 +1,5 @@
-// The Bevy export (a KTX2 irradiance volume) as a KTX2 reader sees it: ktx-parse (KhronosGroup's
-// reference KTX2 parser for JavaScript) reads the container, and its header, level index and data
+// The Bevy export (a KTX2 irradiance volume) as a KTX2 reader sees it: ktx-parse (a KTX 2.0
+// parser for JavaScript, independent of prt) reads the container, and its header, level index and data
 // format descriptor must be what Bevy's irradiance volumes load (VK_FORMAT_R16G16B16A16_SFLOAT, 3D,
 // (NX, 2 NY, 3 NZ), one level, no supercompression, linear BT.709 RGBA). The texels, decoded from
 // float16, must hold prt's E/pi at the six axis normals of every valid probe in the order Bevy's shader
