@@ -41,12 +41,15 @@ analyticFixture('constant', 'constant:3,1.5,0.75', 1, 64);
 analyticFixture('smooth', 'directional:1,0.5,0.3:1,0.8,0.6+constant:0.6,0.6,0.6', 3, 256);
 
 // The other GLB writers: transfer in glTF (prt bake --gltf) and shaded radiance (prt shade -o .glb),
-// lit brightly enough that the radiance exceeds 1.
+// lit brightly enough that the radiance exceeds 1; and a glTF scene through the glTF export.
 const other = join(work, 'other');
 mkdirSync(other, { recursive: true });
 run(prt, ['bake', scene, '-o', join(other, 'scene.prt'), '--transfer', 'unshadowed', '--gltf', join(other, 'transfer.glb')]);
 run(prt, ['light', 'directional:0.3,1,0.2:4,3,2+constant:0.5,0.5,0.5', '--bands', '3', '-o', join(other, 'bright.json')]);
 run(prt, ['shade', scene, join(other, 'scene.prt'), '--light', join(other, 'bright.json'), '-o', join(other, 'shaded.glb')]);
+// A glTF scene re-written by the glTF export (its buffers merged into the new BIN chunk).
+run(prt, ['probes', join(other, 'shaded.glb'), '--env', join(work, 'smooth', 'smooth.exr'), '--points', join(work, 'smooth', 'points.json'),
+          '--rays', '64', '--surface-samples', '4', '--specular-size', '8', '--format', 'gltf', '-o', join(other, 'rewritten.glb'), '-q']);
 writeFileSync(join(work, 'fixtures.json'), JSON.stringify(names));
 console.log(`fixture: ${names.join(', ')}, constant, smooth, other in ${work}`);
 console.log('fixture: 1 passed, 0 failed');

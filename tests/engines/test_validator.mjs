@@ -1,6 +1,6 @@
 // Every glTF binary prt writes, checked by the Khronos glTF validator (npm gltf-validator): the
 // EXT_lights_image_based exports (both HDRIs, the constant and the smooth environment; OBJ scenes go
-// through prt's own GLB writer first), `prt bake --gltf` (transfer attributes) and `prt shade -o .glb`
+// through prt's own GLB writer first; a GLB scene is re-written with its buffers merged), `prt bake --gltf` (transfer attributes) and `prt shade -o .glb`
 // (COLOR_0 tone-mapped to [0, 1] plus the linear _PRT_RADIANCE) must have 0 errors. The shaded file's
 // radiance must exceed 1 somewhere, so that the COLOR_0 rule was exercised.
 // Usage: node test_validator.mjs --work DIR (the engines_fixture output)
@@ -15,7 +15,8 @@ const work = argument('work');
 const check = new Checker('engines_validator');
 
 const files = fixtureFolders(work).map((f) => join(f.dir, 'gltf.glb'));
-files.push(join(work, 'constant', 'gltf.glb'), join(work, 'smooth', 'gltf.glb'), join(work, 'other', 'transfer.glb'), join(work, 'other', 'shaded.glb'));
+files.push(join(work, 'constant', 'gltf.glb'), join(work, 'smooth', 'gltf.glb'), join(work, 'other', 'transfer.glb'), join(work, 'other', 'shaded.glb'),
+           join(work, 'other', 'rewritten.glb'));
 for (const file of files) {
   const report = await validator.validateBytes(new Uint8Array(readFileSync(file)), { uri: file, maxIssues: 100 });
   const errors = report.issues.messages.filter((m) => m.severity === 0);
