@@ -10,8 +10,8 @@ mesh=assets/meshes/chinese_dragon_10k.ply
 env=assets/env/sunrise.exr
 mkdir -p out
 "$prt" bake "$mesh" --transfer interreflected --bands 5 --samples 1024 -o out/lion.prt
-view=(--camera 30,10,auto --size 960x720 --exposure -0.5)
-"$prt" render "$mesh" out/lion.prt --env "$env" --rotate 270,0,0 "${view[@]}" -o out/demo.png
+view=(--camera 30,10,auto --size 960x720 --exposure -1)
+"$prt" render "$mesh" out/lion.prt --env "$env" --rotate 230,0,0 "${view[@]}" -o out/demo.png
 "$prt" render "$mesh" out/lion.prt --env "$env" --rotate 160,0,0 "${view[@]}" -o out/demo_rotated.png
 "$prt" light "$env" --bands 5 -o out/sunrise_sh.json --preview out/sunrise_sh.png
 echo "demo: wrote out/demo.png and out/demo_rotated.png (and out/lion.prt, out/sunrise_sh.json, out/sunrise_sh.png)"

@@ -7,6 +7,8 @@
 //   USED_COUNT     k^2: only the first k lighting bands are used (truncation), k <= bands
 //   OUT_COUNT      bands_out^2: matrix rows, and the size of the BRDF matrix B (OUT_COUNT x OUT_COUNT)
 //   CHUNKS         1..8 buffer-texture views the transfer is split into (see TransferBuffer)
+//   SUN            (defined only with discs) add the discs' bounce coefficients B (M_bounce L_discs),
+//                  computed by this same program when the lighting changes, into O
 const int channels = CHANNELS;
 const int in_count = IN_COUNT;
 const int used_count = USED_COUNT;
@@ -47,6 +49,9 @@ layout(std140, binding = 0) uniform Lighting { vec4 lighting[1024]; };
 layout(std430, binding = 1) readonly buffer BrdfMatrix { vec4 brdf[]; };
 // Output: out_count rgb coefficients per vertex (w unused), vertex-major, local frame of the vertex.
 layout(std430, binding = 2) writeonly buffer Outgoing { vec4 outgoing[]; };
+#ifdef SUN
+layout(std430, binding = 6) readonly buffer BounceOutgoing { vec4 bounce_outgoing[]; };
+#endif
 
 float fetch(int chunk, int index) {
 #if CHUNKS > 1
@@ -95,6 +100,9 @@ void main() {
   for (int k = 0; k < out_count; ++k) {
     vec3 sum = vec3(0.0);
     for (int j = 0; j < out_count; ++j) sum += brdf[k * out_count + j].rgb * t[j];
+#ifdef SUN
+    sum += bounce_outgoing[v * out_count + k].rgb;
+#endif
     outgoing[v * out_count + k] = vec4(sum, 0.0);
   }
 }

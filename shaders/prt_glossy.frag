@@ -6,6 +6,8 @@
 
 // #defined by Renderer::glossy_draw_program:
 //   OUT_BANDS   bands of the outgoing radiance coefficients (the transfer's bands_out)
+//   SUN         (defined only with discs) add each disc's direct light: the BRDF evaluated exactly in the
+//               interpolated normal's shading frame, times E V (prt::shade::disc_direct_glossy)
 const int out_bands = OUT_BANDS;
 const int out_count = OUT_BANDS * OUT_BANDS;
 
@@ -21,6 +23,9 @@ layout(std430, binding = 4) readonly buffer Positions { float positions[]; };
 layout(std430, binding = 5) readonly buffer Normals { float normals[]; };
 
 uniform vec3 eye_object;  // the eye point in mesh coordinates
+#ifdef SUN
+#include "sun_light.glsl"
+#endif
 
 vec3 load3(int which, uint i) {
   return which == 0 ? vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2])
@@ -87,6 +92,15 @@ void main() {
   vec3 view = normalize(eye_object - object_position);
   vec3 sum = vec3(0.0);
   for (int c = 0; c < 3; ++c) sum += weight[c] * radiance_toward(corner[c], to_local(load3(1, corner[c]), view));
+#ifdef SUN
+  vec3 n = normalize(weight[0] * load3(1, corner[0]) + weight[1] * load3(1, corner[1]) + weight[2] * load3(1, corner[2]));
+  vec3 w_o = shading_local(n, view);
+  for (int k = 0; k < disc_count; ++k) {
+    if (dot(n, disc_direction[k]) <= 0.0) continue;  // back-facing: no light, no shadow lookup
+    sum += disc_irradiance[k] * brdf_eval_cosine(shading_local(n, disc_direction[k]), w_o) *
+           disc_visibility(k, object_position, n);
+  }
+#endif
   radiance_out = vec4(sum, 1.0);
   triangle_out = triangle;
 }

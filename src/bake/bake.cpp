@@ -147,10 +147,17 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     auto start = std::chrono::steady_clock::now();
     const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
     std::vector<float> prev = data.values, next;
+    // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
+    // renderer can shade a disc's direct light exactly and only its bounces through the transfer.
+    data.bounce_only.assign(data.values.size(), 0.0f);
+    h.bounce_only_section = true;
     for (int b = 1; b <= max_passes; ++b) {
       const std::string label = "bake bounce " + std::to_string(b);
       rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
-      for (std::size_t i = 0; i < next.size(); ++i) data.values[i] += next[i];
+      for (std::size_t i = 0; i < next.size(); ++i) {
+        data.values[i] += next[i];
+        data.bounce_only[i] += next[i];
+      }
       const double energy = pass_energy(next, stride, n, channels);
       rep.pass_energy.push_back(energy);
       rep.bounces_done = b;

@@ -96,10 +96,17 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     const brdf::BrdfMatrix brdf_matrix = brdf::project(options.brdf, bands_out);
     const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
     std::vector<float> prev = data.values, next;
+    // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
+    // renderer can shade a disc's direct light exactly and only its bounces through the transfer.
+    data.bounce_only.assign(data.values.size(), 0.0f);
+    h.bounce_only_section = true;
     for (int b = 1; b <= max_passes; ++b) {
       const std::string label = "bake glossy bounce " + std::to_string(b);
       rep.rays_traced += glossy_bounce_pass(ctx, brdf_matrix, channels, prev, next, label.c_str());
-      for (std::size_t i = 0; i < next.size(); ++i) data.values[i] += next[i];
+      for (std::size_t i = 0; i < next.size(); ++i) {
+        data.values[i] += next[i];
+        data.bounce_only[i] += next[i];
+      }
       const double energy = pass_energy(next, matrix_size, vertices * channels);
       rep.pass_energy.push_back(energy);
       rep.bounces_done = b;

@@ -8,6 +8,7 @@
 #include "cli/arguments.h"
 #include "core/error.h"
 #include "light/analytic.h"
+#include "sh/rotation.h"
 
 namespace prt::cli {
 
@@ -78,6 +79,14 @@ sh::RgbCoefficients analytic_light_coefficients(const std::string& spec, int ban
     for (std::size_t i = 0; i < sum.values.size(); ++i) sum.values[i] += c.values[i];
   }
   return sum;
+}
+
+light::SceneLighting analytic_scene_lighting(const std::string& spec, int bands, const glm::dvec3& yaw_pitch_roll) {
+  light::SceneLighting out;
+  out.sky = analytic_light_coefficients(spec, bands);
+  if (yaw_pitch_roll != glm::dvec3(0.0))
+    out.sky = sh::Rotation(bands, sh::rotation_from_yaw_pitch_roll(yaw_pitch_roll.x, yaw_pitch_roll.y, yaw_pitch_roll.z)).apply(out.sky);
+  return out;
 }
 
 }  // namespace prt::cli

@@ -12,6 +12,9 @@
 //   prt light 'directional:0,1,0:3,3,3+constant:0.1,0.1,0.1' -o L.json --bands 5
 #include <string>
 
+#include <glm/vec3.hpp>
+
+#include "light/scene_lighting.h"
 #include "sh/coefficients.h"
 
 namespace prt::cli {
@@ -23,5 +26,9 @@ bool is_analytic_light_spec(const std::string& text);
 /// Throws prt::Error("<term>: <problem>") naming the bad term (unknown kind, wrong field count, a bad
 /// number, a zero direction, an angle outside (0, 180]).
 sh::RgbCoefficients analytic_light_coefficients(const std::string& spec, int bands);
+
+/// The spec's lights as `prt light` writes them: analytic_light_coefficients rotated by the active
+/// rotation Ry(yaw) Rx(pitch) Rz(roll) (`yaw_pitch_roll` in degrees), no discs, no window (exact).
+light::SceneLighting analytic_scene_lighting(const std::string& spec, int bands, const glm::dvec3& yaw_pitch_roll);
 
 }  // namespace prt::cli

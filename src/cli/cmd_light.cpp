@@ -20,6 +20,7 @@
 #include "light/environment.h"
 #include "light/light_file.h"
 #include "light/projection.h"
+#include "light/scene_lighting.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
 #include "sh/window.h"
@@ -31,7 +32,8 @@ namespace {
 struct LightOptions {
   std::string environment;      ///< equirect or cross image, six faces "a,b,c,d,e,f", or "name_{face}.exr"
   int bands = 3;                ///< 1..kMaxBands
-  std::string window = "none";  ///< none | hanning | lanczos | laplacian
+  std::string window = "auto";  ///< auto | none | hanning | lanczos | laplacian
+  std::string sun = "auto";     ///< auto | none | a disc (light/disc.h)
   double window_param = 0.0;    ///< <= 0 (unset): the window's default
   std::string rotate;           ///< "YAW,PITCH,ROLL" in degrees; empty: no rotation
   int threads = 0;              ///< 0: all cores
@@ -43,7 +45,8 @@ struct LightOptions {
 };
 
 struct CheckedLight {
-  sh::Window window = sh::Window::none;
+  light::WindowRequest window;
+  light::SunRequest sun;
   double yaw = 0, pitch = 0, roll = 0;
 };
 
@@ -57,7 +60,8 @@ CheckedLight check_options(const LightOptions& o) {
   CheckedLight checked;
   if (o.bands < 1 || o.bands > sh::kMaxBands)
     fail("--bands " + std::to_string(o.bands) + ": out of range 1.." + std::to_string(sh::kMaxBands));
-  checked.window = sh::parse_window(o.window);
+  checked.window = light::parse_window_request(o.window, o.window_param);
+  checked.sun = light::parse_sun_request(o.sun);
   if (o.window_param_given && !(o.window_param > 0.0 && std::isfinite(o.window_param))) {
     char text[64];
     std::snprintf(text, sizeof text, "%g", o.window_param);
@@ -83,14 +87,6 @@ CheckedLight check_options(const LightOptions& o) {
   return checked;
 }
 
-std::string describe_window(sh::Window window, int bands, double param) {
-  if (window == sh::Window::none) return "none";
-  const double used = param > 0.0 ? param : sh::default_window_param(window, bands);
-  char text[64];
-  std::snprintf(text, sizeof text, "(%.17g)", used);
-  return std::string(sh::window_name(window)) + text;
-}
-
 std::string describe_environment(const light::Environment& env) {
   if (env.layout == light::Environment::Layout::equirect)
     return std::to_string(env.equirect.width) + "x" + std::to_string(env.equirect.height) + " equirect";
@@ -104,23 +100,22 @@ void run_light(const LightOptions& o) {
   std::unique_ptr<AtomicFile> preview_file;
   if (!o.preview.empty()) preview_file = std::make_unique<AtomicFile>(o.preview);
 
+  // Analytic lights (cli/analytic_light_spec.h) are exact: rotated, never split or windowed.
   const bool analytic = is_analytic_light_spec(o.environment);
   const light::Environment env = analytic ? light::Environment{} : light::load_environment(o.environment);
-  sh::RgbCoefficients coefficients =
-      analytic ? analytic_light_coefficients(o.environment, o.bands) : light::project(env, o.bands, o.threads);
-  const bool rotated = checked.yaw != 0.0 || checked.pitch != 0.0 || checked.roll != 0.0;
-  if (rotated) {
-    const glm::dmat3 r = sh::rotation_from_yaw_pitch_roll(checked.yaw, checked.pitch, checked.roll);
-    coefficients = sh::Rotation(o.bands, r).apply(coefficients);
-  }
-  sh::apply_window(sh::window_weights(checked.window, o.bands, o.window_param), coefficients);
+  const glm::dvec3 ypr(checked.yaw, checked.pitch, checked.roll);
+  const light::SceneLighting lighting =
+      analytic ? analytic_scene_lighting(o.environment, o.bands, ypr)
+               : light::split_environment(env, o.bands, ypr, checked.sun, checked.window, o.threads);
+  const sh::RgbCoefficients& coefficients = lighting.sky;
 
   light::LightFileInfo info;
   info.source = o.environment;
-  info.window = describe_window(checked.window, o.bands, o.window_param);
+  info.window = lighting.window.description;
   info.yaw = checked.yaw;
   info.pitch = checked.pitch;
   info.roll = checked.roll;
+  info.discs = lighting.discs;
   json_file.stream() << light::format_light_file(coefficients, info);
 
   if (preview_file) {
@@ -132,6 +127,8 @@ void run_light(const LightOptions& o) {
   if (preview_file) preview_file->commit();
   std::printf("%s: %d bands from %s (%s)%s%s\n", o.output.c_str(), o.bands, o.environment.c_str(),
               analytic ? "analytic lights" : describe_environment(env).c_str(), preview_file ? ", preview " : "", o.preview.c_str());
+  if (!lighting.discs.empty() || lighting.window.window != sh::Window::none)
+    std::printf("%s: %s\n", o.output.c_str(), light::describe_lighting(lighting).c_str());
 }
 
 }  // namespace
@@ -148,7 +145,13 @@ void add_light_command(CLI::App& app) {
   cmd->add_option("-o,--output", options->output, "SH lighting JSON to write")->required();
   cmd->add_option("--bands", options->bands, "SH bands (l < bands), 1.." + std::to_string(sh::kMaxBands))
       ->capture_default_str();
-  cmd->add_option("--window", options->window, "Ringing window: none, hanning, lanczos, laplacian")
+  cmd->add_option("--window", options->window,
+                  "Ringing window: auto (the least Laplacian window keeping radiance and irradiance >= 0), none, "
+                  "hanning, lanczos, laplacian")
+      ->capture_default_str();
+  cmd->add_option("--sun", options->sun,
+                  "auto (hold the sun and compact lamps out of the SH as discs), none, or a disc "
+                  "DX,DY,DZ,R,G,B,RADIUS_DEG added to the file (R,G,B = irradiance at normal incidence)")
       ->capture_default_str();
   cmd->add_option_function<double>(
       "--window-param",

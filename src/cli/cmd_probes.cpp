@@ -10,6 +10,8 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "light/environment.h"
+#include "light/scene_lighting.h"
+#include "light/sun_extraction.h"
 #include "mesh/mesh.h"
 #include "probes/baker.h"
 #include "probes/exporters.h"
@@ -22,7 +24,7 @@ namespace {
 struct ProbesCommandOptions {
   std::string scene_path;
   std::string environment;
-  std::string sun;
+  std::string sun = "auto";
   std::string grid;
   std::string bounds;
   std::string points;
@@ -89,7 +91,8 @@ void run_probes(ProbesCommandOptions o) {
   o.bake.progress = want_progress(o.quiet);
   probes::check_options(o.bake);
   probes::SceneLight light;
-  if (!o.sun.empty()) light.sun = probes::parse_sun(o.sun);
+  const light::SunRequest sun = light::parse_sun_request(o.sun);
+  if (sun.mode == light::SunRequest::Mode::given) light.sun = sun.disc;
   std::vector<glm::dvec3> positions;
   if (!o.points.empty()) positions = probes::read_points_file(o.points);
   { AtomicFile check_folder(o.output); }
@@ -111,7 +114,17 @@ void run_probes(ProbesCommandOptions o) {
   } else {
     probes::check_points_inside(positions, glm::dvec3(scene_bounds.lo), glm::dvec3(scene_bounds.hi), o.points);
   }
-  const light::Environment environment = light::load_environment(o.environment);
+  light::Environment environment = light::load_environment(o.environment);
+  if (sun.mode == light::SunRequest::Mode::automatic) {
+    // The brightest compact source becomes the probes' sun (traced with visibility); the rest stays sky.
+    light::ExtractionResult extracted = light::extract_discs(environment, o.bake.threads, 1);
+    if (!extracted.discs.empty()) {
+      light.sun = extracted.discs.front();
+      environment = std::move(extracted.residual);
+      if (!o.quiet)
+        std::fprintf(stderr, "prt probes: sun found in %s: --sun %s\n", o.environment.c_str(), light::format_disc(*light.sun).c_str());
+    }
+  }
   light.environment = &environment;
   light.emission = mesh.emission;  // glTF emissiveFactor x emissiveStrength, OBJ/MTL Ke; empty if none
 
@@ -151,7 +164,9 @@ void add_probes_command(CLI::App& app) {
   cmd->add_option("SCENE", o->scene_path, "Scene file")->required();
   cmd->add_option("--env", o->environment, "Environment map (equirect, cross or six faces; see prt light)")->required();
   cmd->add_option("--sun", o->sun,
-                  "Sun disc: DX,DY,DZ,INTENSITY,ANGULAR_RADIUS_DEG (or DX,DY,DZ,R,G,B,RADIUS); INTENSITY = irradiance at normal incidence");
+                  "auto (the map's sun, if it has one, traced as a disc), none, or a disc DX,DY,DZ,R,G,B,RADIUS_DEG "
+                  "(or DX,DY,DZ,E,RADIUS_DEG; R,G,B = irradiance at normal incidence) added to the map")
+      ->capture_default_str();
   cmd->add_option("--grid", o->grid, "NX,NY,NZ probes at the cell centres of the bounds");
   cmd->add_option("--bounds", o->bounds, "X0,Y0,Z0,X1,Y1,Z1 box of the grid (default: the scene's bounds)");
   cmd->add_option("--points", o->points, "Probe positions: .json ([[x,y,z],...]) or .csv (x,y,z per line)");

@@ -56,6 +56,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--bands", options->view.bands, "Use only the first K bands of the transfer (0 = all)");
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfer: the BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");
+  add_sun_window_options(cmd, options->view);
   cmd->add_flag("-q,--quiet", options->quiet, "No summary line on stderr");
   cmd->add_option("-o,--output", options->output, "Output .png (tone mapped, sRGB) or .exr (linear radiance)")
       ->required();

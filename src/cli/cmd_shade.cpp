@@ -1,6 +1,7 @@
 // prt shade: per-vertex outgoing radiance = transfer . lighting (glossy: toward an eye point), written as a
 // colour PLY or a .glb.
 #include <algorithm>
+#include <cstdio>
 
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
@@ -11,6 +12,7 @@
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
 #include "shade/glossy.h"
+#include "shade/scene_shading.h"
 #include "shade/shade.h"
 #include "transfer/transfer_file.h"
 
@@ -20,6 +22,9 @@ namespace {
 
 struct ShadeCommandOptions {
   std::string mesh_path, transfer_path, env, light, rotate, output, eye, brdf;
+  LightingArguments lighting;
+  shade::DiscShadingOptions discs;
+  bool quiet = false;
   int threads = 0;
 };
 
@@ -41,18 +46,24 @@ void run_shade(const ShadeCommandOptions& o) {
   if (!glossy && (!o.eye.empty() || !o.brdf.empty()))
     fail_file(o.transfer_path, std::string("--eye and --brdf apply to glossy transfer; this one is ") +
                                    transfer::kind_name(transfer.header.kind));
-  const sh::RgbCoefficients lighting =
-      load_lighting(o.env.empty() ? o.light : o.env, static_cast<int>(transfer.header.bands), angles, o.threads);
+  const light::SceneLighting lighting = load_scene_lighting(o.env.empty() ? o.light : o.env, static_cast<int>(transfer.header.bands),
+                                                            angles, o.lighting, o.threads, glossy);
+  shade::DiscShadingOptions disc_options = o.discs;
+  disc_options.threads = o.threads;
+  shade::SplitReport report;
   std::vector<glm::vec3> radiance;
   if (glossy) {
     // The BRDF matrix at the transfer's output bands, from --brdf or the BRDF recorded at bake time.
     const glm::vec3 eye(parse_triple(o.eye, "--eye", "X,Y,Z (mesh units)"));
     const brdf::Brdf surface = o.brdf.empty() ? shade::baked_brdf(transfer.header, o.transfer_path) : brdf::parse_brdf(o.brdf);
     const brdf::BrdfMatrix matrix = brdf::project(surface, static_cast<int>(transfer.header.bands_out));
-    radiance = shade::shade_glossy_eye(transfer, matrix, lighting, mesh.positions, mesh.normals, eye);
+    radiance = shade::shade_glossy_split(mesh, transfer, surface, matrix, lighting, eye, o.transfer_path, disc_options, &report);
   } else {
-    radiance = shade::shade_diffuse(transfer, lighting);
+    radiance = shade::shade_diffuse_split(mesh, transfer, lighting, o.transfer_path, disc_options, &report);
   }
+  if (!report.warning.empty()) std::fprintf(stderr, "prt: warning: %s\n", report.warning.c_str());
+  if (!o.quiet && (!lighting.discs.empty() || lighting.window.window != sh::Window::none))
+    std::fprintf(stderr, "prt shade: %s\n", light::describe_lighting(lighting).c_str());
   if (glb)
     mesh::write_glb(o.output, mesh, {}, radiance);
   else
@@ -74,6 +85,10 @@ void add_shade_command(CLI::App& app) {
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfer: BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");
   cmd->add_option("-o,--output", options->output, "Output .ply (float x,y,z,red,green,blue) or .glb (COLOR_0)")->required();
+  add_lighting_options(cmd, options->lighting);
+  cmd->add_option("--sun-samples", options->discs.samples, "Stratified shadow rays per vertex and disc (rounded up to a square)")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", options->quiet, "No summary line");
   cmd->callback([options] { run_shade(*options); });
 }
 

@@ -53,6 +53,7 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfers: the BRDF SPEC to shade with (default: each one's BRDF recorded at bake time); "
                   "the panel edits it live, G toggles its diffuse lobes only");
+  add_sun_window_options(cmd, options->view);
   cmd->add_option("--frames", options->frames, "Render N frames and exit (scripted runs)");
   cmd->add_option("--screenshot", options->screenshot,
                   "With --frames: save the last frame here (.png tone mapped, .exr linear)");

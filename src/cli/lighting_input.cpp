@@ -1,34 +1,34 @@
 #include "cli/lighting_input.h"
 
-#include <algorithm>
-
-#include "light/environment.h"
-#include "light/light_file.h"
-#include "light/projection.h"
-#include "sh/rotation.h"
-
 namespace prt::cli {
 
-namespace {
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
-                                                 [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+void add_lighting_options(CLI::App* cmd, LightingArguments& a) {
+  cmd->add_option("--sun", a.sun,
+                  "auto (find the sun and compact lamps in the map and shade them exactly), none, or a disc "
+                  "DX,DY,DZ,R,G,B,RADIUS_DEG (R,G,B = irradiance at normal incidence; added to the map)")
+      ->capture_default_str();
+  cmd->add_option("--window", a.window,
+                  "SH ringing window of the sky: auto (the least Laplacian window keeping radiance and irradiance "
+                  ">= 0), none, hanning, lanczos, laplacian")
+      ->capture_default_str();
+  cmd->add_option("--window-param", a.window_param, "Window parameter (hanning/lanczos: W; laplacian: lambda); default depends on the window");
 }
-}  // namespace
+
+light::SunRequest sun_request(const LightingArguments& a) { return light::parse_sun_request(a.sun); }
+
+light::WindowRequest window_request(const LightingArguments& a) { return light::parse_window_request(a.window, a.window_param); }
+
+light::SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, const LightingArguments& a,
+                                         int threads, bool glossy) {
+  light::WindowRequest window = window_request(a);
+  window.radiance = glossy;
+  return light::load_scene_lighting(spec, bands, ypr, sun_request(a), window, threads);
+}
 
 sh::RgbCoefficients load_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, int threads) {
-  sh::RgbCoefficients lighting(bands);
-  if (ends_with(spec, ".json")) {
-    sh::RgbCoefficients file = light::read_light_file(spec);
-    for (int i = 0; i < std::min(bands, file.bands) * std::min(bands, file.bands); ++i) lighting.values[i] = file.values[i];
-  } else {
-    lighting = light::project(light::load_environment(spec), bands, threads);
-  }
-  if (ypr != glm::dvec3(0.0)) {
-    sh::Rotation rotation(bands, sh::rotation_from_yaw_pitch_roll(ypr.x, ypr.y, ypr.z));
-    lighting = rotation.apply(lighting);
-  }
-  return lighting;
+  light::SunRequest none;
+  none.mode = light::SunRequest::Mode::none;
+  return light::load_scene_lighting(spec, bands, ypr, none, light::parse_window_request("none"), threads).sky;
 }
 
 }  // namespace prt::cli

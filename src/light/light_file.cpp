@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -12,6 +13,8 @@
 namespace prt::light {
 
 namespace {
+
+constexpr double kPiDegrees = 3.14159265358979323846;
 
 using nlohmann::json;
 
@@ -34,6 +37,55 @@ void require_string(const json& root, const char* key, const char* expected, con
     fail_file(path, std::string("\"") + key + "\" is " + value.dump() + ", expected \"" + expected + "\"");
 }
 
+std::string format_discs(const std::vector<Disc>& discs) {
+  std::ostringstream out;
+  out << "[";
+  for (std::size_t k = 0; k < discs.size(); ++k) {
+    const Disc& d = discs[k];
+    const glm::dvec3 l = d.radiance();
+    out << (k ? ",\n    " : "\n    ") << "{\"direction\": [" << number(d.direction.x) << ", " << number(d.direction.y) << ", "
+        << number(d.direction.z) << "], \"irradiance\": [" << number(d.irradiance.x) << ", " << number(d.irradiance.y)
+        << ", " << number(d.irradiance.z) << "], \"angular_radius_degrees\": " << number(d.angular_radius * 180.0 / kPiDegrees)
+        << ", \"radiance\": [" << number(l.x) << ", " << number(l.y) << ", " << number(l.z) << "]}";
+  }
+  out << "\n  ]";
+  return out.str();
+}
+
+glm::dvec3 finite_triple(const json& value, const std::string& what, const std::string& path) {
+  if (!value.is_array() || value.size() != 3) fail_file(path, what + " must be an array of 3 numbers");
+  glm::dvec3 v;
+  for (int c = 0; c < 3; ++c) {
+    if (!value[c].is_number()) fail_file(path, what + " must be an array of 3 numbers");
+    v[c] = value[c].get<double>();
+    if (!std::isfinite(v[c])) fail_file(path, what + " is not finite");
+  }
+  return v;
+}
+
+std::vector<Disc> parse_discs(const json& list, const std::string& path) {
+  if (!list.is_array()) fail_file(path, "\"discs\" must be an array");
+  std::vector<Disc> discs;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string what = "disc " + std::to_string(k);
+    const json& item = list[k];
+    if (!item.is_object()) fail_file(path, what + " is not an object");
+    Disc d;
+    const glm::dvec3 direction = finite_triple(require(item, "direction", path), what + " direction", path);
+    if (!(glm::length(direction) > 0.0)) fail_file(path, what + " direction is zero");
+    d.direction = glm::normalize(direction);
+    d.irradiance = finite_triple(require(item, "irradiance", path), what + " irradiance", path);
+    if (d.irradiance.x < 0.0 || d.irradiance.y < 0.0 || d.irradiance.z < 0.0 || !(d.irradiance.x + d.irradiance.y + d.irradiance.z > 0.0))
+      fail_file(path, what + " irradiance must be >= 0 and not all zero");
+    const json& radius = require(item, "angular_radius_degrees", path);
+    const double degrees = radius.is_number() ? radius.get<double>() : -1.0;
+    if (!(degrees > 0.0 && degrees <= 45.0)) fail_file(path, what + " angular_radius_degrees must lie in (0, 45]");
+    d.angular_radius = degrees * kPiDegrees / 180.0;
+    discs.push_back(d);
+  }
+  return discs;
+}
+
 }  // namespace
 
 std::string format_light_file(const sh::RgbCoefficients& coefficients, const LightFileInfo& info) {
@@ -51,6 +103,7 @@ std::string format_light_file(const sh::RgbCoefficients& coefficients, const Lig
   out << "  \"window\": " << json(info.window).dump() << ",\n";
   out << "  \"rotation_ypr_degrees\": [" << number(info.yaw) << ", " << number(info.pitch) << ", "
       << number(info.roll) << "],\n";
+  if (!info.discs.empty()) out << "  \"discs\": " << format_discs(info.discs) << ",\n";
   out << "  \"coefficients\": [\n";
   for (std::size_t i = 0; i < coefficients.values.size(); ++i) {
     const glm::dvec3& c = coefficients.values[i];
@@ -73,7 +126,9 @@ void write_light_file(const std::string& path, const sh::RgbCoefficients& coeffi
   write_file_atomically(path, text);
 }
 
-sh::RgbCoefficients read_light_file(const std::string& path) {
+sh::RgbCoefficients read_light_file(const std::string& path) { return read_lighting_file(path).coefficients; }
+
+LightFile read_lighting_file(const std::string& path) {
   const std::string text = read_file(path);
   json root;
   try {
@@ -110,7 +165,11 @@ sh::RgbCoefficients read_light_file(const std::string& path) {
       out.values[i][c] = v;
     }
   }
-  return out;
+  LightFile file;
+  file.coefficients = std::move(out);
+  if (root.contains("discs")) file.discs = parse_discs(root["discs"], path);
+  if (root.contains("window") && root["window"].is_string()) file.window = root["window"].get<std::string>();
+  return file;
 }
 
 }  // namespace prt::light

@@ -13,12 +13,17 @@
 //                                       window already applied to the coefficients, with its parameter
 //   "rotation_ypr_degrees": [y, p, r]   optional, descriptive: rotation already applied
 //                                       (R = Ry(y) Rx(p) Rz(r), active)
+//   "discs": [{"direction": [x, y, z], "irradiance": [r, g, b], "angular_radius_degrees": a,
+//              "radiance": [r, g, b]}, ...]   optional: lights held out of the coefficients and shaded
+//                                       exactly (light/disc.h); "radiance" is descriptive (E / (pi sin^2 a))
 //   "coefficients": [[r, g, b], ...]    required, exactly N^2 triples of finite numbers, coefficient-major
 //                                       in flat index order; linear radiance in the source image's units
 //                                       (c_0 = 2 sqrt(pi) L for constant radiance L)
 // Numbers are written with 17 significant digits or the shortest form that reads back identically.
 #include <string>
+#include <vector>
 
+#include "light/disc.h"
 #include "sh/coefficients.h"
 
 namespace prt::light {
@@ -28,6 +33,14 @@ struct LightFileInfo {
   std::string source;                 ///< input file or analytic description
   std::string window = "none";        ///< window applied, with its parameter, e.g. "hanning(4)"
   double yaw = 0, pitch = 0, roll = 0;  ///< rotation applied, degrees
+  std::vector<Disc> discs;            ///< held out of the coefficients (light/disc.h); written only if any
+};
+
+/// A lighting file's content: the SH part and the discs shaded exactly beside it.
+struct LightFile {
+  sh::RgbCoefficients coefficients;  ///< the SH radiance (with discs: the residual sky only)
+  std::vector<Disc> discs;           ///< empty when the file has no "discs"
+  std::string window = "none";       ///< the descriptive "window" entry
 };
 
 /// The file's text (see FORMAT). Throws prt::Error if the set is inconsistent (bands outside
@@ -41,5 +54,9 @@ void write_light_file(const std::string& path, const sh::RgbCoefficients& coeffi
 /// frame, quantity (if present), bands (1..kMaxBands) and the coefficient count and values; throws
 /// prt::Error("<path>: <problem>") with a one-line problem.
 sh::RgbCoefficients read_light_file(const std::string& path);
+
+/// As read_light_file, with the optional "discs" (each checked: finite non-zero direction, irradiance
+/// >= 0 and not all zero, radius in (0, 45] degrees) and the window entry.
+LightFile read_lighting_file(const std::string& path);
 
 }  // namespace prt::light

@@ -22,6 +22,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "light/disc.h"
 #include "sh/coefficients.h"
 
 namespace prt::light {
@@ -30,25 +31,16 @@ struct Environment;
 
 namespace prt::probes {
 
-struct Sun {
-  glm::dvec3 direction{0.0, 1.0, 0.0};  ///< unit, toward the sun
-  glm::dvec3 irradiance{1.0};           ///< INTENSITY per channel (irradiance at normal incidence)
-  double angular_radius = 0.0;          ///< radians, in (0, pi/4]
+/// The sun is a light::Disc (light/disc.h; SUN above is its TEXT FORM): one type for every command.
+using Sun = light::Disc;
 
-  /// L_sun = irradiance / (pi sin^2 a): the disc's radiance.
-  glm::dvec3 radiance() const;
-  /// Solid angle of the disc: 2 pi (1 - cos a).
-  double solid_angle() const;
-};
-
-/// Parses the --sun value (see SUN). Throws prt::Error("--sun: ...") for a wrong count, non-finite or
-/// zero direction, negative intensity or a radius outside (0, 45] degrees.
+/// light::parse_disc(text, "--sun").
 Sun parse_sun(const std::string& text);
 
-/// The sun as SH radiance coefficients: the exact projection of the uniform disc (light::cone_light).
+/// The sun as SH radiance coefficients: light::disc_coefficients.
 sh::RgbCoefficients sun_coefficients(int bands, const Sun& sun);
 
-/// Uniform direction in the sun's disc for u in [0,1)^2 (cos theta uniform in [cos a, 1]).
+/// Uniform direction in the sun's disc for u in [0,1)^2: light::disc_direction_sample.
 glm::dvec3 sun_direction_sample(const Sun& sun, double u0, double u1);
 
 /// A copy of `environment` for per-ray radiance lookups, small enough to stay in cache: an equirect

@@ -10,6 +10,7 @@
 #include "render/headless_context.h"
 #include "render/scene_inputs.h"
 #include "sh/rotation.h"
+#include "shade/surface_albedo.h"
 
 namespace prt::render {
 
@@ -42,7 +43,7 @@ void render_to_file(const RenderOptions& options) {
   if (options.bands < 0 || options.bands > transfer_bands)
     fail("--bands: must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
          std::to_string(options.bands));
-  const Lighting lighting = load_lighting(options.environment, transfer_bands);
+  const Lighting lighting = load_lighting(options.environment, transfer_bands, options.sun, options.window);
   const Background background =
       options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
   if (background == Background::environment && !lighting.has_image)
@@ -50,8 +51,11 @@ void render_to_file(const RenderOptions& options) {
 
   // Glossy transfer: the BRDF matrix, before any GL work.
   std::optional<brdf::BrdfMatrix> glossy;
-  if (transfer::is_glossy(scene.transfers[0].header.kind))
-    glossy = glossy_brdf_matrix(scene.transfers[0], scene.transfer_paths[0], options.brdf);
+  brdf::Brdf surface;
+  if (transfer::is_glossy(scene.transfers[0].header.kind)) {
+    surface = glossy_brdf(scene.transfers[0], scene.transfer_paths[0], options.brdf);
+    glossy = brdf::project(surface, static_cast<int>(scene.transfers[0].header.bands_out));
+  }
   else if (!options.brdf.empty())
     fail_file(scene.transfer_paths[0], "--brdf applies to glossy transfer; this one is " +
                                            std::string(transfer::kind_name(scene.transfers[0].header.kind)));
@@ -60,8 +64,11 @@ void render_to_file(const RenderOptions& options) {
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
   const int index = renderer.add_transfer(scene.transfers[0], scene.transfer_paths[0]);
-  if (glossy) renderer.set_brdf(index, *glossy);
+  if (glossy) renderer.set_brdf(index, *glossy, surface);
+  if (!lighting.discs.empty() && !glossy)
+    renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[0].header, scene.transfer_paths[0]));
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
+  renderer.set_discs(lighting.discs);
 
   FrameSettings settings;
   settings.camera = options.camera;
@@ -81,9 +88,9 @@ void render_to_file(const RenderOptions& options) {
     image::write(options.output, image::to_display(radiance, options.exposure, options.tone_map));
   }
   if (!options.quiet)
-    std::fprintf(stderr, "prt render: %s: %dx%d, %d bands, %s background, %.1f ms on %s\n", options.output.c_str(),
+    std::fprintf(stderr, "prt render: %s: %dx%d, %d bands, %s background, %.1f ms on %s; %s\n", options.output.c_str(),
                  options.width, options.height, options.bands > 0 ? options.bands : transfer_bands,
-                 background_name(background), milliseconds, context.description().c_str());
+                 background_name(background), milliseconds, context.description().c_str(), lighting.description.c_str());
 }
 
 }  // namespace prt::render

@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "image/image.h"
+#include "light/scene_lighting.h"
 #include "render/renderer.h"
 
 namespace prt::render {
@@ -24,6 +25,8 @@ struct RenderOptions {
   std::optional<Background> background; ///< default: env for an image, sh for an SH lighting file
   int bands = 0;                        ///< use the first `bands` bands; 0 = all the transfer has
   std::string brdf;                     ///< glossy transfer: BRDF SPEC; empty = the one recorded at bake time
+  light::SunRequest sun;                ///< --sun: discs shaded exactly (default auto)
+  light::WindowRequest window;          ///< --window for the sky's SH (default auto)
   bool quiet = false;                   ///< no summary line on stderr
 };
 

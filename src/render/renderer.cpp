@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "core/error.h"
+#include "render/renderer_sun.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
 
@@ -140,6 +141,7 @@ Renderer::Renderer()
       rotated_(kMaxCoefficients, glm::vec3(0.0f)),
       upload_(kMaxCoefficients, glm::vec4(0.0f)) {
   prt_program(3, 25, 25, 1);  // compile errors in prt_diffuse.vert surface here, not at the first frame
+  sun_ = std::make_unique<SunPass>();
   glCreateVertexArrays(1, &empty_vao_);
   object_lighting_ = make_buffer(kLightingBytes, upload_.data(), GL_DYNAMIC_STORAGE_BIT);
   environment_lighting_ = make_buffer(kLightingBytes, upload_.data(), GL_DYNAMIC_STORAGE_BIT);
@@ -147,6 +149,7 @@ Renderer::Renderer()
 }
 
 Renderer::~Renderer() {
+  sun_.reset();
   transfers_.clear();
   for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
   delete_buffer(outgoing_);
@@ -166,6 +169,7 @@ Renderer::~Renderer() {
 }
 
 void Renderer::set_mesh(const mesh::Mesh& mesh) {
+  sun_->clear_mesh();
   transfers_.clear();
   for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
   brdf_buffers_.clear();
@@ -211,6 +215,7 @@ int Renderer::add_transfer(const transfer::TransferData& transfer, const std::st
     fail_file(origin, "transfer has " + std::to_string(transfer.header.vertex_count) + " vertices, the mesh " +
                           std::to_string(vertex_count_));
   transfers_.push_back(std::make_unique<TransferBuffer>(transfer, origin, max_range_bytes));
+  sun_->add_transfer(transfer, origin, max_range_bytes);
   brdf_buffers_.push_back(0);
   brdf_bands_.push_back(0);
   return static_cast<int>(transfers_.size()) - 1;
@@ -310,6 +315,8 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
   view_ = orbit_view(settings.camera, bounds_, width, height, settings.object_rotation);
   model_view_projection_ = glm::mat4(view_.projection * view_.view * view_.model);
   if (prt) update_lighting(settings.environment_rotation, settings.object_rotation, bands);
+  const bool sun = sun_active(settings);
+  if (sun) update_sun(settings, bands);  // before the frame's framebuffer is bound
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width, height);
@@ -327,9 +334,9 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
 
   draw_background(settings, bands);
   if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))
-    draw_glossy(settings, bands);
+    draw_glossy(settings, bands, sun);
   else
-    draw_mesh(settings, bands);
+    draw_mesh(settings, bands, sun);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("rendering a frame");
 }
@@ -353,7 +360,7 @@ void Renderer::draw_background(const FrameSettings& settings, int bands) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void Renderer::draw_mesh(const FrameSettings& settings, int bands) {
+void Renderer::draw_mesh(const FrameSettings& settings, int bands, bool sun) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(mesh_vao_);
@@ -362,7 +369,7 @@ void Renderer::draw_mesh(const FrameSettings& settings, int bands) {
   const Program& program =
       prt ? prt_program(static_cast<int>(transfer->header().channels),
                         static_cast<int>(transfer->header().bands * transfer->header().bands), bands * bands,
-                        transfer->chunks())
+                        transfer->chunks(), sun)
           : lambert_;
   glUseProgram(program.id());
   glUniformMatrix4fv(program.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
@@ -370,6 +377,7 @@ void Renderer::draw_mesh(const FrameSettings& settings, int bands) {
     transfer->bind();
     glUniform1i(program.uniform("vertices_per_chunk"), static_cast<GLint>(transfer->vertices_per_chunk()));
     glBindBufferBase(GL_UNIFORM_BUFFER, kObjectLightingBinding, object_lighting_);
+    if (sun) bind_sun(program, settings, false);
   } else {
     const glm::mat3 normal_to_world = to_float(settings.object_rotation);
     const glm::vec3 light_direction(settings.environment_rotation * lambert_direction_);
@@ -381,14 +389,15 @@ void Renderer::draw_mesh(const FrameSettings& settings, int bands) {
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
 }
 
-const Program& Renderer::prt_program(int channels, int coefficient_count, int used_count, int chunks) {
-  const auto key = std::make_tuple(channels, coefficient_count, used_count, chunks);
+const Program& Renderer::prt_program(int channels, int coefficient_count, int used_count, int chunks, bool sun) {
+  const auto key = std::make_tuple(channels, coefficient_count, used_count, chunks, sun);
   auto found = prt_programs_.find(key);
   if (found == prt_programs_.end()) {
     const std::string defines = "#define CHANNELS " + std::to_string(channels) + "\n#define COEFFICIENT_COUNT " +
                                 std::to_string(coefficient_count) + "\n#define USED_COUNT " +
-                                std::to_string(used_count) + "\n#define CHUNKS " + std::to_string(chunks) + "\n";
-    found = prt_programs_.emplace(key, Program({"prt_diffuse.vert", "surface.frag"}, defines)).first;
+                                std::to_string(used_count) + "\n#define CHUNKS " + std::to_string(chunks) + "\n" +
+                                (sun ? "#define SUN 1\n" : "");
+    found = prt_programs_.emplace(key, Program({"prt_diffuse.vert", sun ? "prt_sun.frag" : "surface.frag"}, defines)).first;
   }
   return found->second;
 }

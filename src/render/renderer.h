@@ -25,6 +25,17 @@
 //               singularity at n = +-Y, brdf/frame.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
+//   sun         discs (light/disc.h: a sun, lamps; set_discs), renderer_sun.cpp: when the lighting
+//               changes (environment or object rotation, discs, transfer, bands, BRDF) and only then,
+//               within the same frame, shadow.vert draws one orthographic depth map per disc (at most
+//               kMaxDiscs, kShadowMapSize^2, fitted to the mesh bounds in the object's frame), and the
+//               discs' bounce light T_bounce . SH(discs) is recomputed per vertex (diffuse: on the CPU,
+//               prt::shade::shade_diffuse; glossy: prt_glossy.comp on the bounce matrices into a buffer
+//               that the per-frame pass adds to O). The PRT passes, compiled with SUN, then add each
+//               disc's direct light per fragment (prt_sun.frag; prt_glossy.frag with the BRDF evaluated
+//               exactly), its visibility filtered PCSS-style from the map (shaders/sun_light.glsl,
+//               docs/conventions.md "Sun shadow maps"). Without discs (or FrameSettings::sun false) the
+//               passes are exactly those above.
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
 //               prt::image::to_display.
 // The frame is drawn into a float framebuffer: attachment 0 RGBA32F linear radiance (alpha 1 on the
@@ -43,7 +54,9 @@
 
 #include "brdf/projection.h"
 #include "camera/camera.h"
+#include "brdf/brdf.h"
 #include "image/image.h"
+#include "light/disc.h"
 #include "mesh/mesh.h"
 #include "render/gl.h"
 #include "render/shader_program.h"
@@ -72,6 +85,10 @@ const char* background_name(Background background);  ///< "black", "env", "sh"
 
 /// How the mesh is shaded.
 enum class Shading { prt, lambert };
+
+/// Most discs the renderer shades (the first ones of set_discs), and the side of each one's shadow map.
+inline constexpr int kMaxDiscs = 4;
+inline constexpr int kShadowMapSize = 2048;
 
 /// Most ranges one transfer is split into (buffer textures the vertex shader samples).
 inline constexpr int kMaxTransferChunks = 8;
@@ -118,6 +135,7 @@ struct FrameSettings {
   int bands = 0;                         ///< use the first `bands` bands; 0 = all the transfer has
   Background background = Background::environment;
   Shading shading = Shading::prt;
+  bool sun = true;                       ///< shade the discs of set_discs (false: the sky alone)
 };
 
 /// The single directional light of the Lambert baseline, in the environment's frame: direction = the
@@ -147,6 +165,13 @@ class Renderer {
   /// edits re-project B on the CPU and call this). Throws prt::Error unless `transfer` is a glossy
   /// transfer's index and matrix.bands equals its bands_out.
   void set_brdf(int transfer, const brdf::BrdfMatrix& matrix);
+  /// The same, and the BRDF itself, which the discs' direct light evaluates exactly (at most 8
+  /// brdf::terms). A glossy transfer needs this form before it is rendered with discs.
+  void set_brdf(int transfer, const brdf::BrdfMatrix& matrix, const brdf::Brdf& surface);
+  /// The per-vertex albedo the discs' diffuse direct light uses for transfer `transfer`
+  /// (shade::surface_albedo: the albedo it was baked with). Until set: the mesh's albedo (0.8 grey
+  /// where it has none). Throws prt::Error for a wrong size or index.
+  void set_surface_albedo(int transfer, const std::vector<glm::vec3>& albedo);
   int transfer_count() const { return static_cast<int>(transfers_.size()); }
   const transfer::Header& transfer_header(int index) const;
 
@@ -155,6 +180,16 @@ class Renderer {
   /// the "env" background; nullptr if there is none, e.g. an SH lighting file).
   void set_lighting(const sh::RgbCoefficients& lighting, const image::Image* equirect);
   bool has_environment_image() const { return environment_texture_ != 0; }
+  /// Sets the discs (environment frame, brightest first; only the first kMaxDiscs are shaded); empty:
+  /// none. Interreflected transfer without a bounce-only section leaves their bounce light out, with
+  /// one warning line on stderr per transfer.
+  void set_discs(const std::vector<light::Disc>& discs);
+  int disc_count() const;
+  /// How many times the shadow maps were drawn (each time the lighting changed, see PASSES: sun).
+  int shadow_map_updates() const;
+  /// Visibility of disc `disc` at every vertex as the fragment passes evaluate it from the shadow map
+  /// (sun_visibility.comp), for `settings`' rotations. For tests and measurements.
+  std::vector<float> shadow_visibility(const FrameSettings& settings, int disc);
 
   /// The per-frame CPU work of relighting: rotates the first `bands` bands of the lighting by
   /// R_object^-1 R_environment (prt::sh::rotate_rgb) and uploads them. render() calls it.
@@ -183,22 +218,36 @@ class Renderer {
  private:
   void resize(int width, int height);
   void draw_background(const FrameSettings& settings, int bands);
-  void draw_mesh(const FrameSettings& settings, int bands);
+  void draw_mesh(const FrameSettings& settings, int bands, bool sun);
 
   /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks), compiled
   /// on first use and kept.
-  const Program& prt_program(int channels, int coefficient_count, int used_count, int chunks);
+  const Program& prt_program(int channels, int coefficient_count, int used_count, int chunks, bool sun = false);
   /// prt_glossy's compute program for (channels, in coefficients, used, out coefficients, chunks) and
   /// its draw program for the output bands; compiled on first use and kept.
-  const Program& glossy_compute_program(int channels, int in_count, int used_count, int out_count, int chunks);
-  const Program& glossy_draw_program(int out_bands);
+  const Program& glossy_compute_program(int channels, int in_count, int used_count, int out_count, int chunks,
+                                        bool sun = false);
+  const Program& glossy_draw_program(int out_bands, bool sun = false);
   /// The glossy pass (renderer_glossy.cpp): compute O for every vertex, then draw.
-  void draw_glossy(const FrameSettings& settings, int bands);
+  void draw_glossy(const FrameSettings& settings, int bands, bool sun);
+
+  // The sun pass (renderer_sun.cpp; PASSES: sun).
+  struct SunPass;
+  bool sun_active(const FrameSettings& settings) const;
+  /// Redraws the shadow maps and recomputes the bounce light if the lighting changed since last time.
+  void update_sun(const FrameSettings& settings, int bands);
+  void draw_shadow_maps();
+  void update_bounce(const FrameSettings& settings, int bands);
+  /// Binds the discs' uniforms, shadow maps and (for `glossy`) BRDF terms for `program`.
+  void bind_sun(const Program& program, const FrameSettings& settings, bool glossy);
+  /// Binds the glossy bounce coefficients for prt_glossy.comp with SUN.
+  void bind_sun_bounce();
+  std::unique_ptr<SunPass> sun_;
 
   Program background_, lambert_, tonemap_;
-  std::map<std::tuple<int, int, int, int>, Program> prt_programs_;
-  std::map<std::tuple<int, int, int, int, int>, Program> glossy_compute_programs_;
-  std::map<int, Program> glossy_draw_programs_;
+  std::map<std::tuple<int, int, int, int, bool>, Program> prt_programs_;
+  std::map<std::tuple<int, int, int, int, int, bool>, Program> glossy_compute_programs_;
+  std::map<std::pair<int, bool>, Program> glossy_draw_programs_;
   std::vector<GLuint> brdf_buffers_;         // per transfer: B as vec4 per entry (0 until set_brdf)
   std::vector<int> brdf_bands_;              // per transfer: bands of the uploaded B
   GLuint outgoing_ = 0;                      // glossy: O of every vertex, vec4 per coefficient

@@ -49,7 +49,7 @@ void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix) {
   check_gl("uploading a BRDF matrix");
 }
 
-void Renderer::draw_glossy(const FrameSettings& settings, int bands) {
+void Renderer::draw_glossy(const FrameSettings& settings, int bands, bool sun) {
   const TransferBuffer& transfer = *transfers_[static_cast<std::size_t>(settings.transfer)];
   const transfer::Header& header = transfer.header();
   const GLuint brdf = brdf_buffers_[static_cast<std::size_t>(settings.transfer)];
@@ -65,7 +65,7 @@ void Renderer::draw_glossy(const FrameSettings& settings, int bands) {
     outgoing_bytes_ = bytes;
   }
   const Program& compute = glossy_compute_program(static_cast<int>(header.channels), static_cast<int>(header.bands * header.bands),
-                                                  bands * bands, out_count, transfer.chunks());
+                                                  bands * bands, out_count, transfer.chunks(), sun);
   glUseProgram(compute.id());
   transfer.bind();
   glUniform1i(compute.uniform("vertices_per_chunk"), static_cast<GLint>(transfer.vertices_per_chunk()));
@@ -73,6 +73,7 @@ void Renderer::draw_glossy(const FrameSettings& settings, int bands) {
   glBindBufferBase(GL_UNIFORM_BUFFER, kLightingBinding, object_lighting_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBrdfBinding, brdf);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOutgoingBinding, outgoing_);
+  if (sun) bind_sun_bounce();
   glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
@@ -80,7 +81,7 @@ void Renderer::draw_glossy(const FrameSettings& settings, int bands) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(mesh_vao_);
-  const Program& draw = glossy_draw_program(out_bands);
+  const Program& draw = glossy_draw_program(out_bands, sun);
   glUseProgram(draw.id());
   glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
   // The eye in mesh coordinates: world = c + R_object (p - c), so p = c + R_object^T (eye - c).
@@ -91,26 +92,31 @@ void Renderer::draw_glossy(const FrameSettings& settings, int bands) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, indices_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, positions_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, normals_);
+  if (sun) bind_sun(draw, settings, true);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
 }
 
-const Program& Renderer::glossy_compute_program(int channels, int in_count, int used_count, int out_count, int chunks) {
-  const auto key = std::make_tuple(channels, in_count, used_count, out_count, chunks);
+const Program& Renderer::glossy_compute_program(int channels, int in_count, int used_count, int out_count, int chunks,
+                                                bool sun) {
+  const auto key = std::make_tuple(channels, in_count, used_count, out_count, chunks, sun);
   auto found = glossy_compute_programs_.find(key);
   if (found == glossy_compute_programs_.end()) {
     const std::string defines = "#define CHANNELS " + std::to_string(channels) + "\n#define IN_COUNT " + std::to_string(in_count) +
                                 "\n#define USED_COUNT " + std::to_string(used_count) + "\n#define OUT_COUNT " +
-                                std::to_string(out_count) + "\n#define CHUNKS " + std::to_string(chunks) + "\n";
+                                std::to_string(out_count) + "\n#define CHUNKS " + std::to_string(chunks) + "\n" +
+                                (sun ? "#define SUN 1\n" : "");
     found = glossy_compute_programs_.emplace(key, Program({"prt_glossy.comp"}, defines)).first;
   }
   return found->second;
 }
 
-const Program& Renderer::glossy_draw_program(int out_bands) {
-  auto found = glossy_draw_programs_.find(out_bands);
+const Program& Renderer::glossy_draw_program(int out_bands, bool sun) {
+  const auto key = std::make_pair(out_bands, sun);
+  auto found = glossy_draw_programs_.find(key);
   if (found == glossy_draw_programs_.end())
     found = glossy_draw_programs_
-                .emplace(out_bands, Program({"prt_glossy.vert", "prt_glossy.frag"}, "#define OUT_BANDS " + std::to_string(out_bands) + "\n"))
+                .emplace(key, Program({"prt_glossy.vert", "prt_glossy.frag"},
+                                      "#define OUT_BANDS " + std::to_string(out_bands) + "\n" + (sun ? "#define SUN 1\n" : "")))
                 .first;
   return found->second;
 }

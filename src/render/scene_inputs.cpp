@@ -6,8 +6,6 @@
 
 #include "core/error.h"
 #include "light/environment.h"
-#include "light/light_file.h"
-#include "light/projection.h"
 #include "shade/glossy.h"
 
 namespace prt::render {
@@ -49,15 +47,16 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
   return scene;
 }
 
-Lighting load_lighting(const std::string& spec, int bands) {
+Lighting load_lighting(const std::string& spec, int bands, const light::SunRequest& sun, const light::WindowRequest& window) {
   Lighting lighting;
   lighting.source = spec;
-  if (is_json(spec)) {
-    lighting.coefficients = light::read_light_file(spec);
-    return lighting;
-  }
+  light::SceneLighting split = light::load_scene_lighting(spec, bands, glm::dvec3(0.0), sun, window);
+  lighting.description = light::describe_lighting(split);
+  lighting.window = split.window.description;
+  lighting.coefficients = std::move(split.sky);
+  lighting.discs = std::move(split.discs);
+  if (is_json(spec)) return lighting;
   light::Environment environment = light::load_environment(spec);
-  lighting.coefficients = light::project(environment, bands);
   lighting.has_image = true;
   lighting.equirect = environment.layout == light::Environment::Layout::equirect
                           ? std::move(environment.equirect)
@@ -65,9 +64,12 @@ Lighting load_lighting(const std::string& spec, int bands) {
   return lighting;
 }
 
+brdf::Brdf glossy_brdf(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec) {
+  return spec.empty() ? shade::baked_brdf(transfer.header, origin) : brdf::parse_brdf(spec);
+}
+
 brdf::BrdfMatrix glossy_brdf_matrix(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec) {
-  const brdf::Brdf surface = spec.empty() ? shade::baked_brdf(transfer.header, origin) : brdf::parse_brdf(spec);
-  return brdf::project(surface, static_cast<int>(transfer.header.bands_out));
+  return brdf::project(glossy_brdf(transfer, origin, spec), static_cast<int>(transfer.header.bands_out));
 }
 
 int max_bands(const SceneInputs& scene) {

@@ -4,8 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "brdf/brdf.h"
 #include "brdf/projection.h"
 #include "image/image.h"
+#include "light/scene_lighting.h"
 #include "mesh/mesh.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
@@ -27,17 +29,23 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
 /// Distant lighting for the renderer.
 struct Lighting {
   std::string source;               ///< the path (or cube-face spec) it came from
-  sh::RgbCoefficients coefficients; ///< SH radiance, environment frame
+  sh::RgbCoefficients coefficients; ///< SH radiance of the sky (all but the discs), environment frame, windowed
+  std::vector<light::Disc> discs;   ///< exact discs (a sun), environment frame (light::load_scene_lighting)
+  std::string description;          ///< light::describe_lighting: the discs and the window
+  std::string window;               ///< the window applied to the sky, e.g. "laplacian(0.0012)"
   bool has_image = false;           ///< an environment image was given (not an SH lighting file)
   image::Image equirect;            ///< when has_image: the environment as an equirect image
 };
 
-/// Loads `spec`: a file ending in .json is an SH lighting file (light::read_light_file, its own bands);
-/// anything else is an environment (light::load_environment: equirect, cross or six faces), projected
-/// to `bands` bands (light::project). Cube environments are resampled to an equirect image of
-/// 4 x 2 face widths (bilinear, Environment::radiance at each pixel centre) for the background.
+/// Loads `spec` split into discs and sky as light::load_scene_lighting does (unrotated: the renderer
+/// rotates per frame; `sun` and `window` as --sun and --window): a .json SH lighting file, or an
+/// environment (light::load_environment: equirect, cross or six faces) projected to `bands` bands. The
+/// environment image (with its sun) is kept for the background; cube environments are resampled to an
+/// equirect image of 4 x 2 face widths (bilinear, Environment::radiance at each pixel centre). With
+/// sun none and window none the coefficients are exactly light::project's (or the file's).
 /// Throws prt::Error("<file>: <problem>").
-Lighting load_lighting(const std::string& spec, int bands);
+Lighting load_lighting(const std::string& spec, int bands, const light::SunRequest& sun = {},
+                       const light::WindowRequest& window = {});
 
 /// Largest band count among the transfers (the bands lighting is projected to).
 int max_bands(const SceneInputs& scene);
@@ -46,5 +54,7 @@ int max_bands(const SceneInputs& scene);
 /// empty, else the BRDF recorded in the transfer at bake time (shade::baked_brdf), projected to the
 /// transfer's output bands. Throws prt::Error naming `origin` if the transfer records none.
 brdf::BrdfMatrix glossy_brdf_matrix(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec);
+/// The BRDF itself that glossy_brdf_matrix projects.
+brdf::Brdf glossy_brdf(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec);
 
 }  // namespace prt::render

@@ -50,10 +50,34 @@ std::string with_defines(const std::string& text, const std::string& defines) {
          text.substr(end_of_line + 1);
 }
 
+// The source with each line `#include "<name>"` replaced by shaders/<name> (one level: included files
+// include nothing), followed by a #line directive restoring the numbering.
+std::string with_includes(const std::string& text) {
+  const std::string directive = "#include \"";
+  if (text.find(directive) == std::string::npos) return text;
+  std::string out;
+  std::size_t line_number = 1, start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(start, end - start);
+    const std::size_t close = line.rfind('"');
+    if (line.compare(0, directive.size(), directive) == 0 && close > directive.size()) {
+      out += shader_source(line.substr(directive.size(), close - directive.size())).text;
+      out += "\n#line " + std::to_string(line_number + 1) + "\n";
+    } else {
+      out += line + "\n";
+    }
+    start = end + 1;
+    ++line_number;
+  }
+  return out;
+}
+
 GLuint compile(const std::string& name, const std::string& defines) {
   const ShaderSource source = shader_source(name);
   GLuint shader = glCreateShader(stage_of(name));
-  const std::string full_text = with_defines(source.text, defines);
+  const std::string full_text = with_defines(with_includes(source.text), defines);
   const char* text = full_text.c_str();
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);

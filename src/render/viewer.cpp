@@ -15,6 +15,7 @@
 #include "brdf/projection.h"
 #include "core/error.h"
 #include "shade/glossy.h"
+#include "shade/surface_albedo.h"
 #include "render/viewer_state.h"
 #include "sh/rotation.h"
 
@@ -207,7 +208,7 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
   ViewerState& state = s.state;
   for (const std::string& path : state.dropped) {
     try {
-      state.environments.push_back(load_lighting(path, state.projection_bands));
+      state.environments.push_back(load_lighting(path, state.projection_bands, state.sun_request, state.window_request));
       state.environment = static_cast<int>(state.environments.size()) - 1;
       state.environment_changed = true;
       state.message = "loaded " + path;
@@ -229,9 +230,9 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
       // Live BRDF edits: re-project B on the CPU (tens of ms at 5 bands) and upload it.
       const auto start = std::chrono::steady_clock::now();
       try {
+        const brdf::Brdf shown = viewer_detail::shown_brdf(state);
         renderer.set_brdf(state.settings.transfer,
-                          brdf::project(viewer_detail::shown_brdf(state),
-                                        state.transfer_bands_out[static_cast<std::size_t>(state.settings.transfer)]));
+                          brdf::project(shown, state.transfer_bands_out[static_cast<std::size_t>(state.settings.transfer)]), shown);
       } catch (const Error& e) {
         state.message = e.what();
       }
@@ -241,6 +242,7 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
   if (state.environment_changed) {
     const Lighting& lighting = state.environments[static_cast<std::size_t>(state.environment)];
     renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
+    renderer.set_discs(lighting.discs);
     state.environment_changed = false;
   }
   viewer_detail::sanitise(state);
@@ -263,8 +265,10 @@ void run_viewer(const ViewerOptions& options) {
   Session session;
   ViewerState& state = session.state;
   state.projection_bands = max_bands(scene);
+  state.sun_request = options.sun;
+  state.window_request = options.window;
   for (const std::string& spec : options.environments)
-    state.environments.push_back(load_lighting(spec, state.projection_bands));
+    state.environments.push_back(load_lighting(spec, state.projection_bands, options.sun, options.window));
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const transfer::Header& h = scene.transfers[i].header;
     state.transfer_names.push_back(std::filesystem::path(scene.transfer_paths[i]).filename().string() + " (" +
@@ -303,7 +307,9 @@ void run_viewer(const ViewerOptions& options) {
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const int index = renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
     if (!state.transfer_brdfs[i].empty())
-      renderer.set_brdf(index, brdf::project(state.transfer_brdfs[i], state.transfer_bands_out[i]));
+      renderer.set_brdf(index, brdf::project(state.transfer_brdfs[i], state.transfer_bands_out[i]), state.transfer_brdfs[i]);
+    else
+      renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[i].header, scene.transfer_paths[i]));
   }
   const mesh::Bounds bounds = mesh::bounds(scene.mesh);
   scene = SceneInputs();  // the GPU holds what is needed now

@@ -14,6 +14,8 @@
 //   E, Shift + E            next / previous environment
 //   B                       background: env -> sh -> black
 //   L                       shading: PRT <-> Lambert baseline
+//   U                       sun on / off: the discs (--sun) shaded exactly with shadow maps, or the sky
+//                           alone; the panel shows each disc's direction, radius and irradiance E
 //   G                       glossy transfer: the full BRDF <-> its diffuse (lambert) lobes only; the
 //                           panel also edits each lobe's parameters live (B re-projected on the CPU)
 //   T                       tone map: ACES <-> clamp
@@ -23,7 +25,7 @@
 //   H                       hide / show the panel
 //   Esc, Q                  quit
 // Dropping files on the window loads each as an environment (image, or SH lighting .json) and selects it.
-// The panel shows frame time (CPU, averaged) and GPU render time (timer query) and every control above.
+// The panel (narrow, collapsible by its title bar) shows frame time (CPU, averaged) and GPU render time (timer query) and every control above.
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +33,7 @@
 #include <glm/vec3.hpp>
 
 #include "image/image.h"
+#include "light/scene_lighting.h"
 #include "render/renderer.h"
 
 namespace prt::render {
@@ -47,6 +50,8 @@ struct ViewerOptions {
   image::ToneMap tone_map = image::ToneMap::aces;
   std::optional<Background> background;  ///< default: env if the first environment is an image, else sh
   int bands = 0;                  ///< initial truncation; 0 = all
+  light::SunRequest sun;          ///< --sun for every environment (default auto)
+  light::WindowRequest window;    ///< --window for every environment (default auto)
   int width = 1280, height = 800; ///< window size in screen coordinates
   int frames = 0;                 ///< > 0: render this many frames, then exit (scripted runs)
   std::string screenshot;         ///< with frames: save the last frame here (.png tone mapped or .exr linear)

@@ -17,6 +17,26 @@ namespace {
 
 constexpr double kExposureStep = 0.5;
 constexpr double kMaxElevation = 89.0;
+constexpr float kPanelWidth = 290.0f;            // narrow: the default framing leaves the object clear
+constexpr const char* kLongestLabel = "lambert albedo";
+
+// The sun: on/off (U) and each disc's parameters in the rotated environment's frame, and the window.
+void draw_sun_controls(ViewerState& state) {
+  const Lighting& lighting = state.environments[static_cast<std::size_t>(state.environment)];
+  ImGui::Separator();
+  if (lighting.discs.empty()) {
+    ImGui::TextDisabled("sun: none (--sun)");
+  } else {
+    ImGui::Checkbox("sun, exact with shadows (U)", &state.settings.sun);
+    for (const light::Disc& disc : lighting.discs) {
+      const glm::dvec3 d = state.settings.environment_rotation * disc.direction;
+      ImGui::Text("dir %.3f %.3f %.3f", d.x, d.y, d.z);
+      ImGui::Text("radius %.3f deg", disc.angular_radius * 57.29577951308232);
+      ImGui::Text("E %.4g %.4g %.4g", disc.irradiance.x, disc.irradiance.y, disc.irradiance.z);
+    }
+  }
+  ImGui::Text("sky window: %s", lighting.window.c_str());
+}
 
 // A slider over three doubles shown as floats (ImGui has no double3 slider).
 bool slider_angles(const char* label, glm::dvec3& angles) {
@@ -41,7 +61,7 @@ void draw_brdf_controls(ViewerState& state) {
   int diffuse = state.diffuse_lobes_only ? 1 : 0;
   ImGui::RadioButton("glossy", &diffuse, 0);
   ImGui::SameLine();
-  ImGui::RadioButton("diffuse lobes only (G)", &diffuse, 1);
+  ImGui::RadioButton("diffuse only (G)", &diffuse, 1);
   if ((diffuse == 1) != state.diffuse_lobes_only) {
     state.diffuse_lobes_only = diffuse == 1;
     state.brdf_changed = true;
@@ -133,6 +153,7 @@ bool apply_key(ViewerState& state, int key, int mods) {
         cycle_background(state);
       break;
     case GLFW_KEY_L: s.shading = s.shading == Shading::prt ? Shading::lambert : Shading::prt; break;
+    case GLFW_KEY_U: s.sun = !s.sun; break;
     case GLFW_KEY_G:
       if (state.current_glossy()) {
         state.diffuse_lobes_only = !state.diffuse_lobes_only;
@@ -158,11 +179,13 @@ bool apply_key(ViewerState& state, int key, int mods) {
 
 void draw_panel(ViewerState& state) {
   FrameSettings& s = state.settings;
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("prt view (H hides)");
-  ImGui::Text("frame %.2f ms (%.0f fps), GPU render %.2f ms", state.frame_ms,
-              state.frame_ms > 0.0 ? 1000.0 / state.frame_ms : 0.0, state.render_ms);
+  // Widgets leave room for the longest label, so no label is cut off.
+  ImGui::PushItemWidth(-(ImGui::CalcTextSize(kLongestLabel).x + ImGui::GetStyle().ItemInnerSpacing.x));
+  ImGui::Text("frame %.2f ms (%.0f fps)", state.frame_ms, state.frame_ms > 0.0 ? 1000.0 / state.frame_ms : 0.0);
+  ImGui::Text("GPU render %.2f ms", state.render_ms);
   ImGui::TextWrapped("%s", state.renderer_name.c_str());
   ImGui::Text("%zu vertices, %zu triangles", state.vertex_count, state.triangle_count);
   ImGui::Separator();
@@ -171,11 +194,11 @@ void draw_panel(ViewerState& state) {
   int shading = s.shading == Shading::prt ? 0 : 1;
   ImGui::RadioButton("PRT", &shading, 0);
   ImGui::SameLine();
-  ImGui::RadioButton("Lambert baseline (L)", &shading, 1);
+  ImGui::RadioButton("Lambert (L)", &shading, 1);
   s.shading = shading == 0 ? Shading::prt : Shading::lambert;
   if (state.transfer_names.size() > 1) {
     const char* current = state.transfer_names[static_cast<std::size_t>(s.transfer)].c_str();
-    if (ImGui::BeginCombo("transfer (1-9)", current)) {
+    if (ImGui::BeginCombo("transfer 1-9", current)) {
       for (std::size_t i = 0; i < state.transfer_names.size(); ++i) {
         if (ImGui::Selectable(state.transfer_names[i].c_str(), static_cast<int>(i) == s.transfer)) {
           s.transfer = static_cast<int>(i);
@@ -186,15 +209,15 @@ void draw_panel(ViewerState& state) {
       ImGui::EndCombo();
     }
   } else {
-    ImGui::Text("transfer: %s", state.transfer_names[0].c_str());
+    ImGui::TextWrapped("transfer: %s", state.transfer_names[0].c_str());
   }
   int bands = s.bands == 0 ? state.current_bands() : s.bands;
-  if (ImGui::SliderInt("bands ([ ])", &bands, 1, state.current_bands())) s.bands = bands;
+  if (ImGui::SliderInt("bands [ ]", &bands, 1, state.current_bands())) s.bands = bands;
   if (state.current_glossy()) draw_brdf_controls(state);
 
   // Exposure and tone map.
   float exposure = static_cast<float>(state.exposure);
-  if (ImGui::SliderFloat("exposure, stops (- =)", &exposure, -10.0f, 10.0f, "%.1f")) state.exposure = exposure;
+  if (ImGui::SliderFloat("exposure - =", &exposure, -10.0f, 10.0f, "%.1f")) state.exposure = exposure;
   int tone_map = state.tone_map == image::ToneMap::aces ? 0 : 1;
   ImGui::RadioButton("ACES", &tone_map, 0);
   ImGui::SameLine();
@@ -204,7 +227,7 @@ void draw_panel(ViewerState& state) {
 
   // Lighting.
   const char* environment_name = state.environments[static_cast<std::size_t>(state.environment)].source.c_str();
-  if (ImGui::BeginCombo("environment (E)", environment_name)) {
+  if (ImGui::BeginCombo("environment E", environment_name)) {
     for (std::size_t i = 0; i < state.environments.size(); ++i) {
       const std::string name = std::filesystem::path(state.environments[i].source).filename().string();
       if (ImGui::Selectable((name + "##" + std::to_string(i)).c_str(), static_cast<int>(i) == state.environment)) {
@@ -214,11 +237,12 @@ void draw_panel(ViewerState& state) {
     }
     ImGui::EndCombo();
   }
-  ImGui::TextDisabled("drop an image or SH .json on the window to add one");
-  slider_angles("lighting yaw pitch roll", state.light_angles);
-  ImGui::TextDisabled("Shift+drag or right drag rotates the lighting");
-  slider_angles("object yaw pitch roll", state.object_angles);
-  ImGui::TextDisabled("Ctrl+drag or middle drag rotates the object");
+  ImGui::TextDisabled("drop an image or .json to add one");
+  slider_angles("light y p r", state.light_angles);
+  ImGui::TextDisabled("Shift/right drag turns the light");
+  slider_angles("object y p r", state.object_angles);
+  ImGui::TextDisabled("Ctrl/middle drag turns the object");
+  draw_sun_controls(state);
   int background = static_cast<int>(s.background);
   const bool has_image = state.environments[static_cast<std::size_t>(state.environment)].has_image;
   ImGui::Text("background (B):");
@@ -235,16 +259,17 @@ void draw_panel(ViewerState& state) {
 
   // Camera.
   float camera[2] = {static_cast<float>(s.camera.azimuth_degrees), static_cast<float>(s.camera.elevation_degrees)};
-  if (ImGui::SliderFloat2("azimuth, elevation", camera, -180.0f, 180.0f, "%.1f")) {
+  if (ImGui::SliderFloat2("azim. elev.", camera, -180.0f, 180.0f, "%.1f")) {
     s.camera.azimuth_degrees = camera[0];
     s.camera.elevation_degrees = camera[1];
   }
   float distance = static_cast<float>(s.camera.distance);
-  if (ImGui::InputFloat("distance (scroll)", &distance, 0.0f, 0.0f, "%.3f")) s.camera.distance = distance;
+  if (ImGui::InputFloat("distance", &distance, 0.0f, 0.0f, "%.3f")) s.camera.distance = distance;
   if (ImGui::Button("screenshot (S)")) state.screenshot_requested = true;
   ImGui::SameLine();
   if (ImGui::Button("reset view (R)")) state.reset_requested = true;
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
+  ImGui::PopItemWidth();
   ImGui::End();
   sanitise(state);
 }

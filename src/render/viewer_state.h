@@ -20,6 +20,8 @@ struct ViewerState {
   std::vector<int> transfer_bands_out;      ///< per transfer: output bands (0 for diffuse transfers)
   std::vector<Lighting> environments;
   int projection_bands = 1;                 ///< bands environments are projected to
+  light::SunRequest sun_request;            ///< --sun, for dropped environments too
+  light::WindowRequest window_request;      ///< --window, for dropped environments too
   std::string renderer_name;
   std::size_t vertex_count = 0, triangle_count = 0;
 

@@ -16,7 +16,8 @@ namespace prt::transfer {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'R', 'T', 'X', 'F', 'E', 'R', '\0'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 1;            // one payload section
+constexpr std::uint32_t kVersionBounce = 2;      // two: the transfer, then its bounce-only part
 constexpr std::size_t kFixedHeaderBytes = 76;  // up to and including the parameters length
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
 constexpr std::uint32_t kMaxBands = 32;
@@ -55,12 +56,16 @@ void validate(const std::string& path, const Header& h) {
   if (h.scalar != Scalar::float32 && h.scalar != Scalar::float16)
     fail_file(path, "unknown scalar type " + std::to_string(static_cast<std::uint32_t>(h.scalar)));
   if (h.parameters_json.size() > kMaxParametersBytes) fail_file(path, "parameters block larger than 1 MiB");
+  if (h.bounce_only_section && h.kind != Kind::interreflected && h.kind != Kind::glossy_interreflected)
+    fail_file(path, std::string("a bounce-only section (version 2) needs an interreflected kind, not ") + kind_name(h.kind));
 }
+
+std::uint64_t sections_of(const Header& h) { return h.bounce_only_section ? 2 : 1; }
 
 // Serialises the header including its trailing checksum.
 std::string encode_header(const Header& h, std::uint64_t payload_bytes, std::uint64_t payload_checksum) {
   std::string out(kMagic, kMagic + 8);
-  put_u32(out, kVersion);
+  put_u32(out, h.bounce_only_section ? kVersionBounce : kVersion);
   put_u32(out, static_cast<std::uint32_t>(h.kind));
   put_u32(out, h.bands);
   put_u32(out, h.bands_out);
@@ -93,10 +98,11 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   const auto* p = reinterpret_cast<const unsigned char*>(fixed.data());
   if (std::memcmp(p, kMagic, 8) != 0) fail_file(path, "not a prt transfer file (wrong magic)");
   std::uint32_t version = get_u32(p + 8);
-  if (version != kVersion)
-    fail_file(path, "unsupported transfer file version " + std::to_string(version) + " (this prt reads version 1)");
+  if (version != kVersion && version != kVersionBounce)
+    fail_file(path, "unsupported transfer file version " + std::to_string(version) + " (this prt reads versions 1 and 2)");
   DecodedHeader d;
   Header& h = d.header;
+  h.bounce_only_section = version == kVersionBounce;
   h.kind = static_cast<Kind>(get_u32(p + 12));
   h.bands = get_u32(p + 16);
   h.bands_out = get_u32(p + 20);
@@ -120,7 +126,7 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != stored) fail_file(path, "header checksum mismatch (file is corrupt)");
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
   validate(path, h);
-  std::uint64_t expected = h.vertex_count * h.values_per_vertex() * scalar_bytes(h.scalar);
+  std::uint64_t expected = sections_of(h) * h.vertex_count * h.values_per_vertex() * scalar_bytes(h.scalar);
   if (d.payload_bytes != expected) fail_file(path, "corrupt header: payload size does not match vertex count, bands and channels");
   if (file_size < d.header_bytes + d.payload_bytes)
     fail_file(path, "truncated: payload has " + std::to_string(file_size - d.header_bytes) + " of " +
@@ -184,6 +190,18 @@ void encode_values(const std::vector<float>& values, std::size_t first, std::siz
   }
 }
 
+void decode_values(const unsigned char* p, std::size_t count, Scalar scalar, std::vector<float>& out) {
+  out.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (scalar == Scalar::float16) {
+      out[i] = half_to_float(static_cast<std::uint16_t>(p[2 * i] | (p[2 * i + 1] << 8)));
+    } else {
+      std::uint32_t v = get_u32(p + 4 * i);
+      std::memcpy(&out[i], &v, 4);
+    }
+  }
+}
+
 }  // namespace
 
 void write_transfer(const std::string& path, const TransferData& data) {
@@ -191,22 +209,29 @@ void write_transfer(const std::string& path, const TransferData& data) {
   validate(path, h);
   if (data.values.size() != h.vertex_count * h.values_per_vertex())
     fail_file(path, "internal: value count does not match the header");
+  if (h.bounce_only_section != !data.bounce_only.empty() || (h.bounce_only_section && data.bounce_only.size() != data.values.size()))
+    fail_file(path, "internal: bounce-only section does not match the header");
+  const std::vector<const std::vector<float>*> sections =
+      h.bounce_only_section ? std::vector<const std::vector<float>*>{&data.values, &data.bounce_only}
+                            : std::vector<const std::vector<float>*>{&data.values};
   // The payload is encoded twice in chunks (checksum, then write) so that no full copy of a large
   // transfer is ever held in memory.
   constexpr std::size_t kChunk = 1 << 16;
   std::string chunk;
   std::uint64_t checksum = kFnvOffset;
-  for (std::size_t first = 0; first < data.values.size(); first += kChunk) {
-    encode_values(data.values, first, std::min(kChunk, data.values.size() - first), h.scalar, chunk);
-    checksum = fnv1a64(chunk.data(), chunk.size(), checksum);
-  }
-  const std::string header = encode_header(h, data.values.size() * scalar_bytes(h.scalar), checksum);
+  for (const std::vector<float>* values : sections)
+    for (std::size_t first = 0; first < values->size(); first += kChunk) {
+      encode_values(*values, first, std::min(kChunk, values->size() - first), h.scalar, chunk);
+      checksum = fnv1a64(chunk.data(), chunk.size(), checksum);
+    }
+  const std::string header = encode_header(h, sections.size() * data.values.size() * scalar_bytes(h.scalar), checksum);
   AtomicFile file(path);
   file.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
-  for (std::size_t first = 0; first < data.values.size(); first += kChunk) {
-    encode_values(data.values, first, std::min(kChunk, data.values.size() - first), h.scalar, chunk);
-    file.stream().write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-  }
+  for (const std::vector<float>* values : sections)
+    for (std::size_t first = 0; first < values->size(); first += kChunk) {
+      encode_values(*values, first, std::min(kChunk, values->size() - first), h.scalar, chunk);
+      file.stream().write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    }
   file.commit();
 }
 
@@ -224,17 +249,10 @@ TransferData read_transfer(const std::string& path) {
   if (fnv1a64(payload.data(), payload.size()) != d.payload_checksum) fail_file(path, "payload checksum mismatch (file is corrupt)");
   TransferData data;
   data.header = d.header;
-  std::size_t count = static_cast<std::size_t>(d.header.vertex_count * d.header.values_per_vertex());
-  data.values.resize(count);
+  const std::size_t count = static_cast<std::size_t>(d.header.vertex_count * d.header.values_per_vertex());
   const auto* p = reinterpret_cast<const unsigned char*>(payload.data());
-  for (std::size_t i = 0; i < count; ++i) {
-    if (d.header.scalar == Scalar::float16) {
-      data.values[i] = half_to_float(static_cast<std::uint16_t>(p[2 * i] | (p[2 * i + 1] << 8)));
-    } else {
-      std::uint32_t v = get_u32(p + 4 * i);
-      std::memcpy(&data.values[i], &v, 4);
-    }
-  }
+  decode_values(p, count, d.header.scalar, data.values);
+  if (d.header.bounce_only_section) decode_values(p + count * scalar_bytes(d.header.scalar), count, d.header.scalar, data.bounce_only);
   return data;
 }
 
@@ -260,6 +278,7 @@ std::string describe(const Header& h) {
   s << "triangles: " << h.triangle_count << "\n";
   s << "mesh fingerprint: " << std::hex << h.mesh_fingerprint << std::dec << "\n";
   s << "values per vertex: " << h.values_per_vertex() << "\n";
+  s << "bounce-only section: " << (h.bounce_only_section ? "yes (version 2)" : "no") << "\n";
   s << "parameters: " << h.parameters_json << "\n";
   return s.str();
 }

@@ -39,6 +39,9 @@ struct Header {
   std::uint64_t triangle_count = 0;
   std::uint64_t mesh_fingerprint = 0;
   std::string parameters_json;   ///< bake parameters (samples, bounces, seed, albedo, ...), UTF-8 JSON object
+  /// The file holds a second payload section, the bounce-only part (TransferData::bounce_only; file
+  /// version 2, interreflected kinds only). Version 1 files have none.
+  bool bounce_only_section = false;
 
   /// Floats per vertex: channels * bands^2 (diffuse) or channels * bands_out^2 * bands^2 (glossy).
   std::uint64_t values_per_vertex() const;
@@ -50,6 +53,11 @@ struct Header {
 struct TransferData {
   Header header;
   std::vector<float> values;
+  /// Interreflected kinds only, optional: the BOUNCE-ONLY part of `values` (interreflected minus the
+  /// direct, shadowed pass), same layout and size as `values`; empty when the file has none (version 1
+  /// files). A renderer that shades a disc (light/disc.h) exactly applies this part to the disc's SH
+  /// and the full `values` to the rest of the lighting (docs/formats.md, "Bounce-only section").
+  std::vector<float> bounce_only;
 };
 
 /// Writes `data` atomically (temporary file + rename). Stored as header.scalar (float16 rounds to

@@ -159,7 +159,7 @@ TEST_CASE("prt light: every bad input is one line, status 1, and leaves no file"
   check_failure(dir, "sky.exr --rotate 1,2 -o l.json", "--rotate: expected YAW,PITCH,ROLL in degrees, got '1,2'");
   check_failure(dir, "sky.exr --rotate 90,x,0 -o l.json", "--rotate: expected YAW,PITCH,ROLL in degrees, got '90,x,0'");
   check_failure(dir, "sky.exr --window box -o l.json",
-                "unknown window 'box' (expected none, hanning, lanczos or laplacian)");
+                "--window: unknown window 'box' (expected auto, none, hanning, lanczos or laplacian)");
   check_failure(dir, "sky.exr --window hanning --window-param=-1 -o l.json", "--window-param -1: must be a finite number > 0");
   check_failure(dir, "sky.exr -o nowhere/l.json", "nowhere/l.json: output folder does not exist");
   check_failure(dir, "sky.exr -o l.json --preview p.txt",

@@ -182,7 +182,7 @@ TEST_CASE("prt probes: bad inputs give one-line errors and leave nothing behind"
       {"--grid 2,2,2 --format unreal", "--format: unknown format 'unreal' (expected prt, threejs, unity, godot, filament, gltf or bevy)"},
       {"--format prt", "give exactly one of --grid NX,NY,NZ and --points FILE"},
       {"--points " + points_out + " --format bevy", "--format bevy needs a probe grid"},
-      {"--grid 2,2,2 --format prt --sun 0,1,0,5", "--sun: expected DX,DY,DZ,INTENSITY,ANGULAR_RADIUS_DEGREES"},
+      {"--grid 2,2,2 --format prt --sun 0,1,0,5", "--sun: expected auto, none, DX,DY,DZ,R,G,B,RADIUS_DEG or DX,DY,DZ,E,RADIUS_DEG"},
       {"--grid 2,2,2 --format prt --bands 0", "--bands 0 is out of range 1..16"},
   };
   for (const Case& c : cases) {

@@ -36,49 +36,9 @@ constexpr int kWidth = 160, kHeight = 120;
 image::Image glossy_on_cpu(const mesh::Mesh& mesh, const std::vector<glm::vec3>& outgoing, int out_bands,
                            const glm::dvec3& eye_object, const glm::mat4& model_view_projection,
                            const std::vector<std::uint32_t>& ids) {
-  image::Image out(kWidth, kHeight, 3);
-  const glm::dmat4 mvp(model_view_projection);
-  const int n = out_bands * out_bands;
-  std::vector<double> y(static_cast<std::size_t>(n));
-  for (int py = 0; py < kHeight; ++py)
-    for (int px = 0; px < kWidth; ++px) {
-      const std::uint32_t t = ids[static_cast<std::size_t>(py) * kWidth + px];
-      if (t == render::kNoTriangle) continue;
-      const glm::dvec2 pixel((px + 0.5) / kWidth * 2.0 - 1.0, 1.0 - (py + 0.5) / kHeight * 2.0);
-      glm::dvec2 screen[3];
-      double w[3];
-      std::uint32_t corner[3];
-      for (int k = 0; k < 3; ++k) {
-        corner[k] = mesh.indices[3 * t + k];
-        const glm::dvec4 clip = mvp * glm::dvec4(glm::dvec3(mesh.positions[corner[k]]), 1.0);
-        w[k] = clip.w;
-        screen[k] = glm::dvec2(clip) / clip.w;
-      }
-      auto edge = [](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p) {
-        return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-      };
-      const double area = edge(screen[0], screen[1], screen[2]);
-      const double l[3] = {edge(screen[1], screen[2], pixel) / area, edge(screen[2], screen[0], pixel) / area,
-                           edge(screen[0], screen[1], pixel) / area};
-      const double sum = l[0] / w[0] + l[1] / w[1] + l[2] / w[2];
-      double b[3];
-      glm::dvec3 p(0.0);
-      for (int k = 0; k < 3; ++k) {
-        b[k] = l[k] / w[k] / sum;
-        p += b[k] * glm::dvec3(mesh.positions[corner[k]]);
-      }
-      const glm::dvec3 view = glm::normalize(eye_object - p);
-      glm::dvec3 value(0.0);
-      for (int k = 0; k < 3; ++k) {
-        const glm::dmat3 frame = brdf::shading_frame(glm::dvec3(mesh.normals[corner[k]]));
-        sh::eval(out_bands, glm::transpose(frame) * view, y.data());
-        glm::dvec3 radiance(0.0);
-        for (int i = 0; i < n; ++i) radiance += y[static_cast<std::size_t>(i)] * glm::dvec3(outgoing[corner[k] * n + i]);
-        value += b[k] * radiance;
-      }
-      for (int c = 0; c < 3; ++c) out.at(px, py, c) = static_cast<float>(value[c]);
-    }
-  return out;
+  return per_pixel_on_cpu(mesh, model_view_projection, ids, kWidth, kHeight, [&](const PixelPoint& p) {
+    return glossy_prt_at(mesh, outgoing, out_bands, p, glm::normalize(eye_object - p.position));
+  });
 }
 
 transfer::TransferData glossy_transfer(const mesh::Mesh& mesh, transfer::Kind kind, int bands, int bands_out, const std::string& spec) {

@@ -1,0 +1,55 @@
+#include "light/deringing.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "sh/zonal.h"
+
+namespace prt::light {
+
+WindowRequest parse_window_request(const std::string& name, double param) {
+  WindowRequest request;
+  if (name == "auto") return request;
+  request.automatic = false;
+  try {
+    request.window = sh::parse_window(name);
+  } catch (const Error&) {
+    fail("--window: unknown window '" + name + "' (expected auto, none, hanning, lanczos or laplacian)");
+  }
+  if (!std::isfinite(param)) fail("--window-param: must be finite");
+  request.param = param;
+  return request;
+}
+
+double auto_window_lambda(const sh::RgbCoefficients& lighting, bool radiance) {
+  sh::RgbCoefficients irradiance = lighting;
+  for (int l = 0; l < lighting.bands; ++l)
+    for (int m = -l; m <= l; ++m) irradiance.values[static_cast<std::size_t>(l * (l + 1) + m)] *= sh::clamped_cosine_factor(l);
+  const double lambda = sh::nonnegative_laplacian_lambda(irradiance);
+  return radiance ? std::max(lambda, sh::nonnegative_laplacian_lambda(lighting)) : lambda;
+}
+
+WindowChoice apply_window_request(const WindowRequest& request, sh::RgbCoefficients& lighting) {
+  WindowChoice choice;
+  if (request.automatic) {
+    const double lambda = auto_window_lambda(lighting, request.radiance);
+    if (lambda > 0.0) {
+      choice.window = sh::Window::laplacian;
+      choice.param = lambda;
+    }
+  } else {
+    choice.window = request.window;
+    choice.param = request.window == sh::Window::none ? 0.0
+                   : request.param > 0.0                ? request.param
+                                                        : sh::default_window_param(request.window, lighting.bands);
+  }
+  if (choice.window == sh::Window::none) return choice;
+  sh::apply_window(sh::window_weights(choice.window, lighting.bands, choice.param), lighting);
+  char text[64];
+  std::snprintf(text, sizeof text, "(%.17g)", choice.param);
+  choice.description = std::string(sh::window_name(choice.window)) + text;
+  return choice;
+}
+
+}  // namespace prt::light

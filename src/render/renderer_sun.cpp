@@ -1,0 +1,357 @@
+// The renderer's sun pass (renderer.h, PASSES: sun): discs, their shadow maps, their bounce light and
+// the uniforms the SUN variants of the PRT passes read (shaders/sun_light.glsl).
+#include "render/renderer_sun.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/error.h"
+#include "sh/basis.h"
+#include "sh/rotation.h"
+#include "shade/shade.h"
+
+namespace prt::render {
+
+namespace {
+
+constexpr int kMaxCoefficients = sh::kMaxBands * sh::kMaxBands;
+constexpr GLuint kLightingBinding = 0;        // prt_glossy.comp: uniform Lighting
+constexpr GLuint kBrdfBinding = 1;            // prt_glossy.comp: buffer BrdfMatrix
+constexpr GLuint kOutgoingBinding = 2;        // prt_glossy.comp: buffer Outgoing
+constexpr GLuint kPositionsBinding = 4;       // sun_visibility.comp
+constexpr GLuint kNormalsBinding = 5;         // sun_visibility.comp
+constexpr GLuint kSunAlbedoBinding = 6;       // prt_diffuse.vert (SUN); sun_visibility.comp: Visibility
+constexpr GLuint kSunBounceBinding = 7;       // prt_diffuse.vert (SUN)
+constexpr GLuint kBounceOutgoingBinding = 6;  // prt_glossy.comp (SUN)
+constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
+constexpr GLuint kWorkgroupSize = 64;
+constexpr int kMaxTerms = 8;                  // sun_light.glsl: max_terms
+
+GLuint dynamic_buffer(std::size_t bytes) {
+  GLuint buffer = 0;
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  return buffer;
+}
+
+void release(GLuint& buffer) {
+  if (buffer != 0) glDeleteBuffers(1, &buffer);
+  buffer = 0;
+}
+
+bool interreflects(transfer::Kind kind) {
+  return kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected;
+}
+
+// A unit vector perpendicular to d (the Duff et al. 2017 basis's first axis).
+glm::dvec3 perpendicular(const glm::dvec3& n) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  return glm::dvec3(1.0 + sign * n.x * n.x * a, sign * n.x * n.y * a, -sign * n.x);
+}
+
+}  // namespace
+
+Renderer::SunPass::SunPass()
+    : disc_lighting(kMaxCoefficients, glm::vec3(0.0f)),
+      shadow_program({"shadow.vert"}),
+      visibility_program({"sun_visibility.comp"}) {
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_texture);
+  glTextureStorage3D(shadow_texture, 1, GL_DEPTH_COMPONENT32F, kShadowMapSize, kShadowMapSize, kMaxDiscs);
+  glTextureParameteri(shadow_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(shadow_texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(shadow_texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTextureParameteri(shadow_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // outside the map: nothing between it and the light
+  glTextureParameterfv(shadow_texture, GL_TEXTURE_BORDER_COLOR, far);
+  glCreateFramebuffers(1, &shadow_framebuffer);
+  glNamedFramebufferDrawBuffer(shadow_framebuffer, GL_NONE);
+  glNamedFramebufferReadBuffer(shadow_framebuffer, GL_NONE);
+  disc_lighting_buffer = dynamic_buffer(kMaxCoefficients * sizeof(glm::vec4));
+  check_gl("creating the sun pass");
+}
+
+Renderer::SunPass::~SunPass() {
+  clear_mesh();
+  if (shadow_texture != 0) glDeleteTextures(1, &shadow_texture);
+  if (shadow_framebuffer != 0) glDeleteFramebuffers(1, &shadow_framebuffer);
+  release(disc_lighting_buffer);
+}
+
+void Renderer::SunPass::clear_mesh() {
+  for (PerTransfer& t : transfers) release(t.albedo);
+  transfers.clear();
+  release(bounce_vertex);
+  release(bounce_outgoing);
+  bounce_outgoing_bytes = 0;
+  maps_valid = bounce_valid = false;
+}
+
+void Renderer::SunPass::add_transfer(const transfer::TransferData& transfer, const std::string& origin,
+                                     std::size_t max_range_bytes) {
+  PerTransfer t;
+  t.origin = origin;
+  t.glossy = transfer::is_glossy(transfer.header.kind);
+  t.shadows = transfer.header.kind != transfer::Kind::unshadowed;
+  t.interreflected = interreflects(transfer.header.kind);
+  if (t.interreflected && !transfer.bounce_only.empty()) {
+    transfer::TransferData part;
+    part.header = transfer.header;
+    part.header.bounce_only_section = false;
+    part.values = transfer.bounce_only;
+    if (t.glossy)
+      t.bounce_gpu = std::make_unique<TransferBuffer>(part, origin + " (bounce-only part)", max_range_bytes);
+    else
+      t.bounce_cpu = std::move(part);
+  }
+  transfers.push_back(std::move(t));
+}
+
+// ---------------------------------------------------------------------------------------------------
+void Renderer::set_discs(const std::vector<light::Disc>& discs) {
+  SunPass& s = *sun_;
+  s.discs.assign(discs.begin(), discs.begin() + std::min<std::ptrdiff_t>(discs.size(), kMaxDiscs));
+  const sh::RgbCoefficients sh = light::discs_coefficients(sh::kMaxBands, s.discs);
+  for (std::size_t i = 0; i < s.disc_lighting.size(); ++i) s.disc_lighting[i] = glm::vec3(sh.values[i]);
+  ++s.version;
+}
+
+int Renderer::disc_count() const { return static_cast<int>(sun_->discs.size()); }
+int Renderer::shadow_map_updates() const { return sun_->updates; }
+
+void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& albedo) {
+  transfer_header(transfer);  // checks the index
+  if (albedo.size() != vertex_count_)
+    fail("renderer: surface albedo has " + std::to_string(albedo.size()) + " entries for " + std::to_string(vertex_count_) +
+         " vertices");
+  GLuint& buffer = sun_->transfers[static_cast<std::size_t>(transfer)].albedo;
+  release(buffer);
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(albedo.size() * sizeof(glm::vec3)), albedo.data(), 0);
+}
+
+void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix, const brdf::Brdf& surface) {
+  const std::vector<brdf::Term> terms = brdf::terms(surface);
+  if (terms.size() > static_cast<std::size_t>(kMaxTerms))
+    fail("renderer: the BRDF has " + std::to_string(terms.size()) + " terms; the disc term evaluates at most " +
+         std::to_string(kMaxTerms));
+  set_brdf(transfer, matrix);
+  SunPass::PerTransfer& t = sun_->transfers[static_cast<std::size_t>(transfer)];
+  t.terms = terms;
+  t.has_terms = true;
+  ++sun_->version;  // the glossy bounce light goes through B
+}
+
+bool Renderer::sun_active(const FrameSettings& settings) const {
+  return settings.sun && settings.shading == Shading::prt && !sun_->discs.empty();
+}
+
+void Renderer::update_sun(const FrameSettings& settings, int bands) {
+  SunPass& s = *sun_;
+  const SunPass::PerTransfer& t = s.transfers[static_cast<std::size_t>(settings.transfer)];
+  if (t.glossy && !t.has_terms)
+    fail("renderer: glossy transfer " + std::to_string(settings.transfer) +
+         " has no BRDF for the discs' direct light (set_brdf with the Brdf)");
+  const glm::dmat3 rotation = glm::transpose(settings.object_rotation) * settings.environment_rotation;
+  if (!s.maps_valid || s.maps_version != s.version || s.maps_rotation != rotation) {
+    for (std::size_t k = 0; k < s.discs.size(); ++k) s.direction[k] = glm::vec3(glm::normalize(rotation * s.discs[k].direction));
+    draw_shadow_maps();
+    s.maps_valid = true;
+    s.maps_version = s.version;
+    s.maps_rotation = rotation;
+    ++s.updates;
+  }
+  if (!s.bounce_valid || s.bounce_version != s.version || s.bounce_rotation != rotation ||
+      s.bounce_transfer != settings.transfer || s.bounce_bands != bands) {
+    update_bounce(settings, bands);
+    s.bounce_valid = true;
+    s.bounce_version = s.version;
+    s.bounce_rotation = rotation;
+    s.bounce_transfer = settings.transfer;
+    s.bounce_bands = bands;
+  }
+}
+
+// One orthographic depth map per disc, looking along -d (object frame), fitted to the bounds' corners:
+// a square of half-width h about their centre across d, the depth range their extent along d.
+void Renderer::draw_shadow_maps() {
+  SunPass& s = *sun_;
+  const glm::dvec3 lo(bounds_.lo), hi(bounds_.hi);
+  const double margin = 1e-3 * std::max(1e-12, glm::length(hi - lo));
+  for (std::size_t k = 0; k < s.discs.size(); ++k) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(s.direction[k]));
+    const glm::dvec3 u = glm::normalize(perpendicular(d)), v = glm::cross(d, u);
+    glm::dvec3 min_c(1e300), max_c(-1e300);
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::dvec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+      const glm::dvec3 c(glm::dot(p, u), glm::dot(p, v), glm::dot(p, d));
+      min_c = glm::min(min_c, c);
+      max_c = glm::max(max_c, c);
+    }
+    const double half = 0.5 * std::max(max_c.x - min_c.x, max_c.y - min_c.y) + margin;
+    const double cu = 0.5 * (min_c.x + max_c.x), cv = 0.5 * (min_c.y + max_c.y);
+    const double top = max_c.z + margin, depth_range = max_c.z - min_c.z + 2.0 * margin;
+    // clip x = (p.u - cu) / half, y = (p.v - cv) / half, z = 2 (top - p.d) / range - 1 (depth 0 at the top).
+    glm::dmat4 m(0.0);
+    for (int i = 0; i < 3; ++i) {
+      m[i][0] = u[i] / half;
+      m[i][1] = v[i] / half;
+      m[i][2] = -2.0 * d[i] / depth_range;
+    }
+    m[3] = glm::dvec4(-cu / half, -cv / half, 2.0 * top / depth_range - 1.0, 1.0);
+    glm::dmat4 to_unit(0.5);  // clip -> [0,1]^3
+    to_unit[3] = glm::dvec4(0.5, 0.5, 0.5, 1.0);
+    s.light_projection[k] = glm::mat4(m);
+    s.shadow_matrix[k] = glm::mat4(to_unit * m);
+    s.texel[k] = static_cast<float>(2.0 * half / kShadowMapSize);
+    s.depth_scale[k] = static_cast<float>(depth_range);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_framebuffer);
+  glViewport(0, 0, kShadowMapSize, kShadowMapSize);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);  // both sides occlude, as shadow rays meet triangles from either side
+  glUseProgram(s.shadow_program.id());
+  glBindVertexArray(mesh_vao_);
+  const float far_depth = 1.0f;
+  for (std::size_t k = 0; k < s.discs.size(); ++k) {
+    glNamedFramebufferTextureLayer(s.shadow_framebuffer, GL_DEPTH_ATTACHMENT, s.shadow_texture, 0, static_cast<GLint>(k));
+    glClearNamedFramebufferfv(s.shadow_framebuffer, GL_DEPTH, 0, &far_depth);
+    glUniformMatrix4fv(s.shadow_program.uniform("light_projection"), 1, GL_FALSE, glm::value_ptr(s.light_projection[k]));
+    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl("drawing shadow maps");
+}
+
+// The discs' bounce light for the current transfer: T_bounce . L_discs per vertex (diffuse, on the CPU)
+// or B (M_bounce L_discs) per vertex (glossy, prt_glossy.comp), L_discs in the object frame.
+void Renderer::update_bounce(const FrameSettings& settings, int bands) {
+  SunPass& s = *sun_;
+  SunPass::PerTransfer& t = s.transfers[static_cast<std::size_t>(settings.transfer)];
+  const int count = bands * bands;
+  const glm::mat3 rotation(glm::transpose(settings.object_rotation) * settings.environment_rotation);
+  std::vector<glm::vec3> rotated(static_cast<std::size_t>(count));
+  sh::rotate_rgb(bands, rotation, s.disc_lighting.data(), rotated.data());
+  const bool has_bounce = t.glossy ? t.bounce_gpu != nullptr : !t.bounce_cpu.values.empty();
+  if (t.interreflected && !has_bounce && !t.warned) {
+    std::fprintf(stderr, "prt: %s: no bounce-only section (a version 1 file): the discs' interreflected light is left out; re-bake for it\n",
+                 t.origin.c_str());
+    t.warned = true;
+  }
+  if (!t.glossy) {
+    std::vector<glm::vec3> bounce(vertex_count_, glm::vec3(0.0f));
+    if (has_bounce) {
+      sh::RgbCoefficients lighting(bands);
+      for (int i = 0; i < count; ++i) lighting.values[static_cast<std::size_t>(i)] = glm::dvec3(rotated[static_cast<std::size_t>(i)]);
+      bounce = shade::shade_diffuse(t.bounce_cpu, lighting);
+    }
+    if (s.bounce_vertex == 0) s.bounce_vertex = dynamic_buffer(vertex_count_ * sizeof(glm::vec3));
+    glNamedBufferSubData(s.bounce_vertex, 0, static_cast<GLsizeiptr>(bounce.size() * sizeof(glm::vec3)), bounce.data());
+    return;
+  }
+  const transfer::Header& header = transfers_[static_cast<std::size_t>(settings.transfer)]->header();
+  const int out_count = static_cast<int>(header.bands_out * header.bands_out);
+  const std::size_t bytes = vertex_count_ * static_cast<std::size_t>(out_count) * sizeof(glm::vec4);
+  if (s.bounce_outgoing == 0 || s.bounce_outgoing_bytes < bytes) {
+    release(s.bounce_outgoing);
+    s.bounce_outgoing = dynamic_buffer(bytes);
+    s.bounce_outgoing_bytes = bytes;
+  }
+  if (!has_bounce) {
+    const float zero = 0.0f;
+    glClearNamedBufferData(s.bounce_outgoing, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    return;
+  }
+  std::vector<glm::vec4> upload(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) upload[static_cast<std::size_t>(i)] = glm::vec4(rotated[static_cast<std::size_t>(i)], 0.0f);
+  glNamedBufferSubData(s.disc_lighting_buffer, 0, static_cast<GLsizeiptr>(upload.size() * sizeof(glm::vec4)), upload.data());
+  const Program& compute = glossy_compute_program(static_cast<int>(header.channels), static_cast<int>(header.bands * header.bands),
+                                                  count, out_count, t.bounce_gpu->chunks());
+  glUseProgram(compute.id());
+  t.bounce_gpu->bind();
+  glUniform1i(compute.uniform("vertices_per_chunk"), static_cast<GLint>(t.bounce_gpu->vertices_per_chunk()));
+  glUniform1i(compute.uniform("vertex_count"), static_cast<GLint>(vertex_count_));
+  glBindBufferBase(GL_UNIFORM_BUFFER, kLightingBinding, s.disc_lighting_buffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBrdfBinding, brdf_buffers_[static_cast<std::size_t>(settings.transfer)]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOutgoingBinding, s.bounce_outgoing);
+  glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  check_gl("computing the discs' bounce light");
+}
+
+void Renderer::bind_sun_bounce() { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBounceOutgoingBinding, sun_->bounce_outgoing); }
+
+void Renderer::bind_sun(const Program& program, const FrameSettings& settings, bool glossy) {
+  SunPass& s = *sun_;
+  const SunPass::PerTransfer& t = s.transfers[static_cast<std::size_t>(settings.transfer)];
+  const int n = static_cast<int>(s.discs.size());
+  glm::vec3 irradiance[kMaxDiscs];
+  float tan_radius[kMaxDiscs];
+  for (int k = 0; k < n; ++k) {
+    irradiance[k] = glm::vec3(s.discs[static_cast<std::size_t>(k)].irradiance);
+    tan_radius[k] = static_cast<float>(std::tan(s.discs[static_cast<std::size_t>(k)].angular_radius));
+  }
+  glUniform1i(program.uniform("disc_count"), n);
+  glUniform3fv(program.uniform("disc_direction"), n, glm::value_ptr(s.direction[0]));
+  glUniform3fv(program.uniform("disc_irradiance"), n, glm::value_ptr(irradiance[0]));
+  glUniform1fv(program.uniform("disc_tan_radius"), n, tan_radius);
+  glUniformMatrix4fv(program.uniform("shadow_matrix"), n, GL_FALSE, glm::value_ptr(s.shadow_matrix[0]));
+  glUniform1fv(program.uniform("shadow_depth_scale"), n, s.depth_scale.data());
+  glUniform1fv(program.uniform("shadow_texel"), n, s.texel.data());
+  glUniform1i(program.uniform("disc_shadows"), t.shadows ? 1 : 0);
+  glBindTextureUnit(kShadowUnit, s.shadow_texture);
+  if (glossy) {
+    const int terms = static_cast<int>(t.terms.size());
+    GLint shapes[kMaxTerms];
+    float parameters[kMaxTerms];
+    glm::vec3 weights[kMaxTerms];
+    for (int i = 0; i < terms; ++i) {
+      shapes[i] = static_cast<GLint>(t.terms[static_cast<std::size_t>(i)].shape);
+      parameters[i] = static_cast<float>(t.terms[static_cast<std::size_t>(i)].parameter);
+      weights[i] = glm::vec3(t.terms[static_cast<std::size_t>(i)].weight);
+    }
+    glUniform1i(program.uniform("brdf_term_count"), terms);
+    if (terms > 0) {
+      glUniform1iv(program.uniform("brdf_shape"), terms, shapes);
+      glUniform1fv(program.uniform("brdf_parameter"), terms, parameters);
+      glUniform3fv(program.uniform("brdf_weight"), terms, glm::value_ptr(weights[0]));
+    }
+  } else {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSunAlbedoBinding, t.albedo != 0 ? t.albedo : albedo_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSunBounceBinding, s.bounce_vertex);
+  }
+}
+
+std::vector<float> Renderer::shadow_visibility(const FrameSettings& settings, int disc) {
+  if (!has_mesh_) fail("renderer: no mesh");
+  if (disc < 0 || disc >= disc_count()) fail("renderer: no disc " + std::to_string(disc));
+  transfer_header(settings.transfer);
+  update_sun(settings, static_cast<int>(transfer_header(settings.transfer).bands));
+  SunPass& s = *sun_;
+  const Program& program = s.visibility_program;
+  glUseProgram(program.id());
+  bind_sun(program, settings, false);
+  glUniform1i(program.uniform("disc_shadows"), 1);
+  glUniform1i(program.uniform("vertex_count"), static_cast<GLint>(vertex_count_));
+  glUniform1i(program.uniform("disc"), disc);
+  GLuint output = dynamic_buffer(vertex_count_ * sizeof(float));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, positions_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, normals_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSunAlbedoBinding, output);
+  glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> out(vertex_count_);
+  glGetNamedBufferSubData(output, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
+  release(output);
+  check_gl("measuring shadow-map visibility");
+  return out;
+}
+
+}  // namespace prt::render

@@ -1,0 +1,88 @@
+#include "shade/scene_shading.h"
+
+#include <memory>
+
+#include <glm/geometric.hpp>
+
+#include "shade/glossy.h"
+#include "shade/shade.h"
+#include "shade/surface_albedo.h"
+#include "trace/scene.h"
+
+namespace prt::shade {
+
+namespace {
+
+bool is_interreflected(transfer::Kind kind) {
+  return kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected;
+}
+
+std::unique_ptr<trace::Scene> shadow_scene(const mesh::Mesh& mesh, const transfer::Header& header, int threads) {
+  if (header.kind == transfer::Kind::unshadowed) return nullptr;
+  return std::make_unique<trace::Scene>(mesh, trace::SceneOptions{threads, true});
+}
+
+// The bounce-only part as a transfer of its own (same header), or nullptr with a warning when the file
+// has none although its kind interreflects.
+std::unique_ptr<transfer::TransferData> bounce_part(const transfer::TransferData& transfer, const std::string& origin,
+                                                    SplitReport* report) {
+  if (!is_interreflected(transfer.header.kind)) return nullptr;
+  if (transfer.bounce_only.empty()) {
+    if (report)
+      report->warning = origin + ": no bounce-only section (a version 1 file): the discs' interreflected light is left out; "
+                                 "re-bake for it";
+    return nullptr;
+  }
+  auto part = std::make_unique<transfer::TransferData>();
+  part->header = transfer.header;
+  part->header.bounce_only_section = false;
+  part->values = transfer.bounce_only;
+  return part;
+}
+
+void add_into(std::vector<glm::vec3>& to, const std::vector<glm::vec3>& from) {
+  for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
+}
+
+// The split lighting's output: no negative channel (see the header).
+std::vector<glm::vec3> clamped(std::vector<glm::vec3> radiance, const light::SceneLighting& lighting) {
+  if (lighting.discs.empty() && lighting.window.window == sh::Window::none) return radiance;
+  for (glm::vec3& r : radiance) r = glm::max(r, glm::vec3(0.0f));
+  return radiance;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
+                                           const light::SceneLighting& lighting, const std::string& origin,
+                                           const DiscShadingOptions& options, SplitReport* report) {
+  std::vector<glm::vec3> out = shade_diffuse(transfer, lighting.sky);
+  if (lighting.discs.empty()) return clamped(std::move(out), lighting);
+  if (const auto bounce = bounce_part(transfer, origin, report))
+    add_into(out, shade_diffuse(*bounce, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs)));
+  const auto scene = shadow_scene(mesh, transfer.header, options.threads);
+  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, scene.get(), options));
+  return clamped(std::move(out), lighting);
+}
+
+std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
+                                          const brdf::Brdf& surface, const brdf::BrdfMatrix& matrix,
+                                          const light::SceneLighting& lighting, const glm::vec3& eye,
+                                          const std::string& origin, const DiscShadingOptions& options,
+                                          SplitReport* report) {
+  std::vector<glm::vec3> out = shade_glossy_eye(transfer, matrix, lighting.sky, mesh.positions, mesh.normals, eye);
+  if (lighting.discs.empty()) return clamped(std::move(out), lighting);
+  if (const auto bounce = bounce_part(transfer, origin, report))
+    add_into(out, shade_glossy_eye(*bounce, matrix, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs),
+                                   mesh.positions, mesh.normals, eye));
+  std::vector<glm::vec3> view(mesh.positions.size());
+  for (std::size_t v = 0; v < view.size(); ++v) {
+    const glm::vec3 d = eye - mesh.positions[v];
+    view[v] = glm::length(d) > 0.0f ? glm::normalize(d) : mesh.normals[v];
+  }
+  const auto scene = shadow_scene(mesh, transfer.header, options.threads);
+  add_into(out, disc_direct_glossy(mesh, surface, lighting.discs, view, scene.get(), options));
+  return clamped(std::move(out), lighting);
+}
+
+}  // namespace prt::shade

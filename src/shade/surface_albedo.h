@@ -1,0 +1,21 @@
+#pragma once
+// The diffuse albedo a transfer was baked with, per vertex: what the exact (disc) direct term needs,
+// since a 1-channel transfer has the albedo folded in.
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/mesh.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::shade {
+
+/// Per-vertex linear albedo in [0,1]: the mesh's own when its bake parameters say "albedo": "mesh" (or
+/// the mesh carries albedo and the parameters name none), else the bake's fallback albedo, the
+/// parameters' "albedo": [r, g, b]. Transfers without either (hand-made files) get 0.8 grey, the bake's
+/// default. Throws prt::Error("<what>: ...") if the parameters say "mesh" but the mesh has no albedo,
+/// or the albedo entry is malformed.
+std::vector<glm::vec3> surface_albedo(const mesh::Mesh& mesh, const transfer::Header& header, const std::string& what);
+
+}  // namespace prt::shade

@@ -1,0 +1,327 @@
+// The renderer's discs (a sun) against the CPU reference: headless renders with set_discs against
+// prt::shade::shade_diffuse_split / the glossy split terms, the shadow map's visibility at the vertices
+// against the Embree ray visibility of prt::shade::disc_visibility, and the shadow maps redrawn only
+// when the lighting changes.
+//
+// The scene is a box resting on a floor with flat faces (separate vertices per face), so that on a
+// triangle whose three corners are all lit (or all in shadow) by the rays, the exact direct term
+// (albedo / pi) E max(n . l, 0) V is the same at every pixel and at the corners: there the GPU's per-
+// pixel direct light plus its interpolated PRT equals the CPU's per-vertex result interpolated.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "bake/bake.h"
+#include "brdf/brdf.h"
+#include "brdf/frame.h"
+#include "brdf/projection.h"
+#include "cpu_raster.h"
+#include "light/disc.h"
+#include "mesh/mesh.h"
+#include "render/headless_context.h"
+#include "render/renderer.h"
+#include "render_fixtures.h"
+#include "sh/rotation.h"
+#include "shade/disc_direct.h"
+#include "shade/glossy.h"
+#include "shade/scene_shading.h"
+#include "shade/surface_albedo.h"
+#include "trace/scene.h"
+
+using namespace prt;
+using namespace prt::render_test;
+
+namespace {
+
+constexpr int kWidth = 200, kHeight = 150;
+
+// A quad p0 + s u + t v (s, t in [0,1]) as an n x n grid of its own vertices, normal u x v.
+void add_quad(mesh::Mesh& m, const glm::vec3& p0, const glm::vec3& u, const glm::vec3& v, int n) {
+  const auto first = static_cast<std::uint32_t>(m.positions.size());
+  const glm::vec3 normal = glm::normalize(glm::cross(u, v));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      m.positions.push_back(p0 + u * (float(i) / n) + v * (float(j) / n));
+      m.normals.push_back(normal);
+    }
+  auto at = [&](int i, int j) { return first + static_cast<std::uint32_t>(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+}
+
+// A unit box on a 4 x 4 floor (y = 0), open at the bottom, its walls starting 1e-3 above the floor:
+// a vertex exactly on the contact line would lie on its occluder, where ray visibility is a matter of
+// rounding. The floor's grid lines miss the walls' feet for the same reason.
+mesh::Mesh box_on_floor() {
+  mesh::Mesh m;
+  const float lift = 1e-3f;
+  add_quad(m, {-2.05f, 0, 2.05f}, {4, 0, 0}, {0, 0, -4}, 40);                 // floor, +Y
+  add_quad(m, {-0.5f, 1, 0.5f}, {1, 0, 0}, {0, 0, -1}, 8);                    // top, +Y
+  add_quad(m, {-0.5f, lift, 0.5f}, {1, 0, 0}, {0, 1 - lift, 0}, 8);           // front, +Z
+  add_quad(m, {0.5f, lift, -0.5f}, {-1, 0, 0}, {0, 1 - lift, 0}, 8);          // back, -Z
+  add_quad(m, {0.5f, lift, 0.5f}, {0, 0, -1}, {0, 1 - lift, 0}, 8);           // right, +X
+  add_quad(m, {-0.5f, lift, -0.5f}, {0, 0, 1}, {0, 1 - lift, 0}, 8);          // left, -X
+  return m;
+}
+
+light::Disc test_sun() {
+  light::Disc d;
+  d.direction = glm::normalize(glm::dvec3(0.6, 0.7, 0.35));
+  d.irradiance = glm::dvec3(6.0, 5.5, 4.5);
+  d.angular_radius = 0.4 * 3.14159265358979323846 / 180.0;
+  return d;
+}
+
+transfer::TransferData bake_transfer(const mesh::Mesh& mesh, transfer::Kind kind, int bands, const std::string& spec = "") {
+  bake::BakeOptions o;
+  o.kind = kind;
+  o.bands = bands;
+  o.samples = 64;
+  o.bounces = 1;
+  o.albedo = glm::vec3(0.7f, 0.6f, 0.5f);
+  if (!spec.empty()) o.brdf = brdf::parse_brdf(spec);
+  o.threads = 1;
+  return bake::bake(mesh, o);
+}
+
+// Triangles whose three corners the rays see fully lit or fully shadowed, and whose corners the shadow
+// map agrees with: there the direct term is constant over the triangle.
+std::vector<bool> uniform_triangles(const mesh::Mesh& mesh, const std::vector<float>& rays, const std::vector<float>& map) {
+  std::vector<bool> out(mesh.triangle_count());
+  for (std::size_t t = 0; t < out.size(); ++t) {
+    bool lit = true, dark = true;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.indices[3 * t + k];
+      lit = lit && rays[v] == 1.0f && map[v] == 1.0f;
+      dark = dark && rays[v] == 0.0f && map[v] == 0.0f;
+    }
+    out[t] = lit || dark;
+  }
+  return out;
+}
+
+// Largest relative error (denominator floored at 2% of the largest expected value) over pixels of
+// uniform triangles; counts them.
+double uniform_error(const image::Image& gpu, const image::Image& cpu, const std::vector<std::uint32_t>& ids,
+                     const std::vector<bool>& uniform, std::size_t& counted) {
+  double largest = 0.0;
+  for (float v : cpu.pixels) largest = std::max(largest, std::abs(static_cast<double>(v)));
+  double worst = 0.0;
+  counted = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint32_t t = ids[static_cast<std::size_t>(y) * kWidth + x];
+      if (t == render::kNoTriangle || !uniform[t]) continue;
+      ++counted;
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(gpu.at(x, y, c) - cpu.at(x, y, c)) / std::max(std::abs(double(cpu.at(x, y, c))), 0.02 * largest));
+    }
+  return worst;
+}
+
+// Fraction of the vertices facing the disc (n . d > 0; the others get no direct light either way)
+// where shadow-map and ray visibility disagree about lit (V >= 0.5) or not; `facing` counts them.
+double disagreement(const mesh::Mesh& mesh, const light::Disc& disc, const std::vector<float>& map,
+                    const std::vector<float>& rays, std::size_t& facing) {
+  std::size_t differ = 0;
+  facing = 0;
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    if (!(glm::dot(glm::dvec3(mesh.normals[v]), disc.direction) > 0.0)) continue;
+    ++facing;
+    differ += (map[v] >= 0.5f) != (rays[v] >= 0.5f);
+  }
+  return static_cast<double>(differ) / static_cast<double>(std::max<std::size_t>(facing, 1));
+}
+
+double smallest_channel(const image::Image& image) {
+  double smallest = 1e30;
+  for (float v : image.pixels) smallest = std::min(smallest, static_cast<double>(v));
+  return smallest;
+}
+
+render::FrameSettings frame(int transfer, const render::Camera& camera) {
+  render::FrameSettings s;
+  s.camera = camera;
+  s.transfer = transfer;
+  s.background = render::Background::black;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("diffuse render with a sun equals shade_diffuse_split on the box and floor", "[render][gl][sun]") {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  const mesh::Mesh mesh = box_on_floor();
+  renderer.set_mesh(mesh);
+  const light::Disc sun = test_sun();
+  const trace::Scene scene(mesh);
+  const std::vector<float> rays = shade::disc_visibility(mesh, sun, scene);
+
+  for (const transfer::Kind kind : {transfer::Kind::shadowed, transfer::Kind::interreflected}) {
+    SECTION(transfer::kind_name(kind)) {
+      const transfer::TransferData transfer = bake_transfer(mesh, kind, 3);
+      if (kind == transfer::Kind::interreflected) REQUIRE(!transfer.bounce_only.empty());
+      const int index = renderer.add_transfer(transfer, "test");
+      renderer.set_surface_albedo(index, shade::surface_albedo(mesh, transfer.header, "test"));
+      light::SceneLighting lighting;
+      lighting.sky = test_lighting(3);
+      lighting.discs = {sun};
+      renderer.set_lighting(lighting.sky, nullptr);
+      renderer.set_discs(lighting.discs);
+      const render::FrameSettings settings = frame(index, render::Camera{30.0, 35.0, 0.0});
+      renderer.render(settings, kWidth, kHeight);
+      const image::Image gpu = renderer.read_radiance();
+      const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
+      const std::vector<float> map = renderer.shadow_visibility(settings, 0);
+
+      const std::vector<glm::vec3> cpu_vertex = shade::shade_diffuse_split(mesh, transfer, lighting, "test");
+      const image::Image cpu = interpolate_on_cpu(mesh, cpu_vertex, renderer.last_model_view_projection(), ids, kWidth, kHeight);
+      std::size_t counted = 0;
+      const double worst = uniform_error(gpu, cpu, ids, uniform_triangles(mesh, rays, map), counted);
+      INFO("pixels on uniformly lit or shadowed triangles " << counted << ", max relative error " << worst);
+      CHECK(counted > static_cast<std::size_t>(kWidth * kHeight / 10));
+      CHECK(worst <= 1e-3);
+      CHECK(smallest_channel(gpu) >= 0.0);
+    }
+  }
+}
+
+TEST_CASE("glossy render with a sun equals the split glossy shading with the BRDF evaluated exactly", "[render][gl][sun][glossy]") {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  const mesh::Mesh mesh = box_on_floor();
+  renderer.set_mesh(mesh);
+  const light::Disc sun = test_sun();
+  const trace::Scene scene(mesh);
+  const std::vector<float> rays = shade::disc_visibility(mesh, sun, scene);
+  const char* specs[] = {"phong:exponent=20,ks=0.5,kd=0.4", "ggx:roughness=0.4,f0=0.9/0.6/0.3,albedo=0.2/0.3/0.4",
+                         "blinn:exponent=30,ks=0.6,kd=0.3", "gltf:basecolor=0.8/0.5/0.3,metallic=0.3,roughness=0.5"};
+  for (const char* spec : specs) {
+    SECTION(spec) {
+      const transfer::TransferData transfer = bake_transfer(mesh, transfer::Kind::glossy_interreflected, 3, spec);
+      REQUIRE(!transfer.bounce_only.empty());
+      const int index = renderer.add_transfer(transfer, "test");
+      const brdf::Brdf surface = brdf::parse_brdf(spec);
+      const brdf::BrdfMatrix b = brdf::project(surface, 3);
+      renderer.set_brdf(index, b, surface);
+      const sh::RgbCoefficients sky = test_lighting(3);
+      renderer.set_lighting(sky, nullptr);
+      renderer.set_discs({sun});
+      const render::FrameSettings settings = frame(index, render::Camera{-40.0, 30.0, 0.0});
+      renderer.render(settings, kWidth, kHeight);
+      const image::Image gpu = renderer.read_radiance();
+      const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
+      const std::vector<float> map = renderer.shadow_visibility(settings, 0);
+
+      // CPU: O of the sky through the full transfer plus O of the disc's SH through the bounce-only
+      // part (as shade_glossy_split), evaluated toward the eye per pixel, plus the disc's direct light
+      // with brdf::eval_cosine at the pixel in the face's frame, visibility from the corners' rays.
+      std::vector<glm::vec3> outgoing = shade::glossy_outgoing_coefficients(transfer, b, sky);
+      transfer::TransferData bounce = transfer;
+      bounce.values = transfer.bounce_only;
+      const std::vector<glm::vec3> disc_o = shade::glossy_outgoing_coefficients(bounce, b, light::disc_coefficients(3, sun));
+      for (std::size_t i = 0; i < outgoing.size(); ++i) outgoing[i] += disc_o[i];
+      const render::ViewMatrices& view = renderer.last_view();
+      const glm::dvec3 eye = view.eye;  // no object rotation: mesh coordinates are world coordinates
+      const image::Image cpu = per_pixel_on_cpu(mesh, renderer.last_model_view_projection(), ids, kWidth, kHeight, [&](const PixelPoint& p) {
+        const glm::dvec3 v = glm::normalize(eye - p.position);
+        const glm::dvec3 n(mesh.normals[p.corner[0]]);
+        const glm::dmat3 to_local = glm::transpose(brdf::shading_frame(n));
+        const double visible = rays[p.corner[0]];
+        return glossy_prt_at(mesh, outgoing, 3, p, v) +
+               sun.irradiance * brdf::eval_cosine(surface, to_local * sun.direction, to_local * v) * visible;
+      });
+      std::size_t counted = 0;
+      const double worst = uniform_error(gpu, cpu, ids, uniform_triangles(mesh, rays, map), counted);
+      INFO("pixels on uniformly lit or shadowed triangles " << counted << ", max relative error " << worst);
+      CHECK(counted > static_cast<std::size_t>(kWidth * kHeight / 10));
+      CHECK(worst <= 2e-3);
+      // No pixel is more negative than the CPU reference's (the disc's bounce light through the glossy
+      // bounce-only matrices, 3 bands of a small cap, rings below zero on the CPU as well).
+      double largest = 0.0, excess = 0.0;
+      for (float v : cpu.pixels) largest = std::max(largest, std::abs(double(v)));
+      for (std::size_t i = 0; i < gpu.pixels.size(); ++i)
+        excess = std::max(excess, std::min(0.0, double(cpu.pixels[i])) - double(gpu.pixels[i]));
+      INFO("GPU below min(0, CPU) by at most " << excess);
+      CHECK(excess <= 1e-3 * largest);
+    }
+  }
+}
+
+TEST_CASE("shadow-map visibility at the vertices agrees with Embree's disc rays", "[render][gl][sun]") {
+  render::HeadlessContext context;
+  struct Case {
+    const char* name;
+    mesh::Mesh mesh;
+    glm::dvec3 direction;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"box on a floor", box_on_floor(), {0.6, 0.7, 0.35}});
+  cases.push_back({"box on a floor, low sun", box_on_floor(), {-0.8, 0.3, 0.2}});
+  cases.push_back({"lion (chinese_dragon_10k)", mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true),
+                   {0.3, 0.8, -0.5}});
+  for (const Case& c : cases) {
+    SECTION(c.name) {
+      render::Renderer renderer;
+      renderer.set_mesh(c.mesh);
+      const int index = renderer.add_transfer(unshadowed_transfer(c.mesh, 2, 1, glm::vec3(0.8f)), "test");
+      light::Disc sun = test_sun();
+      sun.direction = glm::normalize(c.direction);
+      renderer.set_discs({sun});
+      const std::vector<float> map = renderer.shadow_visibility(frame(index, render::Camera{}), 0);
+      const std::vector<float> rays = shade::disc_visibility(c.mesh, sun, trace::Scene(c.mesh));
+      std::size_t facing = 0, shadowed = 0;
+      const double differ = disagreement(c.mesh, sun, map, rays, facing);
+      for (std::size_t v = 0; v < rays.size(); ++v)
+        shadowed += rays[v] < 0.5f && glm::dot(glm::dvec3(c.mesh.normals[v]), sun.direction) > 0.0;
+      std::printf("shadow map vs rays, %s: %.3f%% of the %zu vertices facing the disc disagree (%zu of them in shadow)\n", c.name,
+                  100.0 * differ, facing, shadowed);
+      CHECK(shadowed > facing / 20);  // the shadow is a real test
+      if (std::getenv("PRT_DEBUG_SUN")) for (std::size_t v = 0, shown = 0; v < rays.size() && shown < 40; ++v)
+        if (glm::dot(glm::dvec3(c.mesh.normals[v]), sun.direction) > 0.0 && (map[v] >= 0.5f) != (rays[v] >= 0.5f)) {
+          ++shown;
+          std::printf("  v%zu p %.3f %.3f %.3f n %.2f %.2f %.2f map %.3f rays %.3f\n", v, c.mesh.positions[v].x, c.mesh.positions[v].y,
+                      c.mesh.positions[v].z, c.mesh.normals[v].x, c.mesh.normals[v].y, c.mesh.normals[v].z, map[v], rays[v]);
+        }
+      CHECK(differ <= 0.01);
+    }
+  }
+}
+
+TEST_CASE("shadow maps are redrawn when the lighting changes and only then", "[render][gl][sun]") {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  const mesh::Mesh mesh = box_on_floor();
+  renderer.set_mesh(mesh);
+  const int index = renderer.add_transfer(bake_transfer(mesh, transfer::Kind::shadowed, 2), "test");
+  renderer.set_lighting(test_lighting(2), nullptr);
+  renderer.set_discs({test_sun()});
+  render::FrameSettings settings = frame(index, render::Camera{});
+  renderer.render(settings, 64, 48);
+  CHECK(renderer.shadow_map_updates() == 1);
+  settings.camera.azimuth_degrees = 50.0;  // the camera alone: no redraw
+  renderer.render(settings, 64, 48);
+  renderer.render(settings, 64, 48);
+  CHECK(renderer.shadow_map_updates() == 1);
+  const image::Image before = renderer.read_radiance();
+  settings.environment_rotation = sh::rotation_from_yaw_pitch_roll(40.0, 0.0, 0.0);
+  renderer.render(settings, 64, 48);  // redrawn within this frame
+  CHECK(renderer.shadow_map_updates() == 2);
+  settings.object_rotation = sh::rotation_from_yaw_pitch_roll(0.0, 10.0, 0.0);
+  renderer.render(settings, 64, 48);
+  CHECK(renderer.shadow_map_updates() == 3);
+  renderer.set_discs({test_sun()});
+  renderer.render(settings, 64, 48);
+  CHECK(renderer.shadow_map_updates() == 4);
+  settings.sun = false;  // the sun off: no map needed
+  renderer.render(settings, 64, 48);
+  CHECK(renderer.shadow_map_updates() == 4);
+  CHECK(before.width == 64);
+}
