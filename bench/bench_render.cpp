@@ -13,12 +13,14 @@
 #include <vector>
 
 #include "bench_meshes.h"
+#include "bench_lighting.h"
 #include "render/gl.h"
 #include "render/headless_context.h"
 #include "render/renderer.h"
 #include "sh/rotation.h"
 
 using namespace prt;
+using bench::synthetic_lighting;
 
 namespace {
 
@@ -40,12 +42,6 @@ transfer::TransferData synthetic_transfer(std::size_t vertices, int bands, int c
   data.values.resize(vertices * data.header.values_per_vertex());
   for (std::size_t i = 0; i < data.values.size(); ++i) data.values[i] = 0.01f * static_cast<float>((i * 7919) % 97);
   return data;
-}
-
-sh::RgbCoefficients synthetic_lighting(int bands) {
-  sh::RgbCoefficients lighting(bands);
-  for (int i = 0; i < bands * bands; ++i) lighting.values[static_cast<std::size_t>(i)] = glm::dvec3(1.0 / (1 + i), 0.8 / (1 + i), 0.5 / (1 + i));
-  return lighting;
 }
 
 struct FrameResult {

@@ -100,6 +100,7 @@ void main() {
     sum += disc_irradiance[k] * brdf_eval_cosine(shading_local(n, disc_direction[k]), w_o) *
            disc_visibility(k, object_position, n);
   }
+  sum = max(sum, vec3(0.0));  // as split shading clamps
 #endif
   radiance_out = vec4(sum, 1.0);
   triangle_out = triangle;

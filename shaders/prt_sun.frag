@@ -1,5 +1,6 @@
-// pass: prt_diffuse with discs (SUN): the interpolated PRT radiance plus each disc's direct light per
-// pixel, (albedo / pi) E max(n . l, 0) V; mirrors prt::shade::disc_direct_diffuse.
+// pass: prt_diffuse with discs (SUN), fragment stage; mirrors prt::shade::shade_diffuse_split.
+// The interpolated PRT radiance plus each disc's direct light per pixel, (albedo / pi) E max(n . l, 0) V
+// (prt::shade::disc_direct_diffuse).
 #version 450 core
 
 in vec3 radiance;         // PRT (sky and the discs' bounce light), interpolated
@@ -19,6 +20,6 @@ void main() {
     if (cos_theta <= 0.0) continue;  // back-facing: no light, no shadow lookup
     direct += disc_irradiance[k] * (cos_theta * disc_visibility(k, object_position, n));
   }
-  radiance_out = vec4(radiance + surface_albedo * inv_pi * direct, 1.0);
+  radiance_out = vec4(max(radiance + surface_albedo * inv_pi * direct, vec3(0.0)), 1.0);  // as split shading clamps
   triangle_out = uint(gl_PrimitiveID);
 }

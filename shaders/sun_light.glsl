@@ -1,7 +1,10 @@
-// Included by the passes that shade discs (prt_sun.frag, prt_glossy.frag with SUN, sun_visibility.comp):
-// the discs' uniforms, their shadow maps filtered PCSS-style, and the BRDF evaluated exactly.
-// Mirrors Renderer's sun pass (renderer_sun.cpp) and docs/conventions.md, "Sun shadow maps".
+// pass: sun (included by prt_sun.frag, prt_glossy.frag with SUN, sun_visibility.comp); mirrors prt::brdf::eval_cosine.
+// The discs' uniforms, their shadow maps filtered PCSS-style (docs/conventions.md, "Sun shadow maps";
+// set by Renderer::bind_sun, renderer_sun.cpp), and the BRDF evaluated exactly.
 
+#ifndef SEARCH_COUNT
+#define SEARCH_COUNT 8
+#endif
 const int max_discs = 4;
 const float inv_pi = 0.31830988618379067;
 uniform int disc_count;
@@ -12,8 +15,11 @@ uniform mat4 shadow_matrix[max_discs];    // mesh coordinates -> (u, v, depth) i
 uniform float shadow_depth_scale[max_discs];  // mesh units per unit of stored depth (the map's depth range)
 uniform float shadow_texel[max_discs];        // mesh units per shadow-map texel
 uniform bool disc_shadows;                // false for unshadowed transfer: V = 1 above the horizon
-// Depth (0 nearest the light) of each disc's map, one layer per disc.
+// Depth (0 nearest the light) of each disc's map, one layer per disc, and per tile of shadow_tile^2
+// texels its least and greatest depth (shadow_minmax.comp).
 layout(binding = 8) uniform sampler2DArray shadow_maps;
+layout(binding = 9) uniform sampler2DArray shadow_tiles;
+uniform int shadow_tile;
 
 // Bias (docs/conventions.md, "Sun shadow maps"): the receiver moves along its normal by
 // normal_offset texels x sin(theta), and a map depth d sampled r texels away counts as a blocker only
@@ -22,11 +28,30 @@ const float normal_offset = 0.5, constant_bias = 0.5, slope_bias = 0.5, max_slop
 // Search and filter radii are clamped to [min_filter, max_filter] texels.
 const float min_filter = 0.75, max_filter = 12.0;
 
-// A fixed spiral of 12 points in the unit disc (Vogel's golden-angle spiral, radius sqrt((i + 0.5) / 12)).
-const vec2 spiral[12] = vec2[12](
+// Fixed spirals in the unit disc (Vogel's golden-angle spiral, point i at radius sqrt((i + 0.5) / N)):
+// N = search_count for the blocker search, N = filter_count for the filter.
+const int search_count = SEARCH_COUNT, filter_count = 12;
+#if SEARCH_COUNT == 6
+const vec2 search_spiral[6] = vec2[6](
+    vec2(0.2887, 0.0000), vec2(-0.3687, 0.3377), vec2(0.0564, -0.6430), vec2(0.4647, 0.6061),
+    vec2(-0.8528, -0.1508), vec2(0.8078, -0.5139));
+#else
+const vec2 search_spiral[8] = vec2[8](
+    vec2(0.2500, 0.0000), vec2(-0.3193, 0.2925), vec2(0.0489, -0.5569), vec2(0.4024, 0.5249),
+    vec2(-0.7385, -0.1306), vec2(0.6996, -0.4450), vec2(-0.2340, 0.8705), vec2(-0.4463, -0.8593));
+#endif
+const vec2 filter_spiral[12] = vec2[12](
     vec2(0.2041, 0.0000), vec2(-0.2607, 0.2388), vec2(0.0399, -0.4547), vec2(0.3286, 0.4286),
     vec2(-0.6030, -0.1067), vec2(0.5712, -0.3634), vec2(-0.1911, 0.7107), vec2(-0.3644, -0.7016),
     vec2(0.7906, 0.2887), vec2(-0.8224, 0.3395), vec2(0.3965, -0.8472), vec2(0.2930, 0.9341));
+
+// Stored depth of map k at uv (nearest texel; 1, nothing in the way, outside the map). texelFetch: no
+// filtering or level-of-detail work, the cheapest read on llvmpipe.
+float map_depth(int k, vec2 uv, float size) {
+  ivec2 t = ivec2(floor(uv * size));
+  if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(int(size))))) return 1.0;
+  return texelFetch(shadow_maps, ivec3(t, k), 0).r;
+}
 
 // Fraction of disc k visible from the point p (mesh coordinates) with unit normal n: 0 when the disc's
 // centre is below the tangent plane; else PCSS: a blocker search over the region a disc-sized cone
@@ -45,12 +70,26 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   // texels nearer the light: the bias grows with the sample's distance (receiver-plane bias, isotropic).
   float slope = min(sin_theta / cos_theta, max_slope);
   float bias = texel * (constant_bias + slope_bias * slope), bias_per_texel = texel * slope;
-  float texels_per_unit = 1.0 / texel, texel_uv = 1.0 / float(textureSize(shadow_maps, 0).x);
+  float size = float(textureSize(shadow_maps, 0).x), texels_per_unit = 1.0 / texel, texel_uv = 1.0 / size;
   float search = clamp(receiver * disc_tan_radius[k] * texels_per_unit, min_filter, max_filter);
+  // Exact early-outs from the tiles under the search square (at most 2 x 2 tiles: search <= max_filter
+  // < shadow_tile / 2): no texel there nearer than the least threshold -> no blocker -> lit; every texel
+  // nearer than the greatest threshold -> every search and filter sample a blocker -> 0.
+  vec2 reach = vec2(search * texel_uv);
+  vec2 t_lo = clamp(floor((s.xy - reach) * size / float(shadow_tile)), vec2(0.0), vec2(textureSize(shadow_tiles, 0).xy - 1));
+  vec2 t_hi = clamp(floor((s.xy + reach) * size / float(shadow_tile)), vec2(0.0), vec2(textureSize(shadow_tiles, 0).xy - 1));
+  vec2 b00 = texelFetch(shadow_tiles, ivec3(ivec2(t_lo), k), 0).rg, b11 = texelFetch(shadow_tiles, ivec3(ivec2(t_hi), k), 0).rg;
+  vec2 b01 = texelFetch(shadow_tiles, ivec3(int(t_lo.x), int(t_hi.y), k), 0).rg;
+  vec2 b10 = texelFetch(shadow_tiles, ivec3(int(t_hi.x), int(t_lo.y), k), 0).rg;
+  float least = min(min(b00.x, b11.x), min(b01.x, b10.x)) * depth_scale;
+  float greatest = max(max(b00.y, b11.y), max(b01.y, b10.y)) * depth_scale;
+  bool inside = all(greaterThanEqual(s.xy - reach, vec2(0.0))) && all(lessThan(s.xy + reach, vec2(1.0)));
+  if (least >= receiver - bias) return 1.0;
+  if (inside && greatest < receiver - bias - bias_per_texel * search) return 0.0;
   float blocker_sum = 0.0, blockers = 0.0;
-  for (int i = 0; i < 12; ++i) {
-    float d = texture(shadow_maps, vec3(s.xy + spiral[i] * (search * texel_uv), float(k))).r * depth_scale;
-    if (d < receiver - bias - bias_per_texel * length(spiral[i]) * search) {
+  for (int i = 0; i < search_count; ++i) {
+    float d = map_depth(k, s.xy + search_spiral[i] * (search * texel_uv), size) * depth_scale;
+    if (d < receiver - bias - bias_per_texel * length(search_spiral[i]) * search) {
       blocker_sum += d;
       blockers += 1.0;
     }
@@ -58,12 +97,11 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   if (blockers == 0.0) return 1.0;
   float penumbra = clamp((receiver - blocker_sum / blockers) * disc_tan_radius[k] * texels_per_unit, min_filter, max_filter);
   float lit = 0.0;
-  for (int i = 0; i < 12; ++i) {
-    vec2 uv = s.xy + spiral[i] * (penumbra * texel_uv);
-    float d = texture(shadow_maps, vec3(uv, float(k))).r * depth_scale;
-    lit += d < receiver - bias - bias_per_texel * length(spiral[i]) * penumbra ? 0.0 : 1.0;
+  for (int i = 0; i < filter_count; ++i) {
+    float d = map_depth(k, s.xy + filter_spiral[i] * (penumbra * texel_uv), size) * depth_scale;
+    lit += d < receiver - bias - bias_per_texel * length(filter_spiral[i]) * penumbra ? 0.0 : 1.0;
   }
-  return lit / 12.0;
+  return lit / float(filter_count);
 }
 
 // The BRDF as prt::brdf::terms: up to max_terms (shape, parameter, rgb weight); shapes as brdf::Shape

@@ -1,5 +1,6 @@
-// pass: sun visibility at the vertices (for tests): disc_visibility of sun_light.glsl at each vertex's
-// position and normal, exactly what the fragment passes evaluate there.
+// pass: sun (visibility at the vertices, for tests); mirrors prt::shade::disc_visibility.
+// disc_visibility of sun_light.glsl at each vertex's position and normal, exactly what the fragment
+// passes evaluate there.
 #version 450 core
 
 layout(local_size_x = 64) in;

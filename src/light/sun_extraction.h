@@ -21,7 +21,9 @@
 //     angle a^2 / 2, so a = sqrt(2 <theta^2>), at least half a texel.
 //  6. A disc is kept if it carries at least kMinPowerFraction of the map's total power (sum Y Omega);
 //     at most kMaxDiscs discs, brightest E first.
-// A sky with no such source (overcast, soft studio light) yields no disc and an unchanged map.
+// A sky with no such source (overcast, broad soft light) yields no disc and an unchanged map. Studio soft
+// boxes of a few degrees are compact sources: they become discs (round, uniform, with the boxes' energy),
+// which shades them far closer to the truth than low-order SH can (docs/conventions.md).
 #include <vector>
 
 #include "light/disc.h"
@@ -32,7 +34,7 @@ namespace prt::light {
 inline constexpr double kSeedContrast = 200.0;        ///< seeds: Y > this x the sky level ...
 inline constexpr double kSeedPeakFraction = 0.05;     ///< ... and > this x the region's peak luminance
 inline constexpr double kPeakContrast = 1000.0;       ///< a disc's peak: > this x the sky level
-inline constexpr double kMaxCoreRadiusDegrees = 1.5;  ///< compactness of the seeds (or 1.5 texel widths, if larger)
+inline constexpr double kMaxCoreRadiusDegrees = 10.0; ///< compactness of the seeds (or 1.5 texel widths, if larger)
 inline constexpr double kMaskMarginTexels = 2.0;      ///< mask = core + this many texel widths
 inline constexpr double kMinPowerFraction = 0.02;     ///< a disc carries >= 2% of the map's power
 inline constexpr int kMaxDiscs = 4;

@@ -34,7 +34,8 @@
 //               that the per-frame pass adds to O). The PRT passes, compiled with SUN, then add each
 //               disc's direct light per fragment (prt_sun.frag; prt_glossy.frag with the BRDF evaluated
 //               exactly), its visibility filtered PCSS-style from the map (shaders/sun_light.glsl,
-//               docs/conventions.md "Sun shadow maps"). Without discs (or FrameSettings::sun false) the
+//               docs/conventions.md "Sun shadow maps"), and clamp each channel at 0 as
+//               prt::shade's split shading does. Without discs (or FrameSettings::sun false) the
 //               passes are exactly those above.
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
 //               prt::image::to_display.

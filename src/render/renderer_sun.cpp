@@ -31,6 +31,9 @@ constexpr GLuint kBounceOutgoingBinding = 6;  // prt_glossy.comp (SUN)
 constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr GLuint kWorkgroupSize = 64;
 constexpr int kMaxTerms = 8;                  // sun_light.glsl: max_terms
+constexpr GLuint kTileUnit = 9;               // sun_light.glsl: shadow_tiles
+constexpr int kShadowTile = 32;               // texels per tile side; > 2 x sun_light.glsl's max_filter
+constexpr int kTiles = kShadowMapSize / kShadowTile;
 
 GLuint dynamic_buffer(std::size_t bytes) {
   GLuint buffer = 0;
@@ -60,7 +63,8 @@ glm::dvec3 perpendicular(const glm::dvec3& n) {
 Renderer::SunPass::SunPass()
     : disc_lighting(kMaxCoefficients, glm::vec3(0.0f)),
       shadow_program({"shadow.vert"}),
-      visibility_program({"sun_visibility.comp"}) {
+      visibility_program({"sun_visibility.comp"}),
+      minmax_program({"shadow_minmax.comp"}) {
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_texture);
   glTextureStorage3D(shadow_texture, 1, GL_DEPTH_COMPONENT32F, kShadowMapSize, kShadowMapSize, kMaxDiscs);
   glTextureParameteri(shadow_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -69,6 +73,10 @@ Renderer::SunPass::SunPass()
   glTextureParameteri(shadow_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
   const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // outside the map: nothing between it and the light
   glTextureParameterfv(shadow_texture, GL_TEXTURE_BORDER_COLOR, far);
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tile_texture);
+  glTextureStorage3D(tile_texture, 1, GL_RG32F, kTiles, kTiles, kMaxDiscs);
+  glTextureParameteri(tile_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(tile_texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glCreateFramebuffers(1, &shadow_framebuffer);
   glNamedFramebufferDrawBuffer(shadow_framebuffer, GL_NONE);
   glNamedFramebufferReadBuffer(shadow_framebuffer, GL_NONE);
@@ -79,6 +87,7 @@ Renderer::SunPass::SunPass()
 Renderer::SunPass::~SunPass() {
   clear_mesh();
   if (shadow_texture != 0) glDeleteTextures(1, &shadow_texture);
+  if (tile_texture != 0) glDeleteTextures(1, &tile_texture);
   if (shadow_framebuffer != 0) glDeleteFramebuffers(1, &shadow_framebuffer);
   release(disc_lighting_buffer);
 }
@@ -118,6 +127,7 @@ void Renderer::set_discs(const std::vector<light::Disc>& discs) {
   s.discs.assign(discs.begin(), discs.begin() + std::min<std::ptrdiff_t>(discs.size(), kMaxDiscs));
   const sh::RgbCoefficients sh = light::discs_coefficients(sh::kMaxBands, s.discs);
   for (std::size_t i = 0; i < s.disc_lighting.size(); ++i) s.disc_lighting[i] = glm::vec3(sh.values[i]);
+  ++s.disc_version;
   ++s.version;
 }
 
@@ -158,11 +168,11 @@ void Renderer::update_sun(const FrameSettings& settings, int bands) {
     fail("renderer: glossy transfer " + std::to_string(settings.transfer) +
          " has no BRDF for the discs' direct light (set_brdf with the Brdf)");
   const glm::dmat3 rotation = glm::transpose(settings.object_rotation) * settings.environment_rotation;
-  if (!s.maps_valid || s.maps_version != s.version || s.maps_rotation != rotation) {
+  if (!s.maps_valid || s.maps_version != s.disc_version || s.maps_rotation != rotation) {
     for (std::size_t k = 0; k < s.discs.size(); ++k) s.direction[k] = glm::vec3(glm::normalize(rotation * s.discs[k].direction));
     draw_shadow_maps();
     s.maps_valid = true;
-    s.maps_version = s.version;
+    s.maps_version = s.disc_version;
     s.maps_rotation = rotation;
     ++s.updates;
   }
@@ -227,6 +237,14 @@ void Renderer::draw_shadow_maps() {
     glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // Each tile's least and greatest depth, for the exact early-outs of sun_light.glsl.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+  glUseProgram(s.minmax_program.id());
+  glBindTextureUnit(kShadowUnit, s.shadow_texture);
+  glBindImageTexture(0, s.tile_texture, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
+  glUniform1i(s.minmax_program.uniform("shadow_tile"), kShadowTile);
+  glDispatchCompute(kTiles / 8, kTiles / 8, static_cast<GLuint>(s.discs.size()));
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   check_gl("drawing shadow maps");
 }
 
@@ -307,6 +325,8 @@ void Renderer::bind_sun(const Program& program, const FrameSettings& settings, b
   glUniform1fv(program.uniform("shadow_texel"), n, s.texel.data());
   glUniform1i(program.uniform("disc_shadows"), t.shadows ? 1 : 0);
   glBindTextureUnit(kShadowUnit, s.shadow_texture);
+  glBindTextureUnit(kTileUnit, s.tile_texture);
+  glUniform1i(program.uniform("shadow_tile"), kShadowTile);
   if (glossy) {
     const int terms = static_cast<int>(t.terms.size());
     GLint shapes[kMaxTerms];

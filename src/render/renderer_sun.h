@@ -42,11 +42,13 @@ struct Renderer::SunPass {
 
   std::vector<light::Disc> discs;                  ///< environment frame, at most kMaxDiscs
   std::vector<glm::vec3> disc_lighting;            ///< their SH radiance, environment frame, kMaxBands^2
-  int version = 0;                                 ///< bumped by set_discs and BRDF changes
+  int disc_version = 0;                            ///< bumped by set_discs (the maps depend on the discs only)
+  int version = 0;                                 ///< bumped by set_discs and BRDF changes (the bounce light)
   int updates = 0;                                 ///< shadow-map redraws
 
-  Program shadow_program, visibility_program;
+  Program shadow_program, visibility_program, minmax_program;
   GLuint shadow_texture = 0, shadow_framebuffer = 0;
+  GLuint tile_texture = 0;                         ///< per tile of kShadowTile^2 texels: least, greatest depth
   GLuint disc_lighting_buffer = 0;                 ///< object-frame disc SH (uniform Lighting layout)
   GLuint bounce_vertex = 0;                        ///< diffuse: x y z floats per vertex
   GLuint bounce_outgoing = 0;                      ///< glossy: vec4 per coefficient per vertex

@@ -122,12 +122,21 @@ TEST_CASE("a sky without a compact source yields no disc and an unchanged map", 
   CHECK(none.discs.empty());
   CHECK(none.residual.equirect.pixels.empty());  // no copy: the input stands unchanged
 
-  // A soft box: 200 x the sky level over 8 degrees, flat-topped (a studio light, not a sun).
-  const SyntheticDisc softbox{glm::normalize(glm::dvec3(0.2, 0.5, 0.8)), 8.0 * kPi / 180.0, {120.0, 120.0, 120.0}};
-  CHECK(light::extract_discs(as_environment(synthetic_map(1024, 512, {softbox}))).discs.empty());
+  // A broad bright patch: 400 x the sky level over 25 degrees (a bright overcast region, a large window).
+  const SyntheticDisc broad{glm::normalize(glm::dvec3(0.2, 0.5, 0.8)), 25.0 * kPi / 180.0, {200.0, 200.0, 200.0}};
+  CHECK(light::extract_discs(as_environment(synthetic_map(1024, 512, {broad}))).discs.empty());
   // A pin-point that carries almost nothing (a distant street lamp): below the power fraction.
   const SyntheticDisc speck{glm::normalize(glm::dvec3(-0.6, 0.2, 0.3)), 0.3 * kPi / 180.0, {800.0, 800.0, 800.0}};
   CHECK(light::extract_discs(as_environment(synthetic_map(1024, 512, {speck}))).discs.empty());
+}
+
+TEST_CASE("a studio soft box of a few degrees is a compact source: one disc with its energy", "[light][sun]") {
+  const SyntheticDisc softbox{glm::normalize(glm::dvec3(0.2, 0.5, 0.8)), 6.0 * kPi / 180.0, {600.0, 600.0, 600.0}};
+  const light::ExtractionResult found = light::extract_discs(as_environment(synthetic_map(1024, 512, {softbox})));
+  REQUIRE(found.discs.size() == 1);
+  CHECK(angle_degrees(found.discs[0].direction, softbox.direction) < 0.5);
+  CHECK(relative_error(found.discs[0].irradiance, softbox.radiance * (kPi * std::pow(std::sin(softbox.radius), 2))) < 0.02);
+  CHECK(found.discs[0].angular_radius * 180.0 / kPi == Approx(6.0).margin(0.6));
 }
 
 TEST_CASE("rotating the lighting rotates its discs as rotating the map does", "[light][sun]") {

@@ -40,4 +40,10 @@ std::size_t entries_in(const std::string& dir) {
   return count;
 }
 
+bool fails_in_one_line(const RunResult& result, const std::string& expected) {
+  std::size_t lines = 0;
+  for (char c : result.output) lines += c == '\n';
+  return result.exit_code == 1 && result.output.find(expected) != std::string::npos && lines == 1;
+}
+
 }  // namespace prt::test

@@ -12,6 +12,10 @@ struct RunResult {
 /// Runs "<build>/src/cli/prt <arguments>" through the shell (arguments are not quoted for you).
 RunResult run_prt(const std::string& arguments);
 
+/// True if the run exited with status 1 after printing exactly one line that contains `expected` (the
+/// project's rule for bad input).
+bool fails_in_one_line(const RunResult& result, const std::string& expected);
+
 /// Path of the prt binary in the build tree.
 std::string prt_binary();
 

@@ -1,0 +1,155 @@
+// Sun benchmarks (issue "Sun and sky"): the frame with one disc's shadow map (PCSS lookups per pixel,
+// maps not redrawn) against the PRT-only frame on the same mesh, camera and transfer, 1024x1024,
+// alternating frame by frame; and the frame right after a lighting rotation (shadow map redrawn and
+// the disc's bounce light recomputed inside it). Headless (EGL); on llvmpipe read the ratios.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <string>
+
+#include "light/disc.h"
+#include "mesh/mesh.h"
+#include "bench_lighting.h"
+#include "render/gl.h"
+#include "render/headless_context.h"
+#include "render/renderer.h"
+#include "sh/rotation.h"
+
+using namespace prt;
+using bench::synthetic_lighting;
+
+namespace {
+
+constexpr double kTargetSunRatio = 1.3;
+constexpr int kFrameSize = 1024;
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+// CPU time of the whole process (all of llvmpipe's threads): robust to other jobs on a shared machine.
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// A shadowed-kind transfer with a bounce-only part: the values do not change the cost.
+transfer::TransferData synthetic_transfer(std::size_t vertices, int bands) {
+  transfer::TransferData data;
+  data.header.kind = transfer::Kind::interreflected;
+  data.header.bands = static_cast<std::uint32_t>(bands);
+  data.header.channels = 3;
+  data.header.vertex_count = vertices;
+  data.header.bounce_only_section = true;
+  data.values.resize(vertices * data.header.values_per_vertex());
+  for (std::size_t i = 0; i < data.values.size(); ++i) data.values[i] = 0.01f * static_cast<float>((i * 7919) % 97);
+  data.bounce_only = data.values;
+  for (float& v : data.bounce_only) v *= 0.1f;
+  return data;
+}
+
+struct Figures {
+  double prt_ms = 0.0, sun_ms = 0.0, rotated_ms = 0.0;
+  double prt_cpu_ms = 0.0, sun_cpu_ms = 0.0, rotated_cpu_ms = 0.0;
+  int redraws = 0, rotated_frames = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  render::HeadlessContext context;
+  std::printf("bench_sun_render: %s; frames %dx%d\n", context.description().c_str(), kFrameSize, kFrameSize);
+  render::Renderer renderer;
+  const mesh::Mesh mesh = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true);
+  renderer.set_mesh(mesh);
+  const int index = renderer.add_transfer(synthetic_transfer(mesh.vertex_count(), 5), "synthetic");
+  renderer.set_lighting(synthetic_lighting(5), nullptr);
+  light::Disc sun;
+  sun.direction = glm::normalize(glm::dvec3(0.8, 0.4, 0.45));
+  sun.irradiance = glm::dvec3(5.0, 4.8, 3.5);
+  sun.angular_radius = 0.53 * 3.14159265358979323846 / 180.0;
+  renderer.set_discs({sun});
+  Figures f;
+
+  render::FrameSettings prt;
+  prt.transfer = index;
+  prt.background = render::Background::sh;  // a full-screen pass per pixel, as in the viewer
+  prt.camera = render::Camera{30.0, 20.0, 0.0};
+  prt.sun = false;
+  render::FrameSettings with_sun = prt;
+  with_sun.sun = true;
+
+  benchmark::RegisterBenchmark("frame_sun_vs_prt/lion/1024x1024", [&](benchmark::State& state) {
+    for (const auto* settings : {&prt, &with_sun}) {  // warm-up: shader compilation, the first map
+      renderer.render(*settings, kFrameSize, kFrameSize);
+      glFinish();
+    }
+    double prt_seconds = 0.0, sun_seconds = 0.0, prt_cpu = 0.0, sun_cpu = 0.0;
+    for (auto _ : state) {
+      auto start = Clock::now();
+      double cpu = cpu_seconds();
+      renderer.render(prt, kFrameSize, kFrameSize);
+      glFinish();
+      const double p = seconds_since(start);
+      prt_cpu += cpu_seconds() - cpu;
+      start = Clock::now();
+      cpu = cpu_seconds();
+      renderer.render(with_sun, kFrameSize, kFrameSize);
+      glFinish();
+      const double s = seconds_since(start);
+      sun_cpu += cpu_seconds() - cpu;
+      prt_seconds += p;
+      sun_seconds += s;
+      state.SetIterationTime(s);
+    }
+    const double n = static_cast<double>(state.iterations());
+    f.prt_ms = 1e3 * prt_seconds / n;
+    f.sun_ms = 1e3 * sun_seconds / n;
+    f.prt_cpu_ms = 1e3 * prt_cpu / n;
+    f.sun_cpu_ms = 1e3 * sun_cpu / n;
+    state.counters["prt_ms"] = f.prt_ms;
+    state.counters["sun_ms"] = f.sun_ms;
+    state.counters["sun/prt"] = f.sun_ms / f.prt_ms;
+    state.counters["target_ratio"] = kTargetSunRatio;
+  })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+  double angle = 0.0;  // kept across the library's repeated runs, so every timed frame has a new rotation
+  benchmark::RegisterBenchmark("frame_after_lighting_rotation/lion/1024x1024", [&](benchmark::State& state) {
+    render::FrameSettings turning = with_sun;
+    double seconds = 0.0, cpu_total = 0.0;
+    const int before = renderer.shadow_map_updates();
+    for (auto _ : state) {
+      angle += 3.0;
+      turning.environment_rotation = sh::rotation_from_yaw_pitch_roll(angle, 0.0, 0.0);
+      const auto start = Clock::now();
+      const double cpu = cpu_seconds();
+      renderer.render(turning, kFrameSize, kFrameSize);
+      glFinish();
+      const double s = seconds_since(start);
+      cpu_total += cpu_seconds() - cpu;
+      seconds += s;
+      state.SetIterationTime(s);
+    }
+    f.rotated_frames = static_cast<int>(state.iterations());
+    f.redraws = renderer.shadow_map_updates() - before;
+    f.rotated_ms = 1e3 * seconds / static_cast<double>(state.iterations());
+    f.rotated_cpu_ms = 1e3 * cpu_total / static_cast<double>(state.iterations());
+    state.counters["ms"] = f.rotated_ms;
+    state.counters["map_redraws_per_frame"] = static_cast<double>(f.redraws) / f.rotated_frames;
+  })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+
+  std::printf("\nSummary (machine shared and noisy: compare within this run)\n");
+  std::printf("lion (%zu vertices), 1024x1024, 5 bands RGB, one disc, shadow map %dx%d:\n", mesh.vertex_count(),
+              render::kShadowMapSize, render::kShadowMapSize);
+  std::printf("  PRT-only frame %.2f ms, frame with the disc %.2f ms: x%.3f (target <= %.1f)\n", f.prt_ms, f.sun_ms,
+              f.sun_ms / f.prt_ms, kTargetSunRatio);
+  std::printf("  the same in process CPU time (all threads): %.2f ms and %.2f ms: x%.3f\n", f.prt_cpu_ms, f.sun_cpu_ms,
+              f.sun_cpu_ms / f.prt_cpu_ms);
+  std::printf("  frame right after a lighting rotation (map redrawn + bounce recomputed in it): %.2f ms, %d redraws in %d "
+              "frames; the redraw itself %.2f ms\n",
+              f.rotated_ms, f.redraws, f.rotated_frames, f.rotated_ms - f.sun_ms);
+  std::printf("  in CPU time: %.2f ms, the redraw itself %.2f ms\n", f.rotated_cpu_ms, f.rotated_cpu_ms - f.sun_cpu_ms);
+  return 0;
+}
