@@ -3,7 +3,10 @@
 # missing), then configures a Release build with Ninja in build/ and builds everything.
 # Usage: scripts/setup.sh [--tests] [--no-build] [extra cmake -D options...]
 #   --tests     also install what the tests need beyond the build: Xvfb (viewer smoke test), Chromium,
-#               Node.js and the npm packages of probes/threejs (the three.js browser test).
+#               mono-mcs (compiles and runs the Unity importer against stand-in Unity types),
+#               Node.js and the npm packages of probes/threejs (the three.js browser test) and
+#               tests/engines (the engines' own code: Babylon.js, Filament, three.js, ktx-parse, the
+#               Khronos glTF validator), each from its package-lock.json.
 #   --no-build  install only.
 # Environment: PRT_BUILD_DIR (default build), PRT_EXTRA_PACKAGES (more packages to install).
 set -euo pipefail
@@ -26,7 +29,7 @@ for arg in "$@"; do
   esac
 done
 if ((with_tests)); then
-  packages+=(xvfb xauth chromium)
+  packages+=(xvfb xauth chromium mono-mcs)
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
 fi
@@ -47,9 +50,13 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-if ((with_tests)) && [ ! -d probes/threejs/node_modules ]; then
-  echo "setup: installing the npm packages of probes/threejs (npm ci)" >&2
-  (cd probes/threejs && npm ci --no-audit --no-fund --loglevel=error) >&2
+if ((with_tests)); then
+  for folder in probes/threejs tests/engines; do
+    if [ ! -d "$folder/node_modules" ] || [ "$folder/package-lock.json" -nt "$folder/node_modules" ]; then
+      echo "setup: installing the npm packages of $folder (npm ci)" >&2
+      (cd "$folder" && npm ci --no-audit --no-fund --loglevel=error && touch node_modules) >&2
+    fi
+  done
 fi
 
 if ((build == 0)); then exit 0; fi

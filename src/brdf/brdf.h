@@ -21,9 +21,13 @@
 //                                              + cos_i sqrt(cos_o^2 (1 - alpha^2) + alpha^2))
 //                    (Smith height-correlated masking-shadowing, Heitz 2014, in Filament's form)
 //                F = F0 + (1 - F0) (1 - w_i . h)^5                        (Schlick; F0 is the weight)
-// A Brdf is a sum of lobes. The glTF metallic-roughness material maps to
-//   lambert(albedo = baseColor (1 - metallic)) + ggx(roughness, F0 = mix(0.04, baseColor, metallic))
-// (no (1 - F) factor on the diffuse term).
+//   lambert with fresnel_mix (glTF only): f = albedo / pi (1 - F), F = 0.04 + 0.96 (1 - w_i . h)^5,
+//                the dielectric Fresnel (ior 1.5) of the glTF specification's fresnel_mix (Appendix B)
+// A Brdf is a sum of lobes. The glTF metallic-roughness material (glTF 2.0 Appendix B,
+//   mix(fresnel_mix(ior 1.5, diffuse(baseColor), ggx), conductor_fresnel(baseColor, ggx), metallic))
+// maps to
+//   lambert(albedo = baseColor (1 - metallic), fresnel_mix) + ggx(roughness, F0 = mix(0.04, baseColor, metallic))
+// (the two specular terms add up to one ggx lobe because Schlick's F is linear in F0).
 //
 // EXTENSION BELOW THE HORIZON (what the SH projection integrates; projection.h). The true BRDF is only
 // defined for w_o in the upper hemisphere. prt extends it to every w_o by mirroring:
@@ -37,7 +41,7 @@
 //   SPEC  := LOBE ('+' LOBE)*   or the path of a .json material file (below)
 //   LOBE  := TYPE [':' KEY '=' VALUE (',' KEY '=' VALUE)*]
 //   VALUE := a number, or R/G/B (three numbers separated by '/') where a colour is accepted
-//   lambert:albedo=A                         (alias kd; default 0.8)
+//   lambert:albedo=A,fresnel_mix=0|1         (alias kd; defaults 0.8, 0)
 //   phong:exponent=N,ks=S,kd=D               (defaults 32, 1, 0; kd adds a lambert lobe)
 //   blinn:exponent=N,ks=S,kd=D               (alias blinn-phong; defaults 32, 1, 0)
 //   ggx:roughness=R,f0=F,albedo=A            (alias kd for albedo; defaults 0.5, 0.04, 0)
@@ -65,9 +69,10 @@ struct Lobe {
   glm::dvec3 weight{0.8};
   double exponent = 0.0;   ///< phong, blinn-phong: the exponent n >= 0
   double roughness = 0.0;  ///< ggx: perceptual roughness in [0.01, 1]; alpha = roughness^2
+  bool fresnel_mix = false;  ///< lambert: times (1 - F) of a dielectric with F0 = 0.04 (glTF's diffuse)
 };
 
-/// A BRDF: the sum of its lobes (lambert lobes are merged into one by parse_brdf).
+/// A BRDF: the sum of its lobes (lambert lobes are merged by parse_brdf: one plain, one fresnel_mix).
 struct Brdf {
   std::vector<Lobe> lobes;
   bool empty() const { return lobes.empty(); }
@@ -80,6 +85,10 @@ struct Brdf {
 /// a malformed number, a value out of range, or an empty spec.
 Brdf parse_brdf(const std::string& spec);
 
+/// Sum of the weights of the lambert lobes whose fresnel_mix equals `fresnel_mix` into `sum`; false
+/// (and sum 0) if there is no such lobe.
+bool lambert_weight(const Brdf& brdf, bool fresnel_mix, glm::dvec3& sum);
+
 /// The canonical SPEC string of a BRDF (numbers with 9 significant digits, every parameter written):
 /// parse_brdf(to_spec(b)) gives b back to within 1e-9 relative.
 std::string to_spec(const Brdf& brdf);
@@ -89,6 +98,7 @@ std::string to_spec(const Brdf& brdf);
 /// F = F0 (1 - s) + s with s = (1 - w_i . h)^5.
 enum class Shape {
   lambert,      ///< 1 / pi
+  lambert_fresnel,  ///< (1 - 0.04 - 0.96 s) / pi, s = (1 - w_i . h)^5: glTF's fresnel_mix diffuse
   phong,        ///< (n + 2) / (2 pi) max(r . w_o, 0)^n
   blinn_phong,  ///< (n + 8) / (8 pi) (h.z)^n
   ggx_f0,       ///< D V (1 - s): weighted by F0
@@ -102,7 +112,8 @@ struct Term {
   glm::dvec3 weight{1.0};
 };
 
-/// The terms of a BRDF, in lobe order; all lambert lobes summed into the first term (if any).
+/// The terms of a BRDF, in lobe order; the plain lambert lobes summed into the first term (if any), the
+/// fresnel_mix lambert lobes into the next.
 std::vector<Term> terms(const Brdf& brdf);
 
 /// The value of one shape at (w_i, w_o) in the local frame: the true BRDF shape for w_o.z >= 0, its
@@ -117,7 +128,7 @@ glm::dvec3 eval(const Brdf& brdf, const glm::dvec3& w_i, const glm::dvec3& w_o);
 glm::dvec3 eval_cosine(const Brdf& brdf, const glm::dvec3& w_i, const glm::dvec3& w_o);
 
 /// Angular width (radians) of a shape's lobe around the mirror direction, for quadrature grading:
-/// pi for lambert, 1 / sqrt(n + 1) for phong, 2 / sqrt(n + 1) for blinn-phong, 2 roughness^2 for ggx.
+/// pi for lambert (both kinds), 1 / sqrt(n + 1) for phong, 2 / sqrt(n + 1) for blinn-phong, 2 roughness^2 for ggx.
 double lobe_width(Shape shape, double parameter);
 
 }  // namespace prt::brdf

@@ -86,7 +86,10 @@ void add_lobes(const std::string& type_name, Parameters params, const std::strin
 
   if (type_name == "lambert") {
     Lobe lobe{LobeType::lambert, colour("albedo", take({"albedo", "kd"}, {0.8})), 0.0, 0.0};
-    finish("albedo");
+    const double fresnel = scalar("fresnel_mix", take({"fresnel_mix"}, {0.0}));
+    if (fresnel != 0.0 && fresnel != 1.0) fail(where + ": lambert: fresnel_mix must be 0 or 1");
+    lobe.fresnel_mix = fresnel == 1.0;
+    finish("albedo, fresnel_mix");
     out.lobes.push_back(lobe);
   } else if (type_name == "phong" || type_name == "blinn" || type_name == "blinn-phong") {
     const LobeType type = type_name == "phong" ? LobeType::phong : LobeType::blinn_phong;
@@ -109,7 +112,8 @@ void add_lobes(const std::string& type_name, Parameters params, const std::strin
     const double roughness = in_range("roughness", scalar("roughness", take({"roughness", "roughnessfactor"}, {1.0})), 0.0, 1.0);
     finish("basecolor, metallic, roughness");
     const glm::dvec3 diffuse = base * (1.0 - metallic);
-    if (diffuse != glm::dvec3(0.0)) out.lobes.push_back({LobeType::lambert, diffuse, 0.0, 0.0});
+    // glTF's diffuse is fresnel_mix(ior 1.5): the dielectric's Fresnel reflection is taken from it.
+    if (diffuse != glm::dvec3(0.0)) out.lobes.push_back({LobeType::lambert, diffuse, 0.0, 0.0, true});
     // glTF allows roughness 0 (a mirror); an SH projection cannot hold a delta, so prt clamps it.
     out.lobes.push_back({LobeType::ggx, glm::dvec3(0.04) * (1.0 - metallic) + base * metallic, 0.0,
                          std::max(roughness, kMinRoughness)});
@@ -200,20 +204,16 @@ Brdf parse_material_file(const std::string& path) {
   return out;
 }
 
-// Merges every lambert lobe into one, placed first.
+// Merges the plain lambert lobes into one, placed first, and the fresnel_mix ones into the next.
 Brdf canonical(const Brdf& in) {
   Brdf out;
-  glm::dvec3 lambert(0.0);
-  bool has_lambert = false;
-  for (const Lobe& lobe : in.lobes)
-    if (lobe.type == LobeType::lambert) {
-      lambert += lobe.weight;
-      has_lambert = true;
-    }
-  if (has_lambert) {
-    if (!(lambert.r <= 1.0 && lambert.g <= 1.0 && lambert.b <= 1.0)) fail("--brdf: the lambert albedos (albedo, kd) sum to more than 1");
-    out.lobes.push_back({LobeType::lambert, lambert, 0.0, 0.0});
+  glm::dvec3 total(0.0);
+  for (const bool fresnel : {false, true}) {
+    glm::dvec3 lambert;
+    if (lambert_weight(in, fresnel, lambert)) out.lobes.push_back({LobeType::lambert, lambert, 0.0, 0.0, fresnel});
+    total += lambert;
   }
+  if (!(total.r <= 1.0 && total.g <= 1.0 && total.b <= 1.0)) fail("--brdf: the lambert albedos (albedo, kd) sum to more than 1");
   for (const Lobe& lobe : in.lobes)
     if (lobe.type != LobeType::lambert) out.lobes.push_back(lobe);
   return out;
@@ -242,7 +242,9 @@ std::string to_spec(const Brdf& brdf) {
   for (const Lobe& lobe : brdf.lobes) {
     if (!out.empty()) out += "+";
     switch (lobe.type) {
-      case LobeType::lambert: out += "lambert:albedo=" + colour_text(lobe.weight); break;
+      case LobeType::lambert:
+        out += "lambert:albedo=" + colour_text(lobe.weight) + (lobe.fresnel_mix ? ",fresnel_mix=1" : "");
+        break;
       case LobeType::phong: out += "phong:exponent=" + number(lobe.exponent) + ",ks=" + colour_text(lobe.weight); break;
       case LobeType::blinn_phong: out += "blinn:exponent=" + number(lobe.exponent) + ",ks=" + colour_text(lobe.weight); break;
       case LobeType::ggx: out += "ggx:roughness=" + number(lobe.roughness) + ",f0=" + colour_text(lobe.weight); break;

@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/analytic_light_spec.h"
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -94,9 +95,13 @@ void run_light(const LightOptions& o) {
   std::unique_ptr<AtomicFile> preview_file;
   if (!o.preview.empty()) preview_file = std::make_unique<AtomicFile>(o.preview);
 
-  const light::Environment env = light::load_environment(o.environment);
-  const light::SceneLighting lighting = light::split_environment(
-      env, o.bands, glm::dvec3(checked.yaw, checked.pitch, checked.roll), checked.sun, checked.window, o.threads);
+  // Analytic lights (cli/analytic_light_spec.h) are exact: rotated, never split or windowed.
+  const bool analytic = is_analytic_light_spec(o.environment);
+  const light::Environment env = analytic ? light::Environment{} : light::load_environment(o.environment);
+  const glm::dvec3 ypr(checked.yaw, checked.pitch, checked.roll);
+  const light::SceneLighting lighting =
+      analytic ? analytic_scene_lighting(o.environment, o.bands, ypr)
+               : light::split_environment(env, o.bands, ypr, checked.sun, checked.window, o.threads);
   const sh::RgbCoefficients& coefficients = lighting.sky;
 
   light::LightFileInfo info;
@@ -116,7 +121,7 @@ void run_light(const LightOptions& o) {
   json_file.commit();
   if (preview_file) preview_file->commit();
   std::printf("%s: %d bands from %s (%s)%s%s\n", o.output.c_str(), o.bands, o.environment.c_str(),
-              describe_environment(env).c_str(), preview_file ? ", preview " : "", o.preview.c_str());
+              analytic ? "analytic lights" : describe_environment(env).c_str(), preview_file ? ", preview " : "", o.preview.c_str());
   if (!lighting.discs.empty() || lighting.window.window != sh::Window::none)
     std::printf("%s: %s\n", o.output.c_str(), light::describe_lighting(lighting).c_str());
 }
@@ -128,7 +133,9 @@ void add_light_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("light", "Project an environment map to SH radiance coefficients (JSON)");
   cmd->add_option("environment", options->environment,
                   "Equirect (2:1) or cube-cross (4:3, 3:4) image, six faces 'px,nx,py,ny,pz,nz', or a "
-                  "path with {face}; any float format OpenImageIO reads (.exr, .hdr, ...)")
+                  "path with {face}; any float format OpenImageIO reads (.exr, .hdr, ...); or analytic lights "
+                  "'directional:DX,DY,DZ:R,G,B', 'cone:DX,DY,DZ:DEGREES:R,G,B', "
+                  "'hemisphere:UX,UY,UZ:R,G,B:R,G,B', 'constant:R,G,B', joined with '+'")
       ->required();
   cmd->add_option("-o,--output", options->output, "SH lighting JSON to write")->required();
   cmd->add_option("--bands", options->bands, "SH bands (l < bands), 1.." + std::to_string(sh::kMaxBands))

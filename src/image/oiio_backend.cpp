@@ -47,6 +47,9 @@ std::string write(const std::string& file, const std::string& format_path, int w
   spec.attribute("DateTime", "");
   if (display) {
     spec.attribute("oiio:ColorSpace", "sRGB");
+    // prt's alpha channels are data (RGBD's D, coverage), never premultiplied colour: without this
+    // OpenImageIO's PNG writer divides the colour by alpha a second time.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
   } else {
     spec.attribute("oiio:ColorSpace", "Linear");
     const std::string path = to_lower(format_path);

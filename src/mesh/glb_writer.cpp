@@ -31,6 +31,18 @@ void put_floats(std::string& out, const float* values, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) le::put_f32(out, values[i]);
 }
 
+// COLOR_0 from linear radiance: Reinhard's x / (1 + x) per channel, in [0, 1) as glTF requires
+// (negative and NaN values become 0, +Inf becomes 1).
+std::vector<glm::vec3> tone_mapped(const std::vector<glm::vec3>& radiance) {
+  std::vector<glm::vec3> out(radiance.size());
+  for (std::size_t i = 0; i < radiance.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float x = radiance[i][c];
+      out[i][c] = !(x > 0.0f) ? 0.0f : (std::isinf(x) ? 1.0f : x / (1.0f + x));
+    }
+  return out;
+}
+
 bool valid_semantic(const std::string& name) {
   if (name.size() < 2 || name[0] != '_') return false;
   for (char c : name)
@@ -106,7 +118,11 @@ void write_glb(const std::string& path, const Mesh& mesh, const std::vector<Vert
   glb.accessors[std::size_t(position)]["max"] = {double(hi.x), double(hi.y), double(hi.z)};
   attributes["POSITION"] = position;
   if (!mesh.normals.empty()) attributes["NORMAL"] = glb.add_floats(&mesh.normals[0].x, n, 3, "VEC3");
-  if (!colour_0.empty()) attributes["COLOR_0"] = glb.add_floats(&colour_0[0].x, n, 3, "VEC3");
+  if (!colour_0.empty()) {
+    const std::vector<glm::vec3> display = tone_mapped(colour_0);
+    attributes["COLOR_0"] = glb.add_floats(&display[0].x, n, 3, "VEC3");
+    attributes["_PRT_RADIANCE"] = glb.add_floats(&colour_0[0].x, n, 3, "VEC3");
+  }
   for (const VertexAttribute& attribute : extra_attributes)
     attributes[attribute.name] = glb.add_floats(&attribute.values[0].x, n, 4, "VEC4");
   std::string index_bytes;

@@ -12,7 +12,9 @@
 // (mode 4, no material), one buffer in the GLB BIN chunk. Attributes, each its own tightly packed
 // buffer view (target ARRAY_BUFFER) at a 4-byte aligned offset, in this order:
 //   POSITION vec3 float (accessor min/max set), NORMAL vec3 float (if the mesh has normals),
-//   COLOR_0 vec3 float linear (if given), then each extra attribute as vec4 float in the order given,
+//   COLOR_0 vec3 float (if given: the radiance tone-mapped to [0, 1) by Reinhard's x / (1 + x) per
+//   channel, since glTF requires COLOR_0 in [0, 1]) followed by "_PRT_RADIANCE" vec3 float (the linear,
+//   unclamped radiance itself), then each extra attribute as vec4 float in the order given,
 //   then the indices: scalar unsigned int (target ELEMENT_ARRAY_BUFFER).
 // Extra attribute names are application-specific semantics: they start with '_' and use only
 // A-Z, 0-9 and '_' (e.g. "_PRT_T0", "_PRT_T1", ...: the baker packs 4 transfer coefficients each).
@@ -53,7 +55,7 @@ struct VertexAttribute {
 };
 
 /// Writes `mesh` (positions, normals if any, indices) as a glTF 2.0 binary with the layout above, plus
-/// COLOR_0 from `colour_0` (linear; empty for none) and `extra_attributes`. Albedo is not written.
+/// COLOR_0 = x / (1 + x) and _PRT_RADIANCE = x from the linear radiance `colour_0` (empty for none) and `extra_attributes`. Albedo is not written.
 /// Throws prt::Error naming `path` if an attribute's length differs from the vertex count, a name is
 /// not a valid application-specific semantic (or repeats), the mesh is empty, or writing fails.
 void write_glb(const std::string& path, const Mesh& mesh, const std::vector<VertexAttribute>& extra_attributes,

@@ -10,7 +10,7 @@ namespace prt::probes {
 namespace {
 
 
-// |K_i| of the polynomial form Y_i = +-K_i P_i (sh-conventions.md's table, in closed form).
+// |K_i| of the polynomial form Y_i = +-K_i P_i (docs/conventions.md's table, in closed form).
 const std::array<double, 9> kBasisConstant{{
     0.5 * std::sqrt(1.0 / kPi),                                                          // 0: 1
     std::sqrt(3.0 / (4.0 * kPi)), std::sqrt(3.0 / (4.0 * kPi)), std::sqrt(3.0 / (4.0 * kPi)),  // y z x
@@ -36,6 +36,9 @@ std::array<double, 9> make_polynomial_factor() {
 const std::array<double, 9> kClampedCosineFactor = make_clamped_cosine();
 const std::array<double, 9> kIrradiancePolynomialFactor = make_polynomial_factor();
 
+// x -> -x: the x, xy and xz terms change sign (in both the CS and the non-CS basis).
+constexpr std::array<double, 9> kMirrorX{{1, 1, 1, -1, -1, 1, 1, -1, 1}};
+
 Sh9 first_nine(const sh::RgbCoefficients& c) {
   Sh9 out{};
   for (std::size_t i = 0; i < 9 && i < c.values.size(); ++i) out[i] = c.values[i];
@@ -55,7 +58,6 @@ Sh9 godot_coefficients(const sh::RgbCoefficients& c) {
 }
 
 Sh9 unity_coefficients(const sh::RgbCoefficients& c) {
-  static constexpr std::array<double, 9> kMirrorX{{1, 1, 1, -1, -1, 1, 1, -1, 1}};
   Sh9 out = threejs_coefficients(c);
   for (int i = 0; i < 9; ++i) out[i] *= kIrradiancePolynomialFactor[i] * kMirrorX[i];
   return out;
@@ -71,7 +73,7 @@ Sh9 filament_coefficients(const sh::RgbCoefficients& c) {
 
 Sh9 gltf_irradiance_coefficients(const sh::RgbCoefficients& c) {
   Sh9 out = first_nine(c);
-  for (int i = 0; i < 9; ++i) out[i] *= kClampedCosineFactor[i];
+  for (int i = 0; i < 9; ++i) out[i] *= kClampedCosineFactor[i] * kMirrorX[i];
   return out;
 }
 

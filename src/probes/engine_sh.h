@@ -52,9 +52,11 @@ glm::dvec3 to_unity_frame(const glm::dvec3& p);
 Sh9 filament_coefficients(const sh::RgbCoefficients& c);
 
 /// glTF EXT_lights_image_based "irradianceCoefficients" as Babylon.js's loader reads them:
-/// A_l * c_i (irradiance coefficients in the CS-phase basis), glTF frame (right-handed +Y up).
-/// Babylon multiplies by the light's intensity, divides by pi and pre-scales by its CS-signed basis
-/// constants, then evaluates the polynomial: the result is E(n)/pi.
+/// A_l * s_i * c_i (irradiance coefficients in the CS-phase basis, mirrored in x by s as in
+/// unity_coefficients). Babylon's glTF loader turns the scene into its left-handed frame by x -> -x
+/// but applies the light as stored, so the light is stored in that mirrored frame: Babylon's default
+/// scene then shows E(n)/pi at every glTF normal n (a right-handed Babylon scene, which flips z instead,
+/// shows E(Ry(180) n)/pi; see probes/gltf/README.md).
 Sh9 gltf_irradiance_coefficients(const sh::RgbCoefficients& c);
 
 /// Bevy's ambient cube (Valve's basis): E(d)/pi at the six axis normals d, ordered

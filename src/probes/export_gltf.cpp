@@ -103,6 +103,14 @@ GltfDocument parse_glb(const std::string& bytes, const std::string& name) {
   return doc;
 }
 
+// Appends `bytes` to the merged buffer as a new buffer view; returns its index.
+std::size_t add_buffer_view(GltfDocument& doc, const std::string& bytes) {
+  while (doc.bin.size() % 8 != 0) doc.bin.push_back('\0');
+  doc.json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", doc.bin.size()}, {"byteLength", bytes.size()}});
+  doc.bin += bytes;
+  return doc.json["bufferViews"].size() - 1;
+}
+
 // Loads any scene into one JSON + one merged buffer with every image embedded as a buffer view.
 GltfDocument load_scene(const std::string& path, const std::string& out_path) {
   const std::string ext = to_lower(std::filesystem::path(path).extension().string());
@@ -152,11 +160,8 @@ GltfDocument load_scene(const std::string& path, const std::string& out_path) {
       if (!image.contains("uri")) continue;
       std::string mime;
       const std::string bytes = uri_bytes(image["uri"].get<std::string>(), base_dir, path, &mime);
-      while (doc.bin.size() % 8 != 0) doc.bin.push_back('\0');
-      doc.json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", doc.bin.size()}, {"byteLength", bytes.size()}});
-      doc.bin += bytes;
       image.erase("uri");
-      image["bufferView"] = doc.json["bufferViews"].size() - 1;
+      image["bufferView"] = add_buffer_view(doc, bytes);
       image["mimeType"] = mime;
     }
   return doc;
@@ -179,97 +184,96 @@ std::string png_bytes(const image::Image& rgbd, const std::string& out_path) {
   return bytes;
 }
 
-}  // namespace
+// Babylon.js's frame for the image-based light: its glTF loader mirrors the scene (x -> -x, the
+// "__root__" node) into its left-handed world but uses the light as stored, so the light is written
+// mirrored in x: a glTF direction d appears as (-d.x, d.y, d.z) in the cube and in the coefficients.
+glm::dvec3 babylon_cube_to_gltf(const glm::dvec3& d) { return {-d.x, d.y, d.z}; }
 
-void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOptions& options) {
-  check_probe_set(probes, "glTF export");
-  if (to_lower(std::filesystem::path(path).extension().string()) != ".glb")
-    fail_file(path, "the gltf export writes a binary glTF: the output must end in .glb");
-  const int size = options.specular_size;
-  if (size < 1 || size > 1024 || (size & (size - 1)) != 0)
-    fail("--specular-size: expected a power of two in 1..1024, got " + std::to_string(size));
-  if (options.scene_path.empty()) fail("gltf export: no scene file given");
-  AtomicFile out(path);
-  GltfDocument doc = load_scene(options.scene_path, path);
-  Json& j = doc.json;
-  if (!j.contains("images")) j["images"] = Json::array();
+// Radiance of the light in glTF direction d: the environment, or the sky probe's (clamped) SH.
+glm::dvec3 sky_radiance(const ProbeSet& probes, const ExportOptions& options, const glm::dvec3& d) {
+  if (options.environment) return options.environment->radiance(d);
+  std::vector<double> basis(probes.sky.values.size());
+  sh::eval(probes.sky.bands, d, basis.data());
+  glm::dvec3 radiance(0.0);
+  for (std::size_t i = 0; i < basis.size(); ++i) radiance += probes.sky.values[i] * basis[i];
+  return glm::max(radiance, glm::dvec3(0.0));
+}
 
-  // Specular cube: mip 0 sampled at texel centres (environment, or the sky probe's SH), each further
-  // mip the 2x2 box average of the one above, down to 1x1 (not a GGX prefilter; see the README).
-  std::vector<std::array<image::Image, 6>> levels;
-  std::array<image::Image, 6> level0;
+using CubeLevel = std::array<image::Image, 6>;
+
+// Mip 0 of the specular cube: each face in OpenGL cube orientation (conventions.md) of Babylon's frame,
+// sampled at texel centres; rows stored bottom first (image row y is the face's row size-1-y), because
+// Babylon uploads the images with UNPACK_FLIP_Y, as EXT_lights_image_based stores its faces.
+CubeLevel specular_mip0(const ProbeSet& probes, const ExportOptions& options, int size) {
+  CubeLevel level;
   for (int f = 0; f < 6; ++f) {
-    level0[f] = image::Image(size, size, 3);
+    level[f] = image::Image(size, size, 3);
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
-        const glm::dvec3 d = light::cube_direction(f, (x + 0.5) / size, (y + 0.5) / size);
-        glm::dvec3 radiance(0.0);
-        if (options.environment) {
-          radiance = options.environment->radiance(d);
-        } else {
-          std::vector<double> basis(probes.sky.values.size());
-          sh::eval(probes.sky.bands, d, basis.data());
-          for (std::size_t i = 0; i < basis.size(); ++i) radiance += probes.sky.values[i] * basis[i];
-          radiance = glm::max(radiance, glm::dvec3(0.0));
-        }
-        for (int c = 0; c < 3; ++c) level0[f].at(x, y, c) = static_cast<float>(radiance[c]);
+        const glm::dvec3 d = light::cube_direction(f, (x + 0.5) / size, (size - 1 - y + 0.5) / size);
+        const glm::dvec3 radiance = sky_radiance(probes, options, babylon_cube_to_gltf(d));
+        for (int c = 0; c < 3; ++c) level[f].at(x, y, c) = static_cast<float>(radiance[c]);
       }
   }
-  levels.push_back(level0);
-  for (int s = size / 2; s >= 1; s /= 2) {
-    std::array<image::Image, 6> next;
-    for (int f = 0; f < 6; ++f) {
-      next[f] = image::Image(s, s, 3);
-      const image::Image& above = levels.back()[f];
-      for (int y = 0; y < s; ++y)
-        for (int x = 0; x < s; ++x)
-          for (int c = 0; c < 3; ++c)
-            next[f].at(x, y, c) = 0.25f * (above.at(2 * x, 2 * y, c) + above.at(2 * x + 1, 2 * y, c) +
-                                           above.at(2 * x, 2 * y + 1, c) + above.at(2 * x + 1, 2 * y + 1, c));
-    }
-    levels.push_back(next);
+  return level;
+}
+
+// The 2x2 box average of every face (not a GGX prefilter; see the README).
+CubeLevel half_level(const CubeLevel& above) {
+  CubeLevel next;
+  const int s = above[0].width / 2;
+  for (int f = 0; f < 6; ++f) {
+    next[f] = image::Image(s, s, 3);
+    for (int y = 0; y < s; ++y)
+      for (int x = 0; x < s; ++x)
+        for (int c = 0; c < 3; ++c)
+          next[f].at(x, y, c) = 0.25f * (above[f].at(2 * x, 2 * y, c) + above[f].at(2 * x + 1, 2 * y, c) +
+                                         above[f].at(2 * x, 2 * y + 1, c) + above[f].at(2 * x + 1, 2 * y + 1, c));
   }
+  return next;
+}
+
+// Embeds every level's six faces as RGBD PNG images; returns specularImages (image indices per level).
+Json embed_specular_images(GltfDocument& doc, const std::vector<CubeLevel>& levels, const std::string& path) {
+  if (!doc.json.contains("images")) doc.json["images"] = Json::array();
   Json specular = Json::array();
-  for (const auto& level : levels) {
+  for (std::size_t mip = 0; mip < levels.size(); ++mip) {
     Json faces = Json::array();
     for (int f = 0; f < 6; ++f) {
-      image::Image rgbd(level[f].width, level[f].height, 4);
+      const image::Image& face = levels[mip][f];
+      image::Image rgbd(face.width, face.height, 4);
       for (int y = 0; y < rgbd.height; ++y)
         for (int x = 0; x < rgbd.width; ++x)
-          rgbd_encode(glm::dvec3(level[f].at(x, y, 0), level[f].at(x, y, 1), level[f].at(x, y, 2)), &rgbd.at(x, y, 0));
-      const std::string png = png_bytes(rgbd, path);
-      while (doc.bin.size() % 8 != 0) doc.bin.push_back('\0');
-      j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", doc.bin.size()}, {"byteLength", png.size()}});
-      doc.bin += png;
-      j["images"].push_back({{"name", "prt specular mip " + std::to_string(&level - levels.data()) + " face " + std::to_string(f)},
-                             {"bufferView", j["bufferViews"].size() - 1},
-                             {"mimeType", "image/png"}});
-      faces.push_back(j["images"].size() - 1);
+          rgbd_encode(glm::dvec3(face.at(x, y, 0), face.at(x, y, 1), face.at(x, y, 2)), &rgbd.at(x, y, 0));
+      const std::size_t view = add_buffer_view(doc, png_bytes(rgbd, path));
+      doc.json["images"].push_back({{"name", "prt specular mip " + std::to_string(mip) + " face " + std::to_string(f)},
+                                    {"bufferView", view},
+                                    {"mimeType", "image/png"}});
+      faces.push_back(doc.json["images"].size() - 1);
     }
     specular.push_back(faces);
   }
+  return specular;
+}
 
-  Json coefficients = Json::array();
-  for (const glm::dvec3& v : gltf_irradiance_coefficients(probes.sky)) coefficients.push_back({v.x, v.y, v.z});
-  Json light = {{"name", "prt sky probe"},
-                {"intensity", 1.0},
-                {"rotation", {0.0, 0.0, 0.0, 1.0}},
-                {"irradianceCoefficients", coefficients},
-                {"specularImageSize", size},
-                {"specularImages", specular}};
+// Adds the light to the root extension and references it from every scene.
+void attach_light(Json& j, Json light) {
   if (!j.contains("extensions")) j["extensions"] = Json::object();
-  j["extensions"]["EXT_lights_image_based"] = {{"lights", Json::array({light})}};
+  j["extensions"]["EXT_lights_image_based"] = {{"lights", Json::array({std::move(light)})}};
   if (!j.contains("extensionsUsed")) j["extensionsUsed"] = Json::array();
   if (std::find(j["extensionsUsed"].begin(), j["extensionsUsed"].end(), "EXT_lights_image_based") == j["extensionsUsed"].end())
     j["extensionsUsed"].push_back("EXT_lights_image_based");
   if (!j.contains("scenes") || j["scenes"].empty()) j["scenes"] = Json::array({Json::object()});
   for (Json& scene : j["scenes"]) scene["extensions"]["EXT_lights_image_based"] = {{"light", 0}};
-  while (doc.bin.size() % 4 != 0) doc.bin.push_back('\0');
-  j["buffers"] = Json::array({{{"byteLength", doc.bin.size()}}});
-  if (!j.contains("asset")) j["asset"] = {{"version", "2.0"}};
-  j["asset"]["generator"] = "prt probes (EXT_lights_image_based)";
+}
 
-  std::string text = j.dump();
+// The document as GLB bytes: JSON chunk padded with spaces, BIN chunk with zeros.
+std::string glb_bytes(GltfDocument& doc) {
+  while (doc.bin.size() % 4 != 0) doc.bin.push_back('\0');
+  doc.json["buffers"] = Json::array({{{"byteLength", doc.bin.size()}}});
+  if (!doc.json.contains("asset")) doc.json["asset"] = {{"version", "2.0"}};
+  doc.json["asset"]["generator"] = "prt probes (EXT_lights_image_based)";
+  std::string text = doc.json.dump();
   while (text.size() % 4 != 0) text.push_back(' ');
   std::string glb = "glTF";
   put_u32(glb, 2);
@@ -280,6 +284,37 @@ void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOpt
   put_u32(glb, static_cast<std::uint32_t>(doc.bin.size()));
   put_u32(glb, 0x004E4942u);
   glb += doc.bin;
+  return glb;
+}
+
+void check_gltf_options(const std::string& path, const ExportOptions& options) {
+  if (lower(std::filesystem::path(path).extension().string()) != ".glb")
+    fail_file(path, "the gltf export writes a binary glTF: the output must end in .glb");
+  const int size = options.specular_size;
+  if (size < 1 || size > 1024 || (size & (size - 1)) != 0)
+    fail("--specular-size: expected a power of two in 1..1024, got " + std::to_string(size));
+  if (options.scene_path.empty()) fail("gltf export: no scene file given");
+}
+
+}  // namespace
+
+void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOptions& options) {
+  check_probe_set(probes, "glTF export");
+  check_gltf_options(path, options);
+  AtomicFile out(path);
+  GltfDocument doc = load_scene(options.scene_path, path);
+
+  std::vector<CubeLevel> levels{specular_mip0(probes, options, options.specular_size)};
+  while (levels.back()[0].width > 1) levels.push_back(half_level(levels.back()));
+  Json coefficients = Json::array();
+  for (const glm::dvec3& v : gltf_irradiance_coefficients(probes.sky)) coefficients.push_back({v.x, v.y, v.z});
+  attach_light(doc.json, {{"name", "prt sky probe"},
+                          {"intensity", 1.0},
+                          {"rotation", {0.0, 0.0, 0.0, 1.0}},
+                          {"irradianceCoefficients", coefficients},
+                          {"specularImageSize", options.specular_size},
+                          {"specularImages", embed_specular_images(doc, levels, path)}});
+  const std::string glb = glb_bytes(doc);
   out.stream().write(glb.data(), static_cast<std::streamsize>(glb.size()));
   out.commit();
 }

@@ -42,13 +42,6 @@ Json channel_major(const Sh9& c) {
   return out;
 }
 
-std::vector<int> invalid_indices(const ProbeSet& p) {
-  std::vector<int> out;
-  for (std::size_t i = 0; i < p.count(); ++i)
-    if (!p.valid[i]) out.push_back(static_cast<int>(i));
-  return out;
-}
-
 }  // namespace
 
 Format parse_format(const std::string& name) {
@@ -77,40 +70,25 @@ const char* format_name(Format format) {
 
 std::string format_threejs(const ProbeSet& p) {
   check_probe_set(p, "three.js export");
-  Json children = Json::array();
+  Json positions = Json::array(), valid = Json::array(), sh = Json::array();
   for (std::size_t i = 0; i < p.count(); ++i) {
-    if (!p.valid[i]) continue;
-    const glm::vec3& x = p.positions[i];
-    Json probe;
-    probe["type"] = "LightProbe";
-    probe["name"] = "probe " + std::to_string(i);
-    probe["layers"] = 1;
-    probe["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x.x, x.y, x.z, 1};  // column-major translation
-    probe["up"] = {0, 1, 0};
-    probe["color"] = 16777215;
-    probe["intensity"] = 1;
-    probe["sh"] = nine_flat(threejs_coefficients(p.probe(i)));
-    probe["userData"] = {{"index", i}, {"backface_fraction", p.backface_fraction[i]}};
-    children.push_back(probe);
+    for (int k = 0; k < 3; ++k) positions.push_back(p.positions[i][k]);
+    valid.push_back(p.valid[i] ? 1 : 0);
+    for (const Json& v : nine_flat(threejs_coefficients(p.probe(i)))) sh.push_back(v);
   }
-  Json group;
-  group["type"] = "Group";
-  group["name"] = "prt probes";
-  group["layers"] = 1;
-  group["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  group["up"] = {0, 1, 0};
-  group["userData"] = {{"prt", {{"format", "prt-probes-threejs"},
-                                {"version", 1},
-                                {"count", p.count()},
-                                {"layout", layout_json(p)},
-                                {"invalid", invalid_indices(p)},
-                                {"sky", nine_flat(threejs_coefficients(p.sky))},
-                                {"note", "LightProbe lighting in three.js is global: add one probe (or a blend) at a time"}}}};
-  group["children"] = children;
   Json doc;
-  doc["metadata"] = {{"version", 4.6}, {"type", "Object"}, {"generator", "prt probes"}};
-  doc["object"] = group;
-  return doc.dump(1) + "\n";
+  doc["format"] = "prt-probe-volume-threejs";
+  doc["version"] = 2;
+  doc["frame"] = "three.js world: right-handed, +Y up (prt's and glTF's frame), scene units";
+  doc["sh_layout"] = "per probe 27 floats, SphericalHarmonics3.toArray order (coefficient-major r,g,b): radiance "
+                     "without the Condon-Shortley phase; SphericalHarmonics3.getIrradianceAt gives E";
+  doc["count"] = p.count();
+  doc["layout"] = layout_json(p);
+  doc["positions"] = positions;
+  doc["valid"] = valid;
+  doc["sh"] = sh;
+  doc["sky"] = nine_flat(threejs_coefficients(p.sky));
+  return doc.dump() + "\n";
 }
 
 std::string format_unity(const ProbeSet& p) {

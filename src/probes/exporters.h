@@ -39,10 +39,11 @@ struct ExportOptions {
 /// (e.g. a Filament probe index out of range or invalid; a Bevy export of a point list).
 void export_probes(const ProbeSet& probes, Format format, const std::string& path, const ExportOptions& options);
 
-/// three.js Object JSON (ObjectLoader.parse): a Group whose userData describes the layout, with one
-/// LightProbe child per VALID probe (name "probe <i>", matrix = translation to the probe,
-/// "sh" = threejs_coefficients as 27 floats coefficient-major, intensity 1, userData {index,
-/// backface_fraction}); invalid probes are listed in the group's userData.invalid and have no child.
+/// three.js probe volume (probes/threejs/README.md), read by probes/threejs/prt_probe_volume.js:
+/// JSON {"format": "prt-probe-volume-threejs", "version": 2, "frame", "sh_layout", "count", "layout"
+/// (grid counts, bounds, order, cell centres; or points), "positions" (3 floats per probe), "valid"
+/// (1/0 per probe), "sh" (27 floats per probe: threejs_coefficients, SphericalHarmonics3 order),
+/// "sky" (27 floats)}. Every probe is listed; invalid ones (inside geometry) have valid 0.
 std::string format_threejs(const ProbeSet& probes);
 
 /// Unity: JSON for probes/unity/PrtProbeImporter.cs: per probe "index", "position" (Unity frame),
@@ -78,7 +79,8 @@ Ktx2Texture read_bevy_ktx2(const std::string& bytes, const std::string& name);
 
 /// glTF: writes a .glb (path must end in .glb) of the scene with EXT_lights_image_based (one light,
 /// "irradianceCoefficients" = gltf_irradiance_coefficients of the sky probe, intensity 1, rotation
-/// identity, specular cube images RGBD-encoded PNGs) referenced by every scene.
+/// identity, specular cube images RGBD-encoded PNGs with straight alpha, each face mirrored in x into
+/// Babylon.js's frame and stored bottom row first; see probes/gltf/README.md) referenced by every scene.
 void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOptions& options);
 
 }  // namespace prt::probes

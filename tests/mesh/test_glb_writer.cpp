@@ -71,8 +71,11 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   float payload_nan;
   std::memcpy(&payload_nan, &nan_bits, 4);
   extras[0].values[0] = {-0.0f, std::numeric_limits<float>::denorm_min(), 3.0e38f, payload_nan};
-  std::vector<glm::vec3> colours(n);
-  for (std::size_t i = 0; i < n; ++i) colours[i] = glm::vec3(float(i) / n, 0.5f, 1.0f - float(i) / n);
+  // Radiance above 1 too: COLOR_0 holds L / (1 + L) (glTF requires [0, 1]), _PRT_RADIANCE holds L.
+  std::vector<glm::vec3> colours(n), displayed(n);
+  for (std::size_t i = 0; i < n; ++i) colours[i] = glm::vec3(4.0f * float(i) / n, 0.5f, 1.0f - float(i) / n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) displayed[i][c] = colours[i][c] / (1.0f + colours[i][c]);
 
   const std::string path = temp_path("baked.glb");
   write_glb(path, mesh, extras, colours);
@@ -102,7 +105,7 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   REQUIRE(model.meshes[0].primitives.size() == 1);
   const tinygltf::Primitive& prim = model.meshes[0].primitives[0];
   CHECK(prim.mode == TINYGLTF_MODE_TRIANGLES);
-  CHECK(prim.attributes.size() == 6);
+  CHECK(prim.attributes.size() == 7);
 
   for (const tinygltf::BufferView& view : model.bufferViews) {
     CHECK(view.byteOffset % 4 == 0);
@@ -120,7 +123,8 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   };
   check_float_attribute("POSITION", TINYGLTF_TYPE_VEC3, words_of(mesh.positions));
   check_float_attribute("NORMAL", TINYGLTF_TYPE_VEC3, words_of(mesh.normals));
-  check_float_attribute("COLOR_0", TINYGLTF_TYPE_VEC3, words_of(colours));
+  check_float_attribute("COLOR_0", TINYGLTF_TYPE_VEC3, words_of(displayed));
+  check_float_attribute("_PRT_RADIANCE", TINYGLTF_TYPE_VEC3, words_of(colours));
   for (const VertexAttribute& attribute : extras)
     check_float_attribute(attribute.name, TINYGLTF_TYPE_VEC4, words_of(attribute.values));
 
@@ -142,7 +146,7 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   CHECK(words_of(back.positions) == words_of(mesh.positions));
   CHECK(words_of(back.normals) == words_of(mesh.normals));
   CHECK(back.indices == mesh.indices);
-  CHECK(back.albedo == colours);
+  CHECK(back.albedo == displayed);
   CHECK(fingerprint(back) == fingerprint(mesh));
   CHECK_FALSE(report.normals_computed);
 }

@@ -4,7 +4,9 @@
 // (sh::irradiance of its 3-band truncation, what three.js evaluates), clamped to [0, 1] and encoded
 // with the sRGB transfer function (three.js's output encoding, no tone mapping), quantised to 8 bits.
 //
-// Usage: probe_sphere_reference FILE.prtprobes PROBE_INDEX ALBEDO SIZE OUT.rgba
+// Usage: probe_sphere_reference FILE.prtprobes PROBES ALBEDO SIZE OUT.rgba
+// PROBES is one probe index, or indices joined with '+' for the plain mean of those probes'
+// coefficients (what a trilinear blend gives at a cell centre, an edge midpoint or a face centre).
 // Writes size * size RGBA bytes, rows from the top; alpha 255 marks pixels to compare (inside radius
 // 0.97 of the disc, away from the silhouette where rasterisation decides coverage), 0 the rest.
 // Prints the fraction of compared pixels whose value clipped at 1.
@@ -21,16 +23,23 @@
 
 int main(int argc, char** argv) {
   if (argc != 6) {
-    std::fprintf(stderr, "usage: %s FILE.prtprobes PROBE_INDEX ALBEDO SIZE OUT.rgba\n", argv[0]);
+    std::fprintf(stderr, "usage: %s FILE.prtprobes PROBE[+PROBE...] ALBEDO SIZE OUT.rgba\n", argv[0]);
     return 2;
   }
   try {
     const prt::probes::ProbeSet set = prt::probes::read_probe_file(argv[1]);
-    const std::size_t index = std::strtoul(argv[2], nullptr, 10);
     const double albedo = std::strtod(argv[3], nullptr);
     const int size = std::atoi(argv[4]);
-    if (index >= set.count()) prt::fail("probe index out of range");
-    prt::sh::RgbCoefficients c = set.probe(index);
+    prt::sh::RgbCoefficients c(set.bands);
+    std::vector<std::size_t> indices;
+    for (const char* at = argv[2]; *at;) {
+      char* end = nullptr;
+      indices.push_back(std::strtoul(at, &end, 10));
+      if (end == at || indices.back() >= set.count()) prt::fail(std::string("bad probe list '") + argv[2] + "'");
+      at = *end == '+' ? end + 1 : end;
+    }
+    for (std::size_t index : indices)
+      for (std::size_t i = 0; i < c.values.size(); ++i) c.values[i] += set.probe(index).values[i] / double(indices.size());
     if (c.bands > 3) c = c.truncated(3);
     std::vector<unsigned char> out(static_cast<std::size_t>(size) * size * 4, 0);
     std::size_t compared = 0, clipped = 0;

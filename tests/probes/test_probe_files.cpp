@@ -148,11 +148,11 @@ TEST_CASE("grids put probes at cell centres, x fastest, bad grids and point list
                     Catch::Contains("p.json: point 1 (4, 5, 6) is outside the scene bounds"));
 }
 
-TEST_CASE("exports: three.js leaves invalid probes out, Bevy fills them, unknown formats are refused", "[probes][file]") {
+TEST_CASE("exports: three.js marks invalid probes, Bevy fills them, unknown formats are refused", "[probes][file]") {
   const probes::ProbeSet p = sample_set(false);
   const auto doc = nlohmann::json::parse(probes::format_threejs(p));
-  CHECK(doc["object"]["children"].size() == 3);
-  CHECK(doc["object"]["userData"]["prt"]["invalid"] == nlohmann::json::array({1}));
+  CHECK(doc["count"] == 4);
+  CHECK(doc["valid"] == nlohmann::json::array({1, 0, 1, 1}));
   const auto unity = nlohmann::json::parse(probes::format_unity(p));
   CHECK(unity["probes"][1]["valid"] == false);
   // Dilation: the invalid probe 1 (x=1, z=0) takes the mean of its valid neighbours 0 and 3.
