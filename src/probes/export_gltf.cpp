@@ -288,7 +288,7 @@ std::string glb_bytes(GltfDocument& doc) {
 }
 
 void check_gltf_options(const std::string& path, const ExportOptions& options) {
-  if (lower(std::filesystem::path(path).extension().string()) != ".glb")
+  if (lower_extension(path) != ".glb")
     fail_file(path, "the gltf export writes a binary glTF: the output must end in .glb");
   const int size = options.specular_size;
   if (size < 1 || size > 1024 || (size & (size - 1)) != 0)

@@ -39,7 +39,9 @@ void render_to_file(const RenderOptions& options) {
   if (options.bands < 0 || options.bands > transfer_bands)
     fail("--bands: must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
          std::to_string(options.bands));
-  const Lighting lighting = load_lighting(options.environment, transfer_bands, options.sun, options.window);
+  light::WindowRequest window = options.window;
+  window.radiance = transfer::is_glossy(scene.transfers[0].header.kind);  // the glossy criterion (light/deringing.h)
+  const Lighting lighting = load_lighting(options.environment, transfer_bands, options.sun, window);
   const Background background =
       options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
   if (background == Background::environment && !lighting.has_image)

@@ -52,13 +52,16 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
 Lighting load_lighting(const std::string& spec, int bands, const light::SunRequest& sun, const light::WindowRequest& window) {
   Lighting lighting;
   lighting.source = spec;
-  light::SceneLighting split = light::load_scene_lighting(spec, bands, glm::dvec3(0.0), sun, window);
+  light::Environment environment;
+  const bool image = !is_json(spec);
+  if (image) environment = light::load_environment(spec);  // once: split and background share it
+  light::SceneLighting split = image ? light::split_environment(environment, bands, glm::dvec3(0.0), sun, window)
+                                     : light::load_scene_lighting(spec, bands, glm::dvec3(0.0), sun, window);
   lighting.description = light::describe_lighting(split);
   lighting.window = split.window.description;
   lighting.coefficients = std::move(split.sky);
   lighting.discs = std::move(split.discs);
-  if (is_json(spec)) return lighting;
-  light::Environment environment = light::load_environment(spec);
+  if (!image) return lighting;
   lighting.has_image = true;
   lighting.equirect = environment.layout == light::Environment::Layout::equirect
                           ? std::move(environment.equirect)
