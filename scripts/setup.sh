@@ -3,7 +3,8 @@
 # missing), then configures a Release build with Ninja in build/ and builds everything.
 # Usage: scripts/setup.sh [--tests] [--no-build] [extra cmake -D options...]
 #   --tests     also install what the tests need beyond the build: Xvfb (viewer smoke test), Chromium,
-#               Node.js and the npm packages of probes/threejs (the three.js browser test).
+#               Node.js and the npm packages of probes/threejs (the three.js browser test), and clang 14
+#               with libFuzzer and llvm-cov (the fuzz targets of tests/fuzz, scripts/fuzz.sh).
 #   --no-build  install only.
 # Environment: PRT_BUILD_DIR (default build), PRT_EXTRA_PACKAGES (more packages to install).
 set -euo pipefail
@@ -26,7 +27,7 @@ for arg in "$@"; do
   esac
 done
 if ((with_tests)); then
-  packages+=(xvfb xauth chromium)
+  packages+=(xvfb xauth chromium clang-14 libfuzzer-14-dev llvm-14)
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
 fi

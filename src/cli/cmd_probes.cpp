@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -92,7 +93,7 @@ void run_probes(ProbesCommandOptions o) {
   if (!o.sun.empty()) light.sun = probes::parse_sun(o.sun);
   std::vector<glm::dvec3> positions;
   if (!o.points.empty()) positions = probes::read_points_file(o.points);
-  { AtomicFile check_folder(o.output); }
+  check_outputs({o.output}, {o.scene_path, o.environment, o.points});
 
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(o.scene_path, &load_report, o.quiet);

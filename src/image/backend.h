@@ -30,6 +30,12 @@ struct Functions {
 
 inline constexpr int kAbiVersion = 1;
 
+/// Decoding limits, checked against the file's header before pixels are allocated (docs/formats.md,
+/// "Limits"): a side of at most 32768, at most 2^27 pixels (16384 x 8192), at most 16 channels.
+inline constexpr int kMaxImageSide = 32768;
+inline constexpr double kMaxImagePixels = double(1 << 27);
+inline constexpr int kMaxImageChannels = 16;
+
 }  // namespace prt::image::backend
 
 /// Exported by the module: its function table.

@@ -31,7 +31,9 @@ Sun parse_sun(const std::string& text) {
   while (std::getline(ss, item, ',')) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x)) fail("--sun: " + usage);
+    // Beyond 1e18 the sun's radiance and its SH overflow float probe coefficients (a value of 1e308 did).
+    if (item.empty() || end == item.c_str() || *end != '\0' || !(std::abs(x) <= 1e18))
+      fail("--sun: " + usage + " (numbers of magnitude at most 1e18)");
     v.push_back(x);
   }
   if ((v.size() != 5 && v.size() != 7) || (!text.empty() && text.back() == ',')) fail("--sun: " + usage);
