@@ -66,6 +66,8 @@ TEST_CASE("over-long path components give one line, not a filesystem_error", "[h
   require_one_line_error(run_prt("bake " + long_name + ".obj -q -o " + scene().dir + "/x.prt"), "aaaa");
   require_one_line_error(run_prt("bake " + scene().mesh + " -q -o " + long_name + ".prt"), "file name is too long");
   require_one_line_error(run_prt("light " + long_name + ".exr -o " + scene().dir + "/x.json"), "aaaa");
+  // A folder component that long made std::filesystem throw (exit 2) before.
+  require_one_line_error(run_prt("bake " + scene().mesh + " -q -o " + long_name + "/x.prt"), "aaaa");
 }
 
 TEST_CASE("a codec's own stderr text is folded into prt's one line", "[hardening][cli][image]") {
