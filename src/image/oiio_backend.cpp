@@ -90,10 +90,10 @@ std::string read_pixels(const std::string& path, DecodedImage& out, StderrCaptur
   // The header decides the allocation: refuse sizes beyond the limits before any pixel is decoded.
   const double pixels = double(spec.width) * double(spec.height);
   if (spec.width > kMaxImageSide || spec.height > kMaxImageSide || pixels > kMaxImagePixels ||
-      spec.nchannels > kMaxImageChannels)
+      spec.nchannels > kMaxImageChannels || pixels * spec.nchannels > kMaxImageFloats)
     return "image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels and " +
-           std::to_string(spec.nchannels) + " channels exceeds prt's limits (sides up to 32768, 2^27 pixels, " +
-           "16 channels)";
+           std::to_string(spec.nchannels) + " channels exceeds prt's limits (sides up to 32768, 2^26 pixels, " +
+           "16 channels, 2^28 values)";
   out.width = spec.width;
   out.height = spec.height;
   out.channels = spec.nchannels;
@@ -106,6 +106,10 @@ std::string read_pixels(const std::string& path, DecodedImage& out, StderrCaptur
 }
 
 std::string read(const std::string& path, DecodedImage& out) {
+  // The extension picks the one reader tried: a file that does not decode as its extension says is
+  // refused, instead of being offered to every one of OpenImageIO's plugins (seconds per bad file).
+  static const bool one_reader = OIIO::attribute("try_all_readers", 0);
+  (void)one_reader;
   StderrCapture capture;
   std::string problem = read_pixels(path, out, capture);
   if (!problem.empty()) out = DecodedImage{};
