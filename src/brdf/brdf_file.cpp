@@ -72,8 +72,10 @@ BrdfMatrix read_json(const std::string& path, const std::string& text) {
   } catch (const nlohmann::json::exception& e) {
     fail_file(path, std::string("not valid JSON: ") + e.what());
   }
-  if (!doc.is_object() || doc.value("format", "") != "prt-brdf-matrix") fail_file(path, "not a prt BRDF matrix (format != prt-brdf-matrix)");
-  if (doc.value("version", 0) != 1) fail_file(path, "unsupported version (expected 1)");
+  // Comparisons, not value(): value() throws json::type_error for a key of another type (found by fuzz_brdf).
+  if (!doc.is_object() || !doc.contains("format") || doc["format"] != "prt-brdf-matrix")
+    fail_file(path, "not a prt BRDF matrix (format != prt-brdf-matrix)");
+  if (!doc.contains("version") || doc["version"] != 1) fail_file(path, "unsupported version (expected 1)");
   BrdfMatrix m;
   try {
     check_shape(path, doc.at("bands").get<long long>(), doc.at("channels").get<long long>());

@@ -180,6 +180,15 @@ TEST_CASE("a BRDF of 300 lobes is refused at once; 16 are accepted", "[hardening
   REQUIRE(brdf::parse_brdf(sixteen).lobes.size() == 16);
 }
 
+TEST_CASE("a BRDF matrix JSON whose version or format has another type is a prt::Error", "[hardening][brdf]") {
+  // Found by fuzz_brdf: json::value() threw type_error past the reader.
+  const std::string version = put("version_string.json", R"({"format":"prt-brdf-matrix","version":"1"})");
+  REQUIRE_THROWS_AS(brdf::read_brdf_matrix(version), prt::Error);
+  REQUIRE_THROWS_WITH(brdf::read_brdf_matrix(version), Contains(version) && Contains("unsupported version"));
+  const std::string format = put("format_number.json", R"({"format":7,"version":1})");
+  REQUIRE_THROWS_WITH(brdf::read_brdf_matrix(format), Contains("not a prt BRDF matrix"));
+}
+
 TEST_CASE("a BRDF matrix with a NaN value is refused", "[hardening][brdf]") {
   std::string bin = "PRTBRDF1";
   put32(bin, 1);  // bands
