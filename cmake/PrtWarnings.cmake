@@ -12,3 +12,7 @@ if(PRT_SANITIZE)
     -fno-sanitize-recover=all)
   target_link_options(prt_options INTERFACE -fsanitize=${PRT_SANITIZE})
 endif()
+if(PRT_BUILD_FUZZ)
+  # Coverage feedback for libFuzzer in every prt library; the fuzz targets add libFuzzer's main.
+  target_compile_options(prt_options INTERFACE -fsanitize=fuzzer-no-link)
+endif()

@@ -6,7 +6,8 @@
 #               mono-mcs (compiles and runs the Unity importer against stand-in Unity types),
 #               Node.js and the npm packages of probes/threejs (the three.js browser test) and
 #               tests/engines (the engines' own code: Babylon.js, Filament, three.js, ktx-parse, the
-#               Khronos glTF validator), each from its package-lock.json.
+#               Khronos glTF validator), each from its package-lock.json; clang 14 with libFuzzer and
+#               llvm-cov (the fuzz targets of tests/fuzz, scripts/fuzz.sh).
 #   --no-build  install only.
 # Environment: PRT_BUILD_DIR (default build), PRT_EXTRA_PACKAGES (more packages to install).
 set -euo pipefail
@@ -29,7 +30,7 @@ for arg in "$@"; do
   esac
 done
 if ((with_tests)); then
-  packages+=(xvfb xauth chromium mono-mcs)
+  packages+=(xvfb xauth chromium mono-mcs clang-14 libfuzzer-14-dev llvm-14)
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
 fi

@@ -80,9 +80,12 @@ struct Brdf {
   bool is_grey() const;
 };
 
+/// The most lobes a BRDF may have after lambert lobes are merged (docs/formats.md, "Limits").
+inline constexpr int kMaxLobes = 16;
+
 /// Parses a SPEC string or a .json material file (see the top of this header). Throws prt::Error with
 /// one line "--brdf: <problem>" (or "<file>: <problem>" for a material file) for an unknown lobe or key,
-/// a malformed number, a value out of range, or an empty spec.
+/// a malformed number, a value out of range, more than kMaxLobes lobes, or an empty spec.
 Brdf parse_brdf(const std::string& spec);
 
 /// Sum of the weights of the lambert lobes whose fresnel_mix equals `fresnel_mix` into `sum`; false

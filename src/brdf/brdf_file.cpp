@@ -1,5 +1,6 @@
 #include "brdf/brdf_file.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_depth.h"
 #include "core/little_endian.h"
 #include "core/text.h"
 #include "sh/basis.h"
@@ -56,14 +58,17 @@ std::string json_text(const BrdfMatrix& m) {
 }
 
 BrdfMatrix read_json(const std::string& path, const std::string& text) {
+  check_json_depth(text, path);
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     fail_file(path, std::string("not valid JSON: ") + e.what());
   }
-  if (!doc.is_object() || doc.value("format", "") != "prt-brdf-matrix") fail_file(path, "not a prt BRDF matrix (format != prt-brdf-matrix)");
-  if (doc.value("version", 0) != 1) fail_file(path, "unsupported version (expected 1)");
+  // Comparisons, not value(): value() throws json::type_error for a key of another type (found by fuzz_brdf).
+  if (!doc.is_object() || !doc.contains("format") || doc["format"] != "prt-brdf-matrix")
+    fail_file(path, "not a prt BRDF matrix (format != prt-brdf-matrix)");
+  if (!doc.contains("version") || doc["version"] != 1) fail_file(path, "unsupported version (expected 1)");
   BrdfMatrix m;
   try {
     check_shape(path, doc.at("bands").get<long long>(), doc.at("channels").get<long long>());
@@ -127,7 +132,12 @@ void write_brdf_matrix(const std::string& path, const BrdfMatrix& matrix) {
 
 BrdfMatrix read_brdf_matrix(const std::string& path) {
   const std::string bytes = read_file(path);
-  return lower_extension(path) == ".json" ? read_json(path, bytes) : read_binary(path, bytes);
+  BrdfMatrix m = lower_extension(path) == ".json" ? read_json(path, bytes) : read_binary(path, bytes);
+  // |B| <= 1e6: a BRDF matrix of a physical BRDF is far smaller; beyond it shading could overflow.
+  for (std::size_t i = 0; i < m.values.size(); ++i)
+    if (!(std::abs(m.values[i]) <= 1e6))
+      fail_file(path, "matrix value " + std::to_string(i) + (std::isfinite(m.values[i]) ? " is out of range (|v| > 1e6)" : " is not finite"));
+  return m;
 }
 
 }  // namespace prt::brdf

@@ -10,6 +10,7 @@
 #include "brdf/brdf.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_depth.h"
 
 namespace prt::brdf {
 
@@ -188,9 +189,11 @@ void add_json_lobe(const nlohmann::json& object, const std::string& path, Brdf& 
 }
 
 Brdf parse_material_file(const std::string& path) {
+  const std::string text = read_file(path);
+  check_json_depth(text, path);
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(read_file(path));
+    doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     fail_file(path, std::string("not valid JSON: ") + e.what());
   }
@@ -234,7 +237,13 @@ std::string colour_text(const glm::dvec3& c) {
 
 Brdf parse_brdf(const std::string& spec) {
   if (spec.empty()) fail("--brdf: empty BRDF spec (e.g. lambert:albedo=0.8, phong:exponent=32,ks=0.5,kd=0.3)");
-  return canonical(ends_with(spec, ".json") ? parse_material_file(spec) : parse_spec_string(spec));
+  const bool file = ends_with(spec, ".json");
+  Brdf out = canonical(file ? parse_material_file(spec) : parse_spec_string(spec));
+  // Projection cost grows with the lobe count; a cap keeps a hostile spec from running for minutes.
+  if (out.lobes.size() > static_cast<std::size_t>(kMaxLobes))
+    fail((file ? spec : std::string("--brdf")) + ": " + std::to_string(out.lobes.size()) + " lobes, more than " +
+         std::to_string(kMaxLobes) + " (lambert lobes count as one)");
+  return out;
 }
 
 std::string to_spec(const Brdf& brdf) {

@@ -47,8 +47,9 @@ Camera parse_camera(const std::string& text) {
     fail("--camera: elevation must be between -89.9 and 89.9 degrees, got '" + parts[1] + "'");
   if (parts[2] == "auto") {
     camera.distance = 0.0;
-  } else if (!parse_number(parts[2], camera.distance) || camera.distance <= 0.0) {
-    fail("--camera: distance must be a positive number (mesh units) or auto, got '" + parts[2] + "'");
+  } else if (!parse_number(parts[2], camera.distance) || !(camera.distance >= mesh::kMinExtent) ||
+             !(camera.distance <= mesh::kMaxCoordinate)) {
+    fail("--camera: distance must be a number from 1e-9 to 1e12 (mesh units) or auto, got '" + parts[2] + "'");
   }
   return camera;
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "mesh/mesh.h"
 
 namespace prt::cli {
 
@@ -18,7 +19,7 @@ glm::dvec3 parse_triple(const std::string& text, const std::string& option, cons
   while (std::getline(ss, item, ',')) {
     char* end = nullptr;
     double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v))
+    if (item.empty() || end == item.c_str() || *end != '\0' || !(std::abs(v) <= mesh::kMaxCoordinate))
       fail(option + ": expected " + what + ", got '" + text + "'");
     values.push_back(v);
   }

@@ -8,7 +8,8 @@
 
 namespace prt::cli {
 
-/// Parses "A,B,C" into three finite doubles. Throws prt::Error("<option>: expected <what>, got '<text>'").
+/// Parses "A,B,C" into three doubles of magnitude at most mesh::kMaxCoordinate (1e12: positions,
+/// colours and angles beyond it overflow float maths downstream). Throws prt::Error("<option>: expected <what>, got '<text>'").
 glm::dvec3 parse_triple(const std::string& text, const std::string& option, const std::string& what);
 
 /// Parses "YAW,PITCH,ROLL" (degrees) into the active rotation Ry(yaw) Rx(pitch) Rz(roll) angles.

@@ -1,11 +1,13 @@
 // prt bake: bakes per-vertex transfer (src/bake: diffuse vectors, glossy matrices) and writes the .prt file (and a .glb).
 #include <chrono>
 #include <cstdio>
+#include <memory>
 
 #include "bake/bake.h"
 #include "brdf/brdf.h"
 #include "cli/arguments.h"
 #include "cli/cmd_compress.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "compress/cprt_file.h"
 #include "core/atomic_file.h"
@@ -58,9 +60,8 @@ void run_bake(const BakeCommandOptions& o) {
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
   if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
     fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
-  // Check the output folders before spending minutes baking.
-  { AtomicFile probe(o.output); }
-  if (!o.gltf_output.empty()) { AtomicFile probe(o.gltf_output); }
+  // Check the outputs before spending minutes baking.
+  check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
 
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet);
@@ -69,15 +70,27 @@ void run_bake(const BakeCommandOptions& o) {
   transfer::TransferData data = bake::bake(mesh, options, &report);
   if (o.float16) data.header.scalar = transfer::Scalar::float16;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (o.compress.empty()) {
-    transfer::write_transfer(o.output, data);
-  } else {
+  // Both outputs are written to temporaries and committed together: a failing .glb leaves no .prt.
+  AtomicFile prt_file(o.output);
+  write_staged(prt_file, [&](const std::string& path) {
+    if (o.compress.empty()) {
+      transfer::write_transfer(path, data);
+      return;
+    }
     CompressionRequest request;
     request.options = {clusters, pca, 20, o.seed, o.threads};
     request.scalar = data.header.scalar;
-    compress::write_cprt(o.output, compress_for_cli(data, o.output, request));
+    compress::write_cprt(path, compress_for_cli(data, o.output, request));
+  });
+  std::unique_ptr<AtomicFile> glb_file;
+  if (!o.gltf_output.empty()) {
+    glb_file = std::make_unique<AtomicFile>(o.gltf_output);
+    write_staged(*glb_file, [&](const std::string& path) {
+      mesh::write_glb(path, mesh, bake::pack_transfer_attributes(data));
+    });
   }
-  if (!o.gltf_output.empty()) mesh::write_glb(o.gltf_output, mesh, bake::pack_transfer_attributes(data));
+  prt_file.commit();
+  if (glb_file) glb_file->commit();
 
   if (!o.quiet) {
     std::fprintf(stderr, "prt bake: %s, %zu vertices, %u bands, %u channel(s)", transfer::kind_name(options.kind),

@@ -1,6 +1,7 @@
 // prt brdf: projects a cosine-weighted BRDF into its SH matrix B (src/brdf) and writes it as .json or
 // .bin, optionally with a PNG plot of the reconstructed lobes.
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "brdf/lobe_plot.h"
 #include "brdf/projection.h"
 #include "cli/commands.h"
+#include "cli/output_paths.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/image.h"
@@ -45,16 +47,23 @@ void run_brdf(const BrdfCommandOptions& o) {
     fail("--bands " + std::to_string(o.bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
   const brdf::Brdf brdf = brdf::parse_brdf(o.spec);
   const std::vector<double> angles = parse_angles_list(o.angles);
-  { AtomicFile probe(o.output); }
-  if (!o.preview.empty()) {
-    AtomicFile probe(o.preview);
-    if (!image::is_display_format(o.preview)) fail_file(o.preview, "--preview must be a .png (or another 8-bit format)");
-  }
+  check_outputs({o.output, o.preview}, {o.spec});
+  if (!o.preview.empty() && !image::is_display_format(o.preview))
+    fail_file(o.preview, "--preview must be a .png (or another 8-bit format)");
   const auto start = std::chrono::steady_clock::now();
   const brdf::BrdfMatrix matrix = brdf::project(brdf, o.bands);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  brdf::write_brdf_matrix(o.output, matrix);
-  if (!o.preview.empty()) image::write(o.preview, brdf::plot_lobes(brdf, matrix, angles));
+  // Both outputs are committed together: a failing preview leaves no matrix file behind.
+  AtomicFile matrix_file(o.output);
+  write_staged(matrix_file, [&](const std::string& path) { brdf::write_brdf_matrix(path, matrix); });
+  std::unique_ptr<AtomicFile> preview_file;
+  if (!o.preview.empty()) {
+    preview_file = std::make_unique<AtomicFile>(o.preview);
+    const image::Image plot = brdf::plot_lobes(brdf, matrix, angles);
+    write_staged(*preview_file, [&](const std::string& path) { image::write_file_at(path, plot, o.preview); });
+  }
+  matrix_file.commit();
+  if (preview_file) preview_file->commit();
   if (!o.quiet) {
     const double error = brdf::reconstruction_error(brdf, matrix);
     std::fprintf(stderr,

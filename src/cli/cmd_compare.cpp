@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "cli/output_paths.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "image/compare.h"
@@ -33,7 +34,14 @@ glm::vec3 heat_colour(float t) {
   return {1, 4 - t, 0};
 }
 
+// Nothing finite to compare: an rms of 0 would read as a perfect match.
+void require_finite_values(const image::Difference& d) {
+  if (d.compared == 0 && d.non_finite > 0)
+    fail("nothing to compare: all " + std::to_string(d.non_finite) + " values are NaN or infinite in A or B");
+}
+
 void print_line(const image::Difference& d, const char* count_name, std::size_t count) {
+  require_finite_values(d);
   std::printf("rms=%.6g rel_rms=%.6g max_abs=%.6g max_rel=%.6g %s=%zu", d.rms, d.rel_rms, d.max_abs, d.max_rel,
               count_name, count);
   if (d.non_finite > 0) std::printf(" non_finite=%zu", d.non_finite);
@@ -41,6 +49,7 @@ void print_line(const image::Difference& d, const char* count_name, std::size_t 
 }
 
 void compare_plys(const CompareCommandOptions& o) {
+  check_outputs({o.heatmap}, {o.a, o.b});
   if (!o.heatmap.empty() && !is_ply(o.heatmap)) fail_file(o.heatmap, "the heatmap of two PLYs is a .ply");
   const mesh::ColourPly a = mesh::read_ply_colours(o.a);
   const mesh::ColourPly b = mesh::read_ply_colours(o.b);
@@ -50,6 +59,7 @@ void compare_plys(const CompareCommandOptions& o) {
   if (a.colours.empty()) fail_file(o.a, "no vertices to compare");
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "colours are read as 3 contiguous floats per vertex");
   const image::Difference d = image::compare_values(&a.colours[0].x, &b.colours[0].x, 3 * a.colours.size());
+  require_finite_values(d);
   if (!o.heatmap.empty()) {
     std::vector<glm::vec3> heat(a.colours.size());
     for (std::size_t v = 0; v < a.colours.size(); ++v) {
@@ -66,6 +76,7 @@ void compare_plys(const CompareCommandOptions& o) {
 void compare_images(const CompareCommandOptions& o) {
   if (!o.heatmap.empty() && !image::is_display_format(o.heatmap))
     fail_file(o.heatmap, "the heatmap of two images is an 8-bit image (.png)");
+  check_outputs({o.heatmap}, {o.a, o.b});
   const image::ImageDifference d = image::compare_image_files(o.a, o.b, o.heatmap);
   print_line(d.values, "pixels", static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height));
 }

@@ -13,6 +13,7 @@
 
 #include "cli/analytic_light_spec.h"
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -75,9 +76,8 @@ CheckedLight check_options(const LightOptions& o) {
       fail_file(o.preview, "unsupported preview format '" + ext + "' (use .png, .jpg, .exr or .hdr)");
     if (o.preview_width < 2 || o.preview_width % 2 != 0 || o.preview_width > 16384)
       fail("--preview-width " + std::to_string(o.preview_width) + ": must be even, 2..16384");
-    if (std::filesystem::absolute(o.preview) == std::filesystem::absolute(o.output))
-      fail_file(o.output, "the preview and the output are the same file");
   }
+  check_outputs({o.output, o.preview}, {o.environment});
   if (!std::isfinite(o.exposure)) fail("--exposure: must be finite");
   return checked;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -137,7 +138,7 @@ void run_probes(ProbesCommandOptions o) {
   if (sun.mode == light::SunRequest::Mode::given) light.sun = sun.disc;
   std::vector<glm::dvec3> points;
   if (!o.points.empty()) points = probes::read_points_file(o.points);
-  { AtomicFile check_folder(o.output); }
+  check_outputs({o.output}, {o.scene_path, o.environment, o.points});
 
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(o.scene_path, &load_report, o.quiet);

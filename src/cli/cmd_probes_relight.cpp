@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "cli/lighting_input.h"
 #include "core/atomic_file.h"
@@ -30,7 +31,7 @@ void run_relight(const RelightCommandOptions& o) {
   const probes::Format format = probes::parse_format(o.format);
   if (format == probes::Format::gltf && o.scene.empty()) fail("--format gltf needs --scene (the scene to re-write)");
   const glm::dvec3 ypr = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
-  { AtomicFile check_folder(o.output); }
+  check_outputs({o.output}, {o.input, o.environment, o.scene});
   probes::ProbeSet set = probes::read_probe_file(o.input);
   if (set.transfer_bands == 0) fail_file(o.input, "has no transfer: bake it with prt probes --transfer");
   const sh::RgbCoefficients lighting = load_lighting(o.environment, set.transfer_bands, ypr);

@@ -11,6 +11,7 @@
 #include "brdf/brdf.h"
 #include "camera/camera.h"
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -151,7 +152,7 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
       fail_file(o.output, extension == ".exr" || extension == ".png" ? "an image output needs --image"
                                                                      : "output must be .ply (or .exr/.png with --image)");
   }
-  { AtomicFile probe(o.output); }  // check the output folder
+  check_outputs({o.output}, {o.mesh_path, o.env, o.brdf});
 
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, o.quiet);
   light::Environment environment = light::load_environment(o.env);

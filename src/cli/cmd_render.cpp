@@ -1,5 +1,6 @@
 // prt render: one relit frame rendered headless (OpenGL through EGL) and written as PNG or EXR.
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/view_arguments.h"
 #include "cli/commands.h"
 #include "core/error.h"
@@ -17,6 +18,7 @@ struct RenderCommandOptions {
 };
 
 void run_render(const RenderCommandOptions& o) {
+  check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.brdf});
   render::RenderOptions options;
   options.mesh_path = o.mesh_path;
   options.transfer_path = o.transfer_path;

@@ -6,6 +6,7 @@
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
 #include "cli/arguments.h"
+#include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "cli/lighting_input.h"
 #include "compress/cprt_file.h"
@@ -37,6 +38,7 @@ void run_shade(const ShadeCommandOptions& o) {
   if (o.env.empty() == o.light.empty()) fail("shade: give exactly one of --env ENV and --light LIGHT.json");
   const bool glb = has_extension(o.output, ".glb");
   if (!glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
+  check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.light, o.brdf});
   const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, true);
   const transfer::TransferData transfer = compress::read_transfer_or_cprt(o.transfer_path);  // .prt or .cprt

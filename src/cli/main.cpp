@@ -2,8 +2,11 @@
 // Every user-facing failure is a prt::Error: printed as one line "prt: <message>", exit status 1.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -32,9 +35,24 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // CLI11 prints two lines and exits with its own codes (104-109); prt's rule is one line, status 1.
+    std::fprintf(stderr, "prt: %s (see prt --help)\n", prt::Error(e.what()).what());
+    return 1;
   } catch (const prt::Error& e) {
     std::fprintf(stderr, "prt: %s\n", e.what());
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the operating system refuses (a component longer than NAME_MAX, ...): a user error.
+    std::fprintf(stderr, "prt: %s: %s\n", e.path1().c_str(), e.code().message().c_str());
+    return 1;
+  } catch (const nlohmann::json::exception& e) {
+    // A JSON value of the wrong type that a reader did not check itself: still one line, status 1.
+    const std::string what = e.what();  // "[json.exception.type_error.302] type must be ..."
+    std::fprintf(stderr, "prt: malformed JSON input: %s\n", what.substr(what.find(']') + 2).c_str());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "prt: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "prt: internal error: %s\n", e.what());

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <sstream>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -109,6 +110,16 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+void check_regular_input(const std::string& path) {
+  struct stat info;
+  if (stat(path.c_str(), &info) != 0) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  if (S_ISDIR(info.st_mode)) fail_file(path, "is a folder, not a file");
+  // A FIFO blocks and a device such as /dev/zero never ends: only regular files are inputs.
+  if (!S_ISREG(info.st_mode)) fail_file(path, "is not a regular file (a pipe, socket or device)");
+  if (static_cast<unsigned long long>(info.st_size) > kMaxInputBytes)
+    fail_file(path, "is larger than " + std::to_string(kMaxInputBytes >> 30) + " GiB, the most prt reads");
+}
+
 void write_file_atomically(const std::string& path, const std::string& bytes) {
   AtomicFile file(path);
   file.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -116,8 +127,7 @@ void write_file_atomically(const std::string& path, const std::string& bytes) {
 }
 
 std::string read_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail_file(path, "is a folder, not a file");
+  check_regular_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream ss;

@@ -43,7 +43,15 @@ void install_cleanup_signal_handlers();
 /// Writes `bytes` to `path` through an AtomicFile.
 void write_file_atomically(const std::string& path, const std::string& bytes);
 
-/// Reads a whole file. Throws Error("<path>: cannot open ...") if it cannot be read.
+/// The largest input file prt reads (4 GiB; docs/formats.md, "Limits").
+inline constexpr unsigned long long kMaxInputBytes = 4ull << 30;
+
+/// Throws Error("<path>: ...") unless `path` is a readable regular file of at most kMaxInputBytes:
+/// folders, FIFOs (which would block) and devices such as /dev/zero (which never end) are refused.
+void check_regular_input(const std::string& path);
+
+/// Reads a whole file (check_regular_input first). Throws Error("<path>: cannot open ...") if it
+/// cannot be read.
 std::string read_file(const std::string& path);
 
 }  // namespace prt

@@ -30,6 +30,14 @@ struct Functions {
 
 inline constexpr int kAbiVersion = 1;
 
+/// Decoding limits, checked against the file's header before pixels are allocated (docs/formats.md,
+/// "Limits"): a side of at most 32768, at most 2^26 pixels (8192 x 8192, 16384 x 4096), at most 16
+/// channels, and at most 2^28 decoded floats (1 GiB) in all.
+inline constexpr int kMaxImageSide = 32768;
+inline constexpr double kMaxImagePixels = double(1 << 26);
+inline constexpr int kMaxImageChannels = 16;
+inline constexpr double kMaxImageFloats = double(1 << 28);
+
 }  // namespace prt::image::backend
 
 /// Exported by the module: its function table.

@@ -59,6 +59,7 @@ Image read_rgb(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail_file(path, "file not found");
   if (std::filesystem::is_directory(path, ec)) fail_file(path, "is a folder, not an image");
+  check_regular_input(path);
   backend::DecodedImage raw;
   const std::string problem = functions().read(path, raw);
   if (!problem.empty()) fail_file(path, problem);

@@ -23,7 +23,9 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
   while (std::getline(ss, item, ',')) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x)) fail(option + ": " + usage);
+    // Beyond 1e18 a disc's radiance and its SH overflow float coefficients (a value of 1e308 did).
+    if (item.empty() || end == item.c_str() || *end != '\0' || !(std::abs(x) <= 1e18))
+      fail(option + ": " + usage + " (numbers of magnitude at most 1e18)");
     v.push_back(x);
   }
   if ((v.size() != 5 && v.size() != 7) || text.empty() || text.back() == ',') fail(option + ": " + usage);

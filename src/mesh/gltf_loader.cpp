@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -14,10 +15,12 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
+#include <sys/stat.h>
 #include <tiny_gltf.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_depth.h"
 #include "mesh/loaders.h"
 
 namespace prt::mesh::detail {
@@ -382,21 +385,94 @@ struct Loader {
 
 }  // namespace
 
+namespace {
+
+std::uint32_t u32_at(const std::string& bytes, std::size_t offset) {
+  std::uint32_t v = 0;
+  for (int k = 0; k < 4; ++k) v |= std::uint32_t(static_cast<unsigned char>(bytes[offset + std::size_t(k)])) << (8 * k);
+  return v;
+}
+
+/// Checks the GLB container (glTF 2.0 spec, "Binary glTF Layout") before tinygltf sees it: magic,
+/// version 2, a total length equal to the file's, a JSON chunk first, and every chunk inside the
+/// file (tinygltf 2.7 accepts a BIN chunk that runs 8 bytes past the end, and reads past it).
+/// Returns the JSON chunk's text.
+std::string_view glb_json_chunk(const std::string& path, const std::string& bytes) {
+  if (bytes.size() < 20) fail_file(path, "truncated GLB: shorter than its 12-byte header and first chunk header");
+  if (bytes.compare(0, 4, "glTF") != 0) fail_file(path, "not a binary glTF file (wrong magic)");
+  const std::uint32_t version = u32_at(bytes, 4), length = u32_at(bytes, 8);
+  if (version != 2) fail_file(path, "GLB version " + std::to_string(version) + " (prt reads version 2, glTF 2.0)");
+  if (length != bytes.size())
+    fail_file(path, "GLB header gives a total length of " + std::to_string(length) + " bytes, but the file has " +
+                        std::to_string(bytes.size()));
+  std::string_view json;
+  for (std::size_t offset = 12; offset < bytes.size();) {
+    if (bytes.size() - offset < 8) fail_file(path, "truncated GLB: a chunk header at byte " + std::to_string(offset));
+    const std::uint32_t chunk_length = u32_at(bytes, offset), type = u32_at(bytes, offset + 4);
+    if (chunk_length > bytes.size() - offset - 8)
+      fail_file(path, "GLB chunk at byte " + std::to_string(offset) + " claims " + std::to_string(chunk_length) +
+                          " bytes, more than the file holds");
+    if (offset == 12 && type != 0x4E4F534Au) fail_file(path, "GLB's first chunk is not JSON");
+    if (offset == 12) json = std::string_view(bytes).substr(20, chunk_length);
+    offset += 8 + std::size_t(chunk_length);
+  }
+  return json;
+}
+
+/// tinygltf's file reader for external buffers: only regular files of at most kMaxInputBytes (a
+/// folder or a FIFO as a buffer uri would allocate without bound or block).
+bool read_external_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void*) {
+  try {
+    const std::string bytes = read_file(file);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += std::string(e.what()) + "\n";
+    return false;
+  }
+}
+
+/// Whether a buffer uri names anything, by stat(): tinygltf's own check opens the file, which blocks
+/// on a FIFO. read_external_file then refuses what is not a regular file.
+bool file_exists(const std::string& file, void*) {
+  struct stat info;
+  return stat(file.c_str(), &info) == 0;
+}
+
+/// Paths are used as written: no shell-style expansion of "~" or "$VAR" in a buffer uri.
+std::string path_as_written(const std::string& file, void*) { return file; }
+
+tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bool binary, std::string* warn) {
+  check_json_depth(binary ? glb_json_chunk(path, bytes) : std::string_view(bytes), path);
+  tinygltf::TinyGLTF gltf;
+  gltf.SetImageLoader(skip_image, nullptr);
+  gltf.SetFsCallbacks({&file_exists, &path_as_written, &read_external_file, &tinygltf::WriteWholeFile, nullptr});
+  tinygltf::Model model;
+  std::string err;
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  bool ok = false;
+  try {
+    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                            static_cast<unsigned int>(bytes.size()), base_dir)
+                : gltf.LoadASCIIFromString(&model, &err, warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
+                                           base_dir);
+  } catch (const std::bad_alloc&) {
+    fail_file(path, "cannot read glTF: a buffer is too large for memory");
+  } catch (const std::exception&) {  // e.g. vector::at for a buffer of byteLength 0 in tinygltf 2.7
+    fail_file(path, "cannot read glTF: a buffer or buffer view is malformed (byteLength 0?)");
+  }
+  if (!ok) fail_file(path, "cannot read glTF: " + first_line(err.empty() ? *warn : err));
+  return model;
+}
+
+}  // namespace
+
 RawMesh load_gltf(const std::string& path, bool binary) {
   const std::string bytes = read_file(path);
   if (bytes.size() >= std::numeric_limits<unsigned int>::max())
     fail_file(path, "file too large for glTF (4 GiB or more)");
-  tinygltf::TinyGLTF gltf;
-  gltf.SetImageLoader(skip_image, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
-  const std::string base_dir = std::filesystem::path(path).parent_path().string();
-  const bool ok =
-      binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                         static_cast<unsigned int>(bytes.size()), base_dir)
-             : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
-                                        base_dir);
-  if (!ok) fail_file(path, "cannot read glTF: " + first_line(err.empty() ? warn : err));
+  std::string warn;
+  const tinygltf::Model model = parse_gltf(path, bytes, binary, &warn);
   for (const std::string& name : model.extensionsRequired)
     if (!extension_is_harmless(name))
       fail_file(path, "requires the glTF extension " + name + ", which prt does not support");

@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "mesh/loaders.h"
@@ -23,8 +24,7 @@ namespace {
 
 /// The first bytes of the file (up to 4 KiB), or prt::Error if it cannot be read.
 std::string read_head(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail_file(path, "cannot read: is a directory");
+  check_regular_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
   std::string head(4096, '\0');
@@ -69,25 +69,30 @@ std::string vec_text(const glm::vec3& v) {
 
 namespace detail {
 
-Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet) {
-  LoadReport result = std::move(raw.notes_only);
-  const std::size_t vertex_count = raw.positions.size();
+namespace {
 
-  // Validate: finite positions, indices in range (loaders already checked with file context).
+// Finite positions within +-kMaxCoordinate, indices in range (loaders already checked with file context).
+void check_positions_and_indices(const std::string& path, const RawMesh& raw) {
+  const std::size_t vertex_count = raw.positions.size();
   for (std::size_t i = 0; i < vertex_count; ++i) {
     const glm::vec3& p = raw.positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       fail_file(path, "vertex " + std::to_string(i) + " has a non-finite position " + vec_text(p));
+    if (!(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) <= kMaxCoordinate))
+      fail_file(path, "vertex " + std::to_string(i) + " at " + vec_text(p) +
+                          " is outside +-1e12, the coordinate range prt traces and shades safely (scale the mesh down)");
   }
   if (raw.indices.size() % 3 != 0) fail_file(path, "internal error: index count not a multiple of 3");
   for (std::size_t k = 0; k < raw.indices.size(); ++k)
     if (raw.indices[k] >= vertex_count)
       fail_file(path, "triangle " + std::to_string(k / 3) + " refers to vertex " + std::to_string(raw.indices[k]) +
                           ", but there are " + std::to_string(vertex_count) + " vertices");
+}
 
-  // Drop degenerate triangles.
-  Mesh mesh;
-  mesh.indices.reserve(raw.indices.size());
+// The non-degenerate triangles; counts the rest in result->skipped_degenerate and notes them.
+std::vector<std::uint32_t> drop_degenerate(const std::string& path, const RawMesh& raw, LoadReport* result) {
+  std::vector<std::uint32_t> indices;
+  indices.reserve(raw.indices.size());
   std::size_t degenerate = 0;
   for (std::size_t t = 0; t + 2 < raw.indices.size(); t += 3) {
     const std::uint32_t a = raw.indices[t], b = raw.indices[t + 1], c = raw.indices[t + 2];
@@ -95,74 +100,110 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
       ++degenerate;
       continue;
     }
-    mesh.indices.insert(mesh.indices.end(), {a, b, c});
+    indices.insert(indices.end(), {a, b, c});
   }
-  result.skipped_degenerate = degenerate + raw.skipped_polygons;
-  if (mesh.indices.empty()) {
-    if (result.skipped_degenerate > 0)
-      fail_file(path, "no triangles left: all " + std::to_string(result.skipped_degenerate) + " are degenerate");
+  result->skipped_degenerate = degenerate + raw.skipped_polygons;
+  if (indices.empty()) {
+    if (result->skipped_degenerate > 0)
+      fail_file(path, "no triangles left: all " + std::to_string(result->skipped_degenerate) + " are degenerate");
     fail_file(path, "no triangles (the file has no faces)");
   }
-  if (result.skipped_degenerate > 0)
-    result.notes.push_back("skipped " + std::to_string(result.skipped_degenerate) +
-                           " degenerate triangles (repeated vertex, zero area, or fewer than 3 vertices)");
-  mesh.positions = std::move(raw.positions);
+  if (result->skipped_degenerate > 0)
+    result->notes.push_back("skipped " + std::to_string(result->skipped_degenerate) +
+                            " degenerate triangles (repeated vertex, zero area, or fewer than 3 vertices)");
+  return indices;
+}
 
-  // Normals: the file's where usable, area-weighted ones elsewhere.
-  mesh.normals.assign(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
+// The bounding box of the triangles' vertices must span at least kMinExtent: below it, squared
+// lengths underflow in float and shading directions become NaN.
+void check_extent(const std::string& path, const Mesh& mesh) {
+  glm::dvec3 lo(mesh.positions[mesh.indices[0]]), hi = lo;
+  for (std::uint32_t index : mesh.indices) {
+    lo = glm::min(lo, glm::dvec3(mesh.positions[index]));
+    hi = glm::max(hi, glm::dvec3(mesh.positions[index]));
+  }
+  const double diagonal = glm::length(hi - lo);
+  if (!(diagonal >= kMinExtent))
+    fail_file(path, "the mesh's bounding box diagonal " + std::to_string(diagonal) +
+                        " is below 1e-9, the smallest size prt shades safely (scale the mesh up)");
+}
+
+// The file's normals where usable, area-weighted ones elsewhere.
+void assign_normals(const RawMesh& raw, Mesh* mesh, LoadReport* result) {
+  const std::size_t vertex_count = mesh->positions.size();
+  mesh->normals.assign(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
   std::size_t computed = 0;
   std::vector<glm::vec3> area_weighted;
   for (std::size_t i = 0; i < vertex_count; ++i) {
-    const bool usable = !raw.normals.empty() && raw.normal_usable[i];
-    if (usable) {
+    if (!raw.normals.empty() && raw.normal_usable[i]) {
       // Normals already unit to float precision are kept bit for bit (files written by prt round-trip).
       const glm::dvec3 n(raw.normals[i]);
       const double length_sq = glm::dot(n, n);
-      mesh.normals[i] = std::abs(length_sq - 1.0) <= 1e-6 ? raw.normals[i] : glm::vec3(n / std::sqrt(length_sq));
+      mesh->normals[i] = std::abs(length_sq - 1.0) <= 1e-6 ? raw.normals[i] : glm::vec3(n / std::sqrt(length_sq));
       continue;
     }
-    if (area_weighted.empty()) area_weighted = area_weighted_normals(mesh.positions, mesh.indices);
-    mesh.normals[i] = area_weighted[i];
+    if (area_weighted.empty()) area_weighted = area_weighted_normals(mesh->positions, mesh->indices);
+    mesh->normals[i] = area_weighted[i];
     ++computed;
   }
-  result.normals_computed = computed > 0;
-  result.computed_normal_count = computed;
+  result->normals_computed = computed > 0;
+  result->computed_normal_count = computed;
   if (computed > 0) {
     std::string reason = raw.computed_normals_reason.empty() ? "the file has no normals" : raw.computed_normals_reason;
-    result.notes.push_back("computed area-weighted normals for " + std::to_string(computed) + " of " +
-                           std::to_string(vertex_count) + " vertices (" + reason + ")");
+    result->notes.push_back("computed area-weighted normals for " + std::to_string(computed) + " of " +
+                            std::to_string(vertex_count) + " vertices (" + reason + ")");
   }
+}
 
-  // Albedo, clamped to [0,1] (NaN -> 0).
-  if (!raw.albedo.empty()) {
-    std::size_t clamped = 0;
-    for (glm::vec3& a : raw.albedo) {
-      for (int c = 0; c < 3; ++c) {
-        float v = a[c];
-        float fixed = std::isnan(v) ? 0.0f : std::min(1.0f, std::max(0.0f, v));
-        if (!(fixed == v)) ++clamped;
-        a[c] = fixed;
-      }
-    }
-    if (clamped > 0) result.notes.push_back("clamped " + std::to_string(clamped) + " albedo components to [0,1]");
-    mesh.albedo = std::move(raw.albedo);
-    result.albedo_from_file = true;
-  }
-
-  // Emission: NaN and negative values -> 0; empty if nothing emits.
-  if (!raw.emission.empty()) {
-    bool any = false;
-    for (glm::vec3& e : raw.emission)
-      for (int c = 0; c < 3; ++c) {
-        if (!(e[c] > 0.0f)) e[c] = 0.0f;
-        any = any || e[c] > 0.0f;
-      }
-    if (any) {
-      mesh.emission = std::move(raw.emission);
-      result.emission_from_file = true;
+// Albedo clamped to [0,1] (NaN -> 0).
+void clamp_albedo(RawMesh* raw, Mesh* mesh, LoadReport* result) {
+  if (raw->albedo.empty()) return;
+  std::size_t clamped = 0;
+  for (glm::vec3& a : raw->albedo) {
+    for (int c = 0; c < 3; ++c) {
+      float v = a[c];
+      float fixed = std::isnan(v) ? 0.0f : std::min(1.0f, std::max(0.0f, v));
+      if (!(fixed == v)) ++clamped;
+      a[c] = fixed;
     }
   }
+  if (clamped > 0) result->notes.push_back("clamped " + std::to_string(clamped) + " albedo components to [0,1]");
+  mesh->albedo = std::move(raw->albedo);
+  result->albedo_from_file = true;
+}
 
+// Emission: NaN and negative values -> 0; above kMaxEmission (or infinite) refused; empty if nothing emits.
+void take_emission(const std::string& path, RawMesh* raw, Mesh* mesh, LoadReport* result) {
+  if (raw->emission.empty()) return;
+  bool any = false;
+  for (std::size_t i = 0; i < raw->emission.size(); ++i) {
+    glm::vec3& e = raw->emission[i];
+    for (int c = 0; c < 3; ++c) {
+      if (!(e[c] > 0.0f)) e[c] = 0.0f;
+      if (!(e[c] <= kMaxEmission))
+        fail_file(path, "vertex " + std::to_string(i) + " has emission " + vec_text(e) +
+                            ", above 1e18 (the most prt's sums carry without overflow)");
+      any = any || e[c] > 0.0f;
+    }
+  }
+  if (any) {
+    mesh->emission = std::move(raw->emission);
+    result->emission_from_file = true;
+  }
+}
+
+}  // namespace
+
+Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet) {
+  LoadReport result = std::move(raw.notes_only);
+  check_positions_and_indices(path, raw);
+  Mesh mesh;
+  mesh.indices = drop_degenerate(path, raw, &result);
+  mesh.positions = std::move(raw.positions);
+  check_extent(path, mesh);
+  assign_normals(raw, &mesh, &result);
+  clamp_albedo(&raw, &mesh, &result);
+  take_emission(path, &raw, &mesh, &result);
   if (!quiet)
     for (const std::string& note : result.notes) std::cerr << path << ": " << note << "\n";
   if (report) *report = std::move(result);

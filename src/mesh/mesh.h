@@ -54,6 +54,14 @@
 
 namespace prt::mesh {
 
+/// Limits every loaded mesh satisfies (docs/formats.md, "Limits"): |coordinate| <= kMaxCoordinate
+/// (squared lengths and ray extents stay far from float overflow), a bounding-box diagonal of at
+/// least kMinExtent (squared edge lengths stay far from float underflow), and emission <= kMaxEmission.
+/// load_mesh refuses a mesh outside them, naming the file.
+inline constexpr double kMaxCoordinate = 1e12;
+inline constexpr double kMinExtent = 1e-9;
+inline constexpr float kMaxEmission = 1e18f;
+
 struct Mesh {
   std::vector<glm::vec3> positions;    ///< in the file's units and frame (glTF: node transforms applied)
   std::vector<glm::vec3> normals;      ///< unit length, one per vertex
@@ -80,7 +88,8 @@ struct LoadReport {
 /// .gltf / .glb (every triangle primitive of the scene, node transforms, baseColorFactor and COLOR_0
 /// as albedo); the extension (case-insensitive) picks the format, and the content must match it.
 /// Throws prt::Error("<path>: <problem>") for: unreadable file, unsupported format (by extension or
-/// content), malformed or truncated data, NaN/Inf positions, indices out of range, no triangles left.
+/// content), malformed or truncated data, NaN/Inf positions, indices out of range, no triangles left,
+/// values outside the limits above.
 /// Prints each note of the report (normals computed, triangles or primitives skipped) as one line
 /// "<path>: <note>" on stderr, unless `quiet`.
 Mesh load_mesh(const std::string& path, LoadReport* report = nullptr, bool quiet = false);

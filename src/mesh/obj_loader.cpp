@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <string_view>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -44,6 +45,25 @@ class DistinctPairs {
   std::vector<std::pair<std::uint32_t, int>> pairs_;
 };
 
+/// tinyobjloader reads face indices into an int without an overflow check ("4294967297" wraps to
+/// vertex 1): every integer on an "f" line must fit in 32 bits (signed), else prt::Error naming the line.
+void check_face_indices(const std::string& path, std::string_view line, std::size_t line_number) {
+  for (std::size_t i = 0; i < line.size();) {
+    if (!(line[i] == '-' || (line[i] >= '0' && line[i] <= '9'))) {
+      ++i;
+      continue;
+    }
+    long long value = 0;
+    const auto [ptr, ec] = std::from_chars(line.data() + i, line.data() + line.size(), value);
+    const std::size_t length = std::size_t(ptr - (line.data() + i));
+    if (ec == std::errc::result_out_of_range || value > std::numeric_limits<std::int32_t>::max() ||
+        value < -std::numeric_limits<std::int32_t>::max())
+      fail_file(path, "line " + std::to_string(line_number) + ": face index \"" +
+                          std::string(line.substr(i, std::min<std::size_t>(length, 30))) + "\" is out of range");
+    i += std::max<std::size_t>(length, 1);
+  }
+}
+
 /// The "v" lines' positions, parsed strictly (tinyobjloader reads "nan" or "abc" as 0 without a
 /// word): correctly rounded to float, and prt::Error naming the line for malformed or non-finite
 /// values. Lines are split as tinyobjloader splits them (\n, \r\n or \r), and a "v" line is one
@@ -57,6 +77,8 @@ std::vector<glm::vec3> strict_positions(const std::string& path, const std::stri
     ++line_number;
     std::size_t i = pos;
     while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
+    if (i + 1 < end && text[i] == 'f' && (text[i + 1] == ' ' || text[i + 1] == '\t'))
+      check_face_indices(path, std::string_view(text).substr(i + 2, end - i - 2), line_number);
     if (i + 1 < end && text[i] == 'v' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
       const std::string line = text.substr(i, std::min<std::size_t>(end - i, 60));
       auto problem = [&](const char* what) {
@@ -93,37 +115,66 @@ std::vector<glm::vec3> strict_positions(const std::string& path, const std::stri
 
 }  // namespace
 
-RawMesh load_obj(const std::string& path) {
-  std::vector<glm::vec3> positions = strict_positions(path, read_file(path));
+namespace {
+
+struct ObjData {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
+};
+
+// Parses the file (and its MTL files) with tinyobjloader; the positions come from the strict scan.
+ObjData read_obj(const std::string& path, RawMesh* raw) {
+  std::vector<glm::vec3> positions = strict_positions(path, read_file(path));
+  ObjData obj;
   std::string warn, err;
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   if (!base_dir.empty()) base_dir += "/";
   // triangulate = false: prt fan-triangulates itself (and tinyobjloader's triangulation would index
   // vertices before prt has range-checked them). default_vcols_fallback = false: colours are ignored.
-  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(), base_dir.c_str(),
-                                   /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  const bool ok = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, path.c_str(),
+                                   base_dir.c_str(), /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!ok) fail_file(path, "cannot read OBJ: " + first_line(err.empty() ? warn : err));
-
-  RawMesh raw;
-  if (!first_line(warn).empty()) raw.notes_only.notes.push_back("OBJ reader: " + first_line(warn));
-  const std::size_t vertex_count = attrib.vertices.size() / 3;
+  if (!first_line(warn).empty()) raw->notes_only.notes.push_back("OBJ reader: " + first_line(warn));
+  const std::size_t vertex_count = obj.attrib.vertices.size() / 3;
   if (vertex_count >= std::numeric_limits<std::uint32_t>::max()) fail_file(path, "too many vertices");
   if (positions.size() == vertex_count) {
-    raw.positions = std::move(positions);
+    raw->positions = std::move(positions);
   } else {  // not expected: the two readers disagree on which lines are "v" lines; trust tinyobjloader
-    raw.positions.resize(vertex_count);
+    raw->positions.resize(vertex_count);
     for (std::size_t i = 0; i < vertex_count; ++i)
-      raw.positions[i] = glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+      raw->positions[i] =
+          glm::vec3(obj.attrib.vertices[3 * i], obj.attrib.vertices[3 * i + 1], obj.attrib.vertices[3 * i + 2]);
   }
-  const std::size_t normal_count = attrib.normals.size() / 3;
+  return obj;
+}
 
+struct FaceRefs {
   DistinctPairs position_normals, position_materials;
   bool any_corner_without_normal = false, any_material = false;
+};
+
+// Range-checks one face corner's vertex and normal indices; face_number names it in errors.
+void check_corner(const std::string& path, const tinyobj::index_t& corner, std::size_t face_number,
+                  std::size_t vertex_count, std::size_t normal_count) {
+  if (corner.vertex_index < 0)
+    fail_file(path, "face " + std::to_string(face_number) + " refers to a vertex before the first");
+  if (std::size_t(corner.vertex_index) >= vertex_count)
+    fail_file(path, "face " + std::to_string(face_number) + " refers to vertex " +
+                        std::to_string(corner.vertex_index + 1) + " (1-based), but the file has " +
+                        std::to_string(vertex_count) + " vertices");
+  if (corner.normal_index < -1 || (corner.normal_index >= 0 && std::size_t(corner.normal_index) >= normal_count))
+    fail_file(path, "face " + std::to_string(face_number) + " refers to normal " +
+                        std::to_string(corner.normal_index + 1) + " (1-based), but the file has " +
+                        std::to_string(normal_count) + " normals");
+}
+
+// Fan-triangulates every face into raw->indices and collects, per position, its normals and materials.
+FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh* raw) {
+  const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
+  FaceRefs refs;
   std::size_t face_number = 0;
-  for (const tinyobj::shape_t& shape : shapes) {
+  for (const tinyobj::shape_t& shape : obj.shapes) {
     const tinyobj::mesh_t& m = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f, ++face_number) {
@@ -131,113 +182,120 @@ RawMesh load_obj(const std::string& path) {
       if (offset + n > m.indices.size())
         fail_file(path, "face " + std::to_string(face_number) + " is malformed (a polygon of more than 255 vertices?)");
       const int material = f < m.material_ids.size() ? m.material_ids[f] : -1;
-      if (material >= int(materials.size()))
+      if (material >= int(obj.materials.size()))
         fail_file(path, "face " + std::to_string(face_number) + " has an unknown material");
-      if (material >= 0) any_material = true;
+      if (material >= 0) refs.any_material = true;
       std::uint32_t first = 0, previous = 0;
       for (std::size_t j = 0; j < n; ++j) {
         const tinyobj::index_t& corner = m.indices[offset + j];
-        if (corner.vertex_index < 0)
-          fail_file(path, "face " + std::to_string(face_number) + " refers to a vertex before the first");
-        if (std::size_t(corner.vertex_index) >= vertex_count)
-          fail_file(path, "face " + std::to_string(face_number) + " refers to vertex " +
-                              std::to_string(corner.vertex_index + 1) + " (1-based), but the file has " +
-                              std::to_string(vertex_count) + " vertices");
-        if (corner.normal_index < -1 || (corner.normal_index >= 0 && std::size_t(corner.normal_index) >= normal_count))
-          fail_file(path, "face " + std::to_string(face_number) + " refers to normal " +
-                              std::to_string(corner.normal_index + 1) + " (1-based), but the file has " +
-                              std::to_string(normal_count) + " normals");
+        check_corner(path, corner, face_number, vertex_count, normal_count);
         const std::uint32_t index = std::uint32_t(corner.vertex_index);
         if (corner.normal_index < 0)
-          any_corner_without_normal = true;
+          refs.any_corner_without_normal = true;
         else
-          position_normals.add(index, corner.normal_index);
-        position_materials.add(index, material);
+          refs.position_normals.add(index, corner.normal_index);
+        refs.position_materials.add(index, material);
         if (j == 0) first = index;
-        if (j >= 2) raw.indices.insert(raw.indices.end(), {first, previous, index});  // fan
+        if (j >= 2) raw->indices.insert(raw->indices.end(), {first, previous, index});  // fan
         previous = index;
       }
-      if (n < 3) ++raw.skipped_polygons;
+      if (n < 3) ++raw->skipped_polygons;
       offset += n;
     }
   }
+  return refs;
+}
 
-  // Normals: the normalised sum of the distinct unit normals each position's corners reference.
-  if (normal_count == 0 || any_corner_without_normal) {
-    raw.computed_normals_reason = normal_count == 0 ? "the file has no normals" : "some faces have no normals";
-  } else {
-    std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
-    std::vector<std::uint8_t> bad_normal(normal_count, 0);
-    position_normals.for_each([&](std::uint32_t position, int normal) {
-      const glm::dvec3 n(attrib.normals[3 * normal], attrib.normals[3 * normal + 1], attrib.normals[3 * normal + 2]);
-      const double len = glm::length(n);
-      if (!(len > 0.0) || !std::isfinite(len))
-        bad_normal[std::size_t(normal)] = 1;
-      else
-        sums[position] += n / len;
-    });
-    const std::size_t bad = std::size_t(std::count(bad_normal.begin(), bad_normal.end(), 1));
-    std::vector<glm::vec3> normals(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
-    std::vector<std::uint8_t> usable(vertex_count, 0);
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-      const double len = glm::length(sums[i]);
-      if (len > 0.0) {
-        normals[i] = glm::vec3(sums[i] / len);
-        usable[i] = 1;
-      }
-    }
-    // Positions of no face keep +Y and are marked usable: there is nothing to compute from.
-    std::vector<std::uint8_t> referenced(vertex_count, 0);
-    for (std::uint32_t index : raw.indices) referenced[index] = 1;
-    std::size_t cancelled = 0;
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-      if (!referenced[i])
-        usable[i] = 1;
-      else if (!usable[i])
-        ++cancelled;
-    }
-    if (bad > 0 || cancelled > 0) {
-      raw.computed_normals_reason = bad > 0 ? std::to_string(bad) + " referenced normals are zero or not finite"
-                                            : std::to_string(cancelled) + " vertices' normals cancel out";
-    } else {
-      raw.normals = std::move(normals);
-      raw.normal_usable = std::move(usable);
+// Normals: the normalised sum of the distinct unit normals each position's corners reference.
+void obj_normals(const ObjData& obj, FaceRefs* refs, RawMesh* raw) {
+  const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
+  if (normal_count == 0 || refs->any_corner_without_normal) {
+    raw->computed_normals_reason = normal_count == 0 ? "the file has no normals" : "some faces have no normals";
+    return;
+  }
+  const std::vector<float>& file_normals = obj.attrib.normals;
+  std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
+  std::vector<std::uint8_t> bad_normal(normal_count, 0);
+  refs->position_normals.for_each([&](std::uint32_t position, int normal) {
+    const glm::dvec3 n(file_normals[3 * normal], file_normals[3 * normal + 1], file_normals[3 * normal + 2]);
+    const double len = glm::length(n);
+    if (!(len > 0.0) || !std::isfinite(len))
+      bad_normal[std::size_t(normal)] = 1;
+    else
+      sums[position] += n / len;
+  });
+  const std::size_t bad = std::size_t(std::count(bad_normal.begin(), bad_normal.end(), 1));
+  std::vector<glm::vec3> normals(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
+  std::vector<std::uint8_t> usable(vertex_count, 0), referenced(vertex_count, 0);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    const double len = glm::length(sums[i]);
+    if (len > 0.0) {
+      normals[i] = glm::vec3(sums[i] / len);
+      usable[i] = 1;
     }
   }
-
-  // Albedo: the mean Kd of the distinct materials of the faces using each position.
-  if (any_material) {
-    std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
-    std::vector<int> counts(vertex_count, 0);
-    position_materials.for_each([&](std::uint32_t position, int material) {
-      const glm::dvec3 kd = material >= 0 ? glm::dvec3(materials[material].diffuse[0], materials[material].diffuse[1],
-                                                       materials[material].diffuse[2])
-                                          : glm::dvec3(kDefaultKd);
-      sums[position] += kd;
-      counts[position] += 1;
-    });
-    raw.albedo.assign(vertex_count, glm::vec3(kDefaultKd));
-    for (std::size_t i = 0; i < vertex_count; ++i)
-      if (counts[i] > 0) raw.albedo[i] = glm::vec3(sums[i] / double(counts[i]));
+  // Positions of no face keep +Y and are marked usable: there is nothing to compute from.
+  for (std::uint32_t index : raw->indices) referenced[index] = 1;
+  std::size_t cancelled = 0;
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    if (!referenced[i])
+      usable[i] = 1;
+    else if (!usable[i])
+      ++cancelled;
   }
+  if (bad > 0 || cancelled > 0) {
+    raw->computed_normals_reason = bad > 0 ? std::to_string(bad) + " referenced normals are zero or not finite"
+                                           : std::to_string(cancelled) + " vertices' normals cancel out";
+    return;
+  }
+  raw->normals = std::move(normals);
+  raw->normal_usable = std::move(usable);
+}
 
-  // Emission: the mean Ke of the distinct materials of the faces using each position (0 without one).
+// Per position, the mean over the distinct materials of its faces of value(material) (material -1:
+// a face without one gives `none`). Positions of no face get `unused`.
+template <class Value>
+std::vector<glm::vec3> material_mean(DistinctPairs& position_materials, std::size_t vertex_count, Value value,
+                                     const glm::dvec3& none, const glm::vec3& unused) {
+  std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
+  std::vector<int> counts(vertex_count, 0);
+  position_materials.for_each([&](std::uint32_t position, int material) {
+    sums[position] += material >= 0 ? value(material) : none;
+    counts[position] += 1;
+  });
+  std::vector<glm::vec3> out(vertex_count, unused);
+  for (std::size_t i = 0; i < vertex_count; ++i)
+    if (counts[i] > 0) out[i] = glm::vec3(sums[i] / double(counts[i]));
+  return out;
+}
+
+// Albedo (mean Kd, kDefaultKd without a material) and emission (mean Ke, 0 without a material).
+void obj_materials(const ObjData& obj, FaceRefs* refs, RawMesh* raw) {
+  if (!refs->any_material) return;
+  const std::vector<tinyobj::material_t>& materials = obj.materials;
+  const std::size_t vertex_count = raw->positions.size();
+  raw->albedo = material_mean(
+      refs->position_materials, vertex_count,
+      [&](int m) { return glm::dvec3(materials[m].diffuse[0], materials[m].diffuse[1], materials[m].diffuse[2]); },
+      glm::dvec3(kDefaultKd), glm::vec3(kDefaultKd));
   bool any_emission = false;
   for (const tinyobj::material_t& m : materials)
     any_emission = any_emission || m.emission[0] != 0 || m.emission[1] != 0 || m.emission[2] != 0;
-  if (any_material && any_emission) {
-    std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
-    std::vector<int> counts(vertex_count, 0);
-    position_materials.for_each([&](std::uint32_t position, int material) {
-      if (material >= 0)
-        sums[position] += glm::dvec3(materials[material].emission[0], materials[material].emission[1],
-                                     materials[material].emission[2]);
-      counts[position] += 1;
-    });
-    raw.emission.assign(vertex_count, glm::vec3(0.0f));
-    for (std::size_t i = 0; i < vertex_count; ++i)
-      if (counts[i] > 0) raw.emission[i] = glm::vec3(sums[i] / double(counts[i]));
-  }
+  if (!any_emission) return;
+  raw->emission = material_mean(
+      refs->position_materials, vertex_count,
+      [&](int m) { return glm::dvec3(materials[m].emission[0], materials[m].emission[1], materials[m].emission[2]); },
+      glm::dvec3(0.0), glm::vec3(0.0f));
+}
+
+}  // namespace
+
+RawMesh load_obj(const std::string& path) {
+  RawMesh raw;
+  const ObjData obj = read_obj(path, &raw);
+  FaceRefs refs = triangulate_faces(path, obj, &raw);
+  obj_normals(obj, &refs, &raw);
+  obj_materials(obj, &refs, &raw);
   return raw;
 }
 

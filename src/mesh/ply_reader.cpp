@@ -304,12 +304,11 @@ double unsigned_max(PlyType type) {
   }
 }
 
-PlyContents parse_ply(const std::string& path, const std::string& bytes) {
-  const Header header = parse_header(path, bytes);
-  BodyReader body(bytes, header.data_offset, header.encoding);
+namespace {
 
-  // Locate the vertex element and check the body can hold what the header promises, before
-  // allocating anything from the header's counts.
+// Locates the vertex element and checks that the body can hold what the header promises, before
+// anything is allocated from the header's counts.
+const Element& check_capacity(const std::string& path, const Header& header, const BodyReader& body) {
   const Element* vertex_element = nullptr;
   std::uint64_t min_body_bytes = 0;
   for (const Element& element : header.elements) {
@@ -329,96 +328,135 @@ PlyContents parse_ply(const std::string& path, const std::string& bytes) {
   if (!vertex_element) fail_file(path, "no vertex element in the PLY header");
   if (vertex_element->count >= std::numeric_limits<std::uint32_t>::max())
     fail_file(path, "too many vertices (" + std::to_string(vertex_element->count) + ")");
+  return *vertex_element;
+}
 
-  PlyContents out;
+// Where each vertex property goes; sizes out's arrays for the positions, normals and colours found.
+std::vector<Slot> vertex_slots(const std::string& path, const Element& vertex_element, PlyContents* out) {
   std::vector<Slot> slots;
   bool has[kIgnored] = {};
-  for (const Property& p : vertex_element->properties) {
+  for (const Property& p : vertex_element.properties) {
     Slot slot = p.is_list ? kIgnored : slot_of(p.name);
     if (slot != kIgnored && has[slot])
       fail_file(path, "malformed PLY header: vertex property \"" + p.name + "\" repeated");
     if (slot != kIgnored) has[slot] = true;
-    if (slot >= kRed && slot <= kBlue) out.colour_types[slot - kRed] = p.type;
+    if (slot >= kRed && slot <= kBlue) out->colour_types[slot - kRed] = p.type;
     slots.push_back(slot);
   }
   if (!has[kX] || !has[kY] || !has[kZ]) fail_file(path, "the PLY vertex element lacks x, y or z");
   const bool want_normals = has[kNx] && has[kNy] && has[kNz];
   const bool want_colours = has[kRed] && has[kGreen] && has[kBlue];
-  out.partial_colours = !want_colours && (has[kRed] || has[kGreen] || has[kBlue]);
-  const std::size_t vertex_count = std::size_t(vertex_element->count);
-  out.positions.resize(vertex_count);
-  if (want_normals) out.normals.resize(vertex_count);
-  if (want_colours) out.colours.resize(3 * vertex_count);
+  out->partial_colours = !want_colours && (has[kRed] || has[kGreen] || has[kBlue]);
+  const std::size_t vertex_count = std::size_t(vertex_element.count);
+  out->positions.resize(vertex_count);
+  if (want_normals) out->normals.resize(vertex_count);
+  if (want_colours) out->colours.resize(3 * vertex_count);
+  return slots;
+}
 
-  std::string bad_token;
-  const Element* current_element = nullptr;  // with current_index: where reading is, for messages
-  std::uint64_t current_index = 0;
-  auto where = [&]() {
-    return current_element->name + " " + std::to_string(current_index) + " of " +
-           std::to_string(current_element->count);
-  };
-  auto read = [&](PlyType type, const std::string& property) {
-    double value = 0.0;
-    if (!body.read(type, &value, &bad_token)) fail_file(path, "truncated PLY data: it ends in " + where());
-    if (!bad_token.empty())
-      fail_file(path, "bad PLY value \"" + bad_token + "\" for property " + property + " in " + where());
-    return value;
-  };
-  auto read_list_count = [&](const Property& p) {
-    const double count = read(p.count_type, p.name);
-    if (count < 0) fail_file(path, "negative list length in " + where());
-    const std::size_t item_bytes = body.ascii() ? 2 : type_size(p.type);
-    if (count * double(item_bytes) > double(body.remaining()) + 1)
-      fail_file(path, "truncated PLY data: a list of " + std::to_string(std::uint64_t(count)) + " items in " + where());
-    return std::uint64_t(count);
-  };
+// Reads the body element by element, checking every value against its type and every face index
+// against the vertex count.
+class BodyParser {
+ public:
+  BodyParser(const std::string& path, BodyReader& body, const Element& vertex_element, std::vector<Slot> slots,
+             PlyContents* out)
+      : path_(path), body_(body), vertex_element_(vertex_element), slots_(std::move(slots)), out_(out) {}
 
-  for (const Element& element : header.elements) {
-    if (element.properties.empty()) continue;
-    const bool is_vertex = &element == vertex_element;
+  void element(const Element& element) {
+    if (element.properties.empty()) return;
     const Property* face_list = nullptr;
     if (element.name == "face")
       for (const Property& p : element.properties)
         if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) face_list = &p;
-    if (face_list && is_integer(face_list->type) == false)
-      fail_file(path, "face vertex indices must have an integer type");
-    current_element = &element;
+    if (face_list && !is_integer(face_list->type)) fail_file(path_, "face vertex indices must have an integer type");
+    current_element_ = &element;
     for (std::uint64_t e = 0; e < element.count; ++e) {
-      current_index = e;
+      current_index_ = e;
       for (std::size_t k = 0; k < element.properties.size(); ++k) {
         const Property& p = element.properties[k];
         if (&p == face_list) {
-          const std::uint64_t n = read_list_count(p);
-          std::uint32_t first = 0, previous = 0;
-          for (std::uint64_t j = 0; j < n; ++j) {
-            const double v = read(p.type, p.name);
-            if (v < 0 || v >= double(vertex_count))
-              fail_file(path, "face " + std::to_string(e) + " refers to vertex " + std::to_string(std::int64_t(v)) +
-                                  ", but the file has " + std::to_string(vertex_count) + " vertices");
-            const std::uint32_t index = std::uint32_t(v);
-            if (j == 0) first = index;
-            if (j >= 2) out.indices.insert(out.indices.end(), {first, previous, index});  // fan
-            previous = index;
-          }
-          if (n < 3) ++out.skipped_polygons;
+          face(p, e);
         } else if (p.is_list) {
-          const std::uint64_t n = read_list_count(p);
+          const std::uint64_t n = list_count(p);
           for (std::uint64_t j = 0; j < n; ++j) read(p.type, p.name);
         } else {
           const double value = read(p.type, p.name);
-          if (!is_vertex) continue;
-          const Slot slot = slots[k];
-          if (slot <= kZ) {
-            out.positions[e][slot] = float(value);
-          } else if (slot <= kNz) {
-            if (want_normals) out.normals[e][slot - kNx] = float(value);
-          } else if (slot <= kBlue) {
-            if (want_colours) out.colours[3 * e + std::size_t(slot - kRed)] = value;
-          }
+          if (&element == &vertex_element_) store_vertex_value(slots_[k], e, value);
         }
       }
     }
   }
+
+ private:
+  std::string where() const {
+    return current_element_->name + " " + std::to_string(current_index_) + " of " +
+           std::to_string(current_element_->count);
+  }
+
+  double read(PlyType type, const std::string& property) {
+    double value = 0.0;
+    if (!body_.read(type, &value, &bad_token_)) fail_file(path_, "truncated PLY data: it ends in " + where());
+    if (!bad_token_.empty())
+      fail_file(path_, "bad PLY value \"" + bad_token_ + "\" for property " + property + " in " + where());
+    return value;
+  }
+
+  std::uint64_t list_count(const Property& p) {
+    const double count = read(p.count_type, p.name);
+    if (count < 0) fail_file(path_, "negative list length in " + where());
+    const std::size_t item_bytes = body_.ascii() ? 2 : type_size(p.type);
+    if (count * double(item_bytes) > double(body_.remaining()) + 1)
+      fail_file(path_, "truncated PLY data: a list of " + std::to_string(std::uint64_t(count)) + " items in " + where());
+    return std::uint64_t(count);
+  }
+
+  // One face: its indices range-checked and fan-triangulated into out_->indices.
+  void face(const Property& p, std::uint64_t e) {
+    const std::size_t vertex_count = out_->positions.size();
+    const std::uint64_t n = list_count(p);
+    std::uint32_t first = 0, previous = 0;
+    for (std::uint64_t j = 0; j < n; ++j) {
+      const double v = read(p.type, p.name);
+      if (v < 0 || v >= double(vertex_count))
+        fail_file(path_, "face " + std::to_string(e) + " refers to vertex " + std::to_string(std::int64_t(v)) +
+                             ", but the file has " + std::to_string(vertex_count) + " vertices");
+      const std::uint32_t index = std::uint32_t(v);
+      if (j == 0) first = index;
+      if (j >= 2) out_->indices.insert(out_->indices.end(), {first, previous, index});  // fan
+      previous = index;
+    }
+    if (n < 3) ++out_->skipped_polygons;
+  }
+
+  void store_vertex_value(Slot slot, std::uint64_t e, double value) {
+    if (slot <= kZ) {
+      out_->positions[e][slot] = float(value);
+    } else if (slot <= kNz) {
+      if (!out_->normals.empty()) out_->normals[e][slot - kNx] = float(value);
+    } else if (slot <= kBlue) {
+      if (!out_->colours.empty()) out_->colours[3 * e + std::size_t(slot - kRed)] = value;
+    }
+  }
+
+  const std::string& path_;
+  BodyReader& body_;
+  const Element& vertex_element_;
+  std::vector<Slot> slots_;
+  PlyContents* out_;
+  std::string bad_token_;
+  const Element* current_element_ = nullptr;  // with current_index_: where reading is, for messages
+  std::uint64_t current_index_ = 0;
+};
+
+}  // namespace
+
+PlyContents parse_ply(const std::string& path, const std::string& bytes) {
+  const Header header = parse_header(path, bytes);
+  BodyReader body(bytes, header.data_offset, header.encoding);
+  const Element& vertex_element = check_capacity(path, header, body);
+  PlyContents out;
+  BodyParser parser(path, body, vertex_element, vertex_slots(path, vertex_element, &out), &out);
+  for (const Element& element : header.elements) parser.element(element);
   return out;
 }
 

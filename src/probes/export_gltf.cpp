@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_depth.h"
 #include "core/little_endian.h"
 #include "core/text.h"
 #include "image/image.h"
@@ -92,6 +93,7 @@ GltfDocument parse_glb(const std::string& bytes, const std::string& name) {
     if (at + 8 + static_cast<std::size_t>(length) > bytes.size()) fail_file(name, "truncated GLB chunk");
     const std::string chunk = bytes.substr(at + 8, length);
     if (type == 0x4E4F534Au) {
+      check_json_depth(chunk, name);
       doc.json = Json::parse(chunk, nullptr, false);
       have_json = true;
     } else if (type == 0x004E4942u && doc.bin.empty()) {
@@ -120,7 +122,9 @@ GltfDocument load_scene(const std::string& path, const std::string& out_path) {
   if (ext == ".glb") {
     doc = parse_glb(read_file(path), path);
   } else if (ext == ".gltf") {
-    doc.json = Json::parse(read_file(path), nullptr, false);
+    const std::string text = read_file(path);
+    check_json_depth(text, path);
+    doc.json = Json::parse(text, nullptr, false);
     if (doc.json.is_discarded() || !doc.json.is_object()) fail_file(path, "not a glTF JSON document");
   } else {
     // OBJ, PLY: the mesh as prt loads it, through the GLB writer.
@@ -302,7 +306,13 @@ void write_gltf(const ProbeSet& probes, const std::string& path, const ExportOpt
   check_probe_set(probes, "glTF export");
   check_gltf_options(path, options);
   AtomicFile out(path);
-  GltfDocument doc = load_scene(options.scene_path, path);
+  GltfDocument doc;
+  try {
+    doc = load_scene(options.scene_path, path);
+  } catch (const Json::exception& e) {  // a key of the wrong type in the scene's JSON
+    const std::string what = e.what();  // "[json.exception.type_error.302] type must be ..."
+    fail_file(options.scene_path, "malformed glTF scene: " + what.substr(what.find(']') + 2));
+  }
 
   std::vector<CubeLevel> levels{specular_mip0(probes, options, options.specular_size)};
   while (levels.back()[0].width > 1) levels.push_back(half_level(levels.back()));

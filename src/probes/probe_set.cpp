@@ -12,6 +12,8 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
+#include "core/json_depth.h"
+#include "mesh/mesh.h"
 
 namespace prt::probes {
 
@@ -65,10 +67,11 @@ std::vector<glm::dvec3> read_points_csv(const std::string& path, const std::stri
 }
 
 std::vector<glm::dvec3> read_points_json(const std::string& path, const std::string& text) {
+  check_json_depth(text, path);
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
     fail_file(path, std::string("invalid JSON: ") + e.what());
   }
   const nlohmann::json* list = &doc;
@@ -100,7 +103,8 @@ void check_grid(const Grid& grid) {
   const double total = static_cast<double>(grid.counts[0]) * grid.counts[1] * grid.counts[2];
   if (total > static_cast<double>(1 << 26)) fail("--grid: " + std::to_string(total) + " probes is more than 2^26");
   for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(grid.lo[a]) || !std::isfinite(grid.hi[a])) fail("--bounds: values must be finite");
+    if (!(std::abs(grid.lo[a]) <= mesh::kMaxCoordinate && std::abs(grid.hi[a]) <= mesh::kMaxCoordinate))
+      fail("--bounds: values must be finite and within +-1e12 (the coordinate range of meshes)");
     if (!(grid.lo[a] < grid.hi[a]))
       fail("--bounds: the box " + format_point(grid.lo) + " - " + format_point(grid.hi) + " is empty along " +
            std::string(1, "xyz"[a]) + " (need lo < hi on every axis)");
@@ -167,7 +171,8 @@ void check_probe_set(const ProbeSet& p, const std::string& name) {
       static_cast<std::size_t>(p.grid.counts[0]) * p.grid.counts[1] * p.grid.counts[2] != count)
     fail_file(name, "grid counts do not match the probe count");
   for (const glm::vec3& v : p.coefficients)
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) fail_file(name, "a probe coefficient is not finite");
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+      fail_file(name, "a probe coefficient is not finite (the lighting or the scene's emission is too large)");
   for (const glm::vec3& v : p.positions)
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) fail_file(name, "a probe position is not finite");
   if (p.transfer_bands != 0) {

@@ -1,6 +1,7 @@
 #include "transfer/transfer_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fnv.h"
+#include "core/json_depth.h"
 #include "core/little_endian.h"
 #include "transfer/half.h"
 
@@ -20,6 +22,7 @@ constexpr std::uint32_t kVersion = 1;            // one payload section
 constexpr std::uint32_t kVersionBounce = 2;      // two: the transfer, then its bounce-only part
 constexpr std::size_t kFixedHeaderBytes = 76;  // up to and including the parameters length
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
+constexpr float kMaxTransferMagnitude = 1e15f;
 constexpr std::uint32_t kMaxBands = 32;
 
 struct Kinds {
@@ -125,7 +128,12 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   std::uint64_t stored = get_u64(reinterpret_cast<const unsigned char*>(all.data()) + padded);
   if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != stored) fail_file(path, "header checksum mismatch (file is corrupt)");
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
+  check_json_depth(h.parameters_json, path);
   validate(path, h);
+  // The vertex count is bounded by the file size before it is multiplied (2^62 + 4 would wrap).
+  if (h.vertex_count > file_size / (sections_of(h) * h.values_per_vertex() * scalar_bytes(h.scalar)))
+    fail_file(path, "corrupt header: " + std::to_string(h.vertex_count) + " vertices do not fit in a file of " +
+                        std::to_string(file_size) + " bytes");
   std::uint64_t expected = sections_of(h) * h.vertex_count * h.values_per_vertex() * scalar_bytes(h.scalar);
   if (d.payload_bytes != expected) fail_file(path, "corrupt header: payload size does not match vertex count, bands and channels");
   if (file_size < d.header_bytes + d.payload_bytes)
@@ -144,6 +152,7 @@ std::uint64_t file_size_of(const std::string& path, std::ifstream& in) {
 }
 
 std::ifstream open_for_reading(const std::string& path) {
+  check_regular_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
   return in;
@@ -235,6 +244,22 @@ void write_transfer(const std::string& path, const TransferData& data) {
   file.commit();
 }
 
+namespace {
+
+// Payload values must be finite and at most kMaxTransferMagnitude: with lighting bounded by
+// light::kMaxCoefficientMagnitude, no relit sum can overflow a float (docs/formats.md, "Limits").
+void check_payload_range(const std::string& path, const TransferData& data) {
+  const std::uint64_t per_vertex = data.header.values_per_vertex();
+  for (const std::vector<float>* section : {&data.values, &data.bounce_only})
+    for (std::size_t i = 0; i < section->size(); ++i)
+      if (!(std::abs((*section)[i]) <= kMaxTransferMagnitude))
+        fail_file(path, std::string(section == &data.values ? "" : "bounce-only ") + "payload value " + std::to_string(i % per_vertex) +
+                            " of vertex " + std::to_string(i / per_vertex) +
+                            (std::isfinite((*section)[i]) ? " is out of range (|v| > 1e15)" : " is not finite"));
+}
+
+}  // namespace
+
 Header read_transfer_header(const std::string& path) {
   std::ifstream in = open_for_reading(path);
   return decode_header(path, in, file_size_of(path, in)).header;
@@ -253,6 +278,7 @@ TransferData read_transfer(const std::string& path) {
   const auto* p = reinterpret_cast<const unsigned char*>(payload.data());
   decode_values(p, count, d.header.scalar, data.values);
   if (d.header.bounce_only_section) decode_values(p + count * scalar_bytes(d.header.scalar), count, d.header.scalar, data.bounce_only);
+  check_payload_range(path, data);
   return data;
 }
 

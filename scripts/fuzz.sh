@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Builds prt's libFuzzer targets (tests/fuzz) with clang 14, AddressSanitizer and
+# UndefinedBehaviorSanitizer in build-fuzz/, and runs them.
+# Usage: scripts/fuzz.sh [--ci] [--runs N] [--time SECONDS] [--jobs J] [TARGET...]
+#   (no option)   run each target for 10 minutes (long runs by hand; stop with Ctrl-C)
+#   --ci          run each target for its fixed number of executions (about 30 s each, the counts
+#                 below), seed 1: the fuzz step of .ci/run
+#   --runs N      N executions per target;  --time S  S seconds per target
+#   --build-only  build the targets and stop
+#   --coverage    no fuzzing: replay build-fuzz/corpus/<target> once with -print_coverage=1 and print,
+#                 per prt source file the target reaches, the instrumented edges its corpus covers
+#   TARGET        ply obj gltf image prt brdf light probes points (default: all)
+# The committed seed corpus tests/fuzz/corpus/<target> is copied to build-fuzz/corpus/<target>, which
+# collects the new inputs; crashes go to build-fuzz/artifacts/. Exits non-zero on any crash, sanitizer
+# report, leak, timeout (10 s per input) or out-of-memory (2 GiB; image 4 GiB), printing the reproducer's path.
+# Environment: PRT_FUZZ_BUILD_DIR (default build-fuzz).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+all=(ply obj gltf image prt brdf light probes points)
+# Executions per target for --ci: about 30 s each at the rates measured on the shared (heavily
+# loaded) AMD EPYC development machine, so less on an idle CI machine (tests/fuzz/README.md).
+declare -A ci_runs=([ply]=31000 [obj]=21000 [gltf]=26000 [image]=1100 [prt]=72000 [brdf]=15000
+                    [light]=26000 [probes]=67000 [points]=32000)
+mode=time; seconds=600; runs=0; build_only=0; targets=()
+while (($#)); do
+  case "$1" in
+    --ci) mode=ci ;;
+    --runs) mode=runs; runs="$2"; shift ;;
+    --time) mode=time; seconds="$2"; shift ;;
+    --build-only) build_only=1 ;;
+    --coverage) mode=coverage ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    *) targets+=("$1") ;;
+  esac
+  shift
+done
+((${#targets[@]})) || targets=("${all[@]}")
+
+build_dir="${PRT_FUZZ_BUILD_DIR:-build-fuzz}"
+command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 is missing (scripts/setup.sh --fuzz installs it)" >&2; exit 1; }
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+if [ ! -f "$build_dir/build.ninja" ]; then
+  CC=clang-14 CXX=clang++-14 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DPRT_SANITIZE=address,undefined -DPRT_BUILD_FUZZ=ON -DPRT_BUILD_TESTS=OFF -DPRT_BUILD_BENCH=OFF \
+    -DPRT_BUILD_GL=OFF -DPRT_ARCH= "${launcher[@]}" 2>&1 | grep -v -e PyImath -e '^$' >&2 || true
+fi
+cmake --build "$build_dir" --target $(printf 'fuzz_%s ' "${targets[@]}")
+((build_only)) && exit 0
+
+mkdir -p "$build_dir/artifacts"
+export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0:abort_on_error=0
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+failed=()
+for t in "${targets[@]}"; do
+  corpus="$build_dir/corpus/$t"
+  [ "$mode" = ci ] && rm -rf "$corpus"  # CI starts from the seed corpus: the same inputs every run
+  mkdir -p "$corpus"
+  cp -n tests/fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null || true
+  if [ "$mode" = coverage ]; then
+    "$build_dir/tests/fuzz/fuzz_$t" -runs=0 -print_coverage=1 "$corpus" 2>&1 |
+      awk -v t="$t" -v root="$PWD/src/" '
+        /^(COVERED|UNCOVERED)_FUNC: / {
+          split($5, e, "/"); file = $NF; sub(/:[0-9]+$/, "", file); gsub(/\/[^\/]+\/\.\.\//, "/", file)
+          if (index(file, root) != 1) next
+          sub(root, "", file); covered[file] += e[1]; total[file] += e[2]
+        }
+        END {
+          for (f in total) { printf "%s %s %d/%d edges (%.0f%%)\n", t, f, covered[f], total[f], 100 * covered[f] / total[f]; c += covered[f]; n += total[f] }
+          if (n) printf "%s TOTAL %d/%d edges (%.0f%%)\n", t, c, n, 100 * c / n
+        }' | sort
+    continue
+  fi
+  args=(-artifact_prefix="$build_dir/artifacts/$t-" -timeout=10 -rss_limit_mb=2048 -max_len=65536
+        -print_final_stats=1)
+  [ -f "tests/fuzz/dict/$t.dict" ] && args+=(-dict="tests/fuzz/dict/$t.dict")
+  # OpenImageIO and its codecs (not instrumented) keep small process-lifetime allocations that
+  # LeakSanitizer reports without a usable stack; prt's own leaks are covered by the other targets.
+  # A legitimate image may decode to 1 GiB of floats plus its RGB copy: more room than the 2 GiB default.
+  [ "$t" = image ] && args+=(-detect_leaks=0 -rss_limit_mb=4096)
+  case "$mode" in
+    ci) args+=(-runs="${ci_runs[$t]}" -seed=1) ;;
+    runs) args+=(-runs="$runs") ;;
+    time) args+=(-max_total_time="$seconds") ;;
+  esac
+  echo "fuzz: $t (${args[*]: -2})" >&2
+  start=$(date +%s)
+  asan="$ASAN_OPTIONS"
+  [ "$t" = image ] && asan="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}"  # also the exit-time check
+  if ASAN_OPTIONS="$asan" "$build_dir/tests/fuzz/fuzz_$t" "${args[@]}" "$corpus" > "$build_dir/fuzz_$t.log" 2>&1; then
+    echo "fuzz: $t ok in $(( $(date +%s) - start )) s: $(grep -E 'stat::number_of_executed_units|stat::average_exec_per_sec' "$build_dir/fuzz_$t.log" | tr -s ' ' | tr '\n' ' ')" >&2
+  else
+    echo "fuzz: $t FAILED; log $build_dir/fuzz_$t.log:" >&2
+    grep -E 'ERROR|SUMMARY|Test unit written|runtime error|terminate' "$build_dir/fuzz_$t.log" | head -8 >&2
+    failed+=("$t")
+  fi
+done
+if ((${#failed[@]})); then
+  echo "fuzz: failed: ${failed[*]}" >&2
+  exit 1
+fi

@@ -1,0 +1,83 @@
+#include "cli/output_paths.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "core/error.h"
+
+namespace prt::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t kMaxOutputNameLength = 224;
+
+/// The path with symbolic links, "." and ".." resolved as far as it exists; lexically normalised
+/// and absolute where the system cannot resolve it (a component too long, ...).
+fs::path canonical_form(const std::string& path) {
+  std::error_code ec;
+  fs::path resolved = fs::weakly_canonical(fs::path(path), ec);
+  if (ec) resolved = fs::absolute(fs::path(path), ec).lexically_normal();
+  return resolved;
+}
+
+void check_folder(const std::string& output) {
+  std::error_code ec;
+  fs::path folder = fs::path(output).parent_path();
+  if (folder.empty()) folder = ".";
+  if (fs::is_directory(fs::path(output), ec)) fail_file(output, "is a folder; an output must be a file path");
+  // The temporary sibling (AtomicFile) adds about 24 characters to the name; NAME_MAX is 255.
+  const std::size_t name_length = fs::path(output).filename().string().size();
+  if (name_length > kMaxOutputNameLength)
+    fail_file(output, "file name is too long (" + std::to_string(name_length) + " characters; at most " +
+                          std::to_string(kMaxOutputNameLength) + ")");
+  if (!fs::is_directory(folder, ec)) fail_file(output, "output folder does not exist");
+  // Create and remove a file there: permission bits alone say nothing for root, a read-only mount
+  // or a pseudo file system such as /proc.
+  const fs::path probe = folder / (".prt-write-check-" + std::to_string(getpid()));
+  const int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) fail_file(output, std::string("output folder is not writable: ") + std::strerror(errno));
+  close(fd);
+  unlink(probe.c_str());
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  std::vector<std::pair<fs::path, std::string>> seen;
+  for (const std::string& input : inputs)
+    if (!input.empty()) seen.emplace_back(canonical_form(input), input);
+  const std::size_t input_count = seen.size();
+  for (const std::string& output : outputs) {
+    if (output.empty()) continue;
+    const fs::path resolved = canonical_form(output);
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+      if (seen[k].first != resolved) continue;
+      if (k < input_count)
+        fail_file(output, "is also the input " + seen[k].second + "; prt does not overwrite its inputs");
+      fail_file(output, "is given twice as an output (also as " + seen[k].second + ")");
+    }
+    check_folder(output);
+    seen.emplace_back(resolved, output);
+  }
+}
+
+void write_staged(AtomicFile& file, const std::function<void(const std::string&)>& write) {
+  try {
+    write(file.temp_path());
+  } catch (const Error& e) {
+    std::string message = e.what();
+    for (std::size_t at = message.find(file.temp_path()); at != std::string::npos;
+         at = message.find(file.temp_path(), at + file.path().size()))
+      message.replace(at, file.temp_path().size(), file.path());
+    throw Error(message);
+  }
+}
+
+}  // namespace prt::cli

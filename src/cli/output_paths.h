@@ -1,0 +1,24 @@
+#pragma once
+// Checks a subcommand runs on its output paths before any slow work, and two-output commits.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/atomic_file.h"
+
+namespace prt::cli {
+
+/// Throws prt::Error, before anything is computed or written, if an output (empty strings are
+/// skipped):
+/// - is the same file as an input or as another output, compared after canonicalising both
+///   ("dir/./x", "a/../x", symbolic links): "<output>: is also the input <input>; ...";
+/// - lies in a folder that does not exist or that this process cannot write to;
+/// - is an existing folder, or has a file name longer than 224 characters (room for the temporary's).
+void check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
+
+/// Writes one of several outputs into `file`'s temporary with `write` (a writer that takes a path),
+/// so that every output can be committed together at the end and a failing second output leaves
+/// no first one behind. An Error naming the temporary is rethrown naming file.path() instead.
+void write_staged(AtomicFile& file, const std::function<void(const std::string&)>& write);
+
+}  // namespace prt::cli
