@@ -105,7 +105,7 @@ float disc_visibility(int k, vec3 p, vec3 n) {
 }
 
 // The BRDF as prt::brdf::terms: up to max_terms (shape, parameter, rgb weight); shapes as brdf::Shape
-// (0 lambert, 1 phong, 2 blinn-phong, 3 ggx_f0, 4 ggx_edge). Set for glossy transfer only.
+// (0 lambert, 1 phong, 2 blinn-phong, 3 ggx_f0, 4 ggx_edge, 5 lambert_fresnel). Set for glossy transfer only.
 const int max_terms = 8;
 uniform int brdf_term_count;
 uniform int brdf_shape[max_terms];
@@ -125,6 +125,10 @@ float brdf_shape_value(int shape, float parameter, vec3 w_i, vec3 w_o_signed) {
   if (!(len > 0.0)) return 0.0;
   vec3 h = sum / len;
   if (shape == 2) return (parameter + 8.0) * 0.125 * inv_pi * pow(min(1.0, h.z), parameter);
+  if (shape == 5) {
+    float m = max(0.0, 1.0 - min(1.0, dot(w_i, h)));
+    return 0.96 * (1.0 - m * m * m * m * m) * inv_pi;
+  }
   float alpha = parameter * parameter, alpha2 = alpha * alpha;
   float denominator = h.z * h.z * (alpha2 - 1.0) + 1.0;
   float d = alpha2 * inv_pi / (denominator * denominator);

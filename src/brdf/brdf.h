@@ -101,11 +101,12 @@ std::string to_spec(const Brdf& brdf);
 /// F = F0 (1 - s) + s with s = (1 - w_i . h)^5.
 enum class Shape {
   lambert,      ///< 1 / pi
-  lambert_fresnel,  ///< (1 - 0.04 - 0.96 s) / pi, s = (1 - w_i . h)^5: glTF's fresnel_mix diffuse
   phong,        ///< (n + 2) / (2 pi) max(r . w_o, 0)^n
   blinn_phong,  ///< (n + 8) / (8 pi) (h.z)^n
   ggx_f0,       ///< D V (1 - s): weighted by F0
   ggx_edge,     ///< D V s: weighted by 1
+  lambert_fresnel,  ///< 0.96 (1 - s) / pi, s = (1 - w_i . h)^5: glTF's fresnel_mix diffuse (last: the
+                    ///< shaders number the shapes in this order, shaders/sun_light.glsl)
 };
 
 /// One scalar shape with its RGB weight: f = sum over terms of weight * shape.
