@@ -46,7 +46,8 @@ sh::RgbCoefficients SceneLighting::total() const {
 
 namespace {
 
-void rotate_and_window(SceneLighting& out, int bands, const glm::dvec3& ypr, const WindowRequest& window) {
+void rotate_and_window(SceneLighting& out, int bands, const glm::dvec3& ypr, const SunRequest& sun, const WindowRequest& window) {
+  out.clamp_negative = !(sun.mode == SunRequest::Mode::none && !window.automatic && window.window == sh::Window::none);
   if (ypr != glm::dvec3(0.0)) {
     const glm::dmat3 r = sh::rotation_from_yaw_pitch_roll(ypr.x, ypr.y, ypr.z);
     out.sky = sh::Rotation(bands, r).apply(out.sky);
@@ -69,7 +70,7 @@ SceneLighting split_environment(const Environment& environment, int bands, const
     out.sky = project(environment, bands, threads);
     if (sun.mode == SunRequest::Mode::given) out.discs.push_back(sun.disc);
   }
-  rotate_and_window(out, bands, ypr, window);
+  rotate_and_window(out, bands, ypr, sun, window);
   return out;
 }
 
@@ -86,7 +87,7 @@ SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm:
   else
     out.discs = file.discs;
   if (sun.mode == SunRequest::Mode::given) out.discs.push_back(sun.disc);
-  rotate_and_window(out, bands, ypr, window);
+  rotate_and_window(out, bands, ypr, sun, window);
   return out;
 }
 

@@ -35,6 +35,9 @@ struct SceneLighting {
   std::vector<Disc> discs;   ///< brightest first
   WindowChoice window;       ///< applied to `sky`
   double sky_level = 0.0;    ///< the map's median luminance (sun auto on a map; 0 otherwise)
+  /// Shading clamps negative channels at 0 (the residue of Monte Carlo noise and of the band limit):
+  /// true unless the request was `--sun none --window none`, which keeps the unsplit result exactly.
+  bool clamp_negative = true;
 
   /// sky + the discs' SH: the whole lighting as SH (for consumers that cannot shade discs).
   sh::RgbCoefficients total() const;

@@ -268,8 +268,10 @@ void run_viewer(const ViewerOptions& options) {
   state.projection_bands = max_bands(scene);
   state.sun_request = options.sun;
   state.window_request = options.window;
+  // The auto window's glossy criterion (light/deringing.h) when any transfer is glossy, as prt render.
+  for (const auto& t : scene.transfers) state.window_request.radiance |= transfer::is_glossy(t.header.kind);
   for (const std::string& spec : options.environments)
-    state.environments.push_back(load_lighting(spec, state.projection_bands, options.sun, options.window));
+    state.environments.push_back(load_lighting(spec, state.projection_bands, options.sun, state.window_request));
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const transfer::Header& h = scene.transfers[i].header;
     state.transfer_names.push_back(std::filesystem::path(scene.transfer_paths[i]).filename().string() + " (" +

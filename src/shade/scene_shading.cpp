@@ -46,7 +46,7 @@ void add_into(std::vector<glm::vec3>& to, const std::vector<glm::vec3>& from) {
 
 // The split lighting's output: no negative channel (see the header).
 std::vector<glm::vec3> clamped(std::vector<glm::vec3> radiance, const light::SceneLighting& lighting) {
-  if (lighting.discs.empty() && lighting.window.window == sh::Window::none) return radiance;
+  if (!lighting.clamp_negative) return radiance;
   for (glm::vec3& r : radiance) r = glm::max(r, glm::vec3(0.0f));
   return radiance;
 }

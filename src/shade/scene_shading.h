@@ -5,8 +5,8 @@
 //   L_o = T . L_sky + T_bounce . L_discs + direct(discs)
 // (glossy: the same with matrices, then the BRDF, as shade/glossy.h). Without discs this is exactly
 // shade_diffuse / shade_glossy_eye of the sky. Direct light follows the transfer's kind: no shadows for
-// unshadowed transfer, Embree shadow rays otherwise. With discs or a window in effect each channel is
-// clamped at 0: what remains negative then is the Monte Carlo noise of fully occluded vertices (about
+// unshadowed transfer, Embree shadow rays otherwise. Unless the lighting was asked for unsplit and
+// unwindowed (`--sun none --window none`, SceneLighting::clamp_negative) each channel is clamped at 0: what remains negative then is the Monte Carlo noise of fully occluded vertices (about
 // 1e-4 of the lit radiance) and the band-limit's residue, never a colour. docs/conventions.md, "Sun and sky".
 #include <string>
 #include <vector>

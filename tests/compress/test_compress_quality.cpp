@@ -91,7 +91,7 @@ TEST_CASE("CPCA of the lion: glossy K 256 N 8, diffuse interreflected K 256 N 4"
   // high-dimensional (curls and mane: normals and visibility change fast; one global PCA of the
   // 25-coefficient shadowed vectors leaves 11% with 16 directions), and the error falls slowly with K.
   // These bounds hold what was measured (see the note of issue 13), so a regression shows.
-  const mesh::Mesh lion = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/chinese_dragon_10k.ply", nullptr, true);
+  const mesh::Mesh lion = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/guardian_lion_10k.ply", nullptr, true);
   const transfer::TransferData glossy = bake_glossy(lion, 1024);
   const compress::CompressedTransfer gc = compress::compress_transfer(glossy, {256, 8}, transfer::Scalar::float32, "lion");
   const double glossy_radiance = glossy_error(lion, glossy, gc);
