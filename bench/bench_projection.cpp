@@ -5,6 +5,8 @@
 // A summary table after the runs prints each figure next to its target and the speed-up.
 #include <benchmark/benchmark.h>
 
+#include "bench_report.h"
+
 #include <cstdio>
 #include <map>
 #include <random>
@@ -60,33 +62,11 @@ BENCHMARK(BM_ProjectReference)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// Keeps every run's wall time and main-thread CPU time per iteration (ms) by name, for the summary.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  std::map<std::string, double> ms, cpu_ms;
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs)
-      if (run.run_type == Run::RT_Iteration && !run.error_occurred) {
-        ms[run.benchmark_name()] = run.GetAdjustedRealTime();
-        cpu_ms[run.benchmark_name()] = run.GetAdjustedCPUTime();
-      }
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
-
-double lookup(const std::map<std::string, double>& ms, const std::string& name) {
-  auto it = ms.find(name);
-  return it == ms.end() ? -1.0 : it->second;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  RecordingReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
+  bench::RecordingReporter reporter;
+  if (!bench::run_benchmarks(argc, argv, reporter)) return 1;
 
   // Targets from the issue (ms, 9 bands, 2 cores); the other band counts have none.
   const std::map<std::pair<int, int>, double> target = {{{1024, 9}, 5.0}, {{2048, 9}, 20.0}};
@@ -97,10 +77,10 @@ int main(int argc, char** argv) {
   for (int width : {1024, 2048})
     for (int bands : {3, 9, 16}) {
       const std::string args = "/width:" + std::to_string(width) + "/bands:" + std::to_string(bands);
-      const double two = lookup(reporter.ms, "BM_ProjectEquirect" + args + "/threads:2/real_time");
-      const double one = lookup(reporter.ms, "BM_ProjectEquirect" + args + "/threads:1/real_time");
-      const double one_cpu = lookup(reporter.cpu_ms, "BM_ProjectEquirect" + args + "/threads:1/real_time");
-      const double reference = lookup(reporter.ms, "BM_ProjectReference" + args + "/real_time");
+      const double two = bench::lookup(reporter.ms, "BM_ProjectEquirect" + args + "/threads:2/real_time");
+      const double one = bench::lookup(reporter.ms, "BM_ProjectEquirect" + args + "/threads:1/real_time");
+      const double one_cpu = bench::lookup(reporter.cpu_ms, "BM_ProjectEquirect" + args + "/threads:1/real_time");
+      const double reference = bench::lookup(reporter.ms, "BM_ProjectReference" + args + "/real_time");
       if (two < 0 && one < 0 && reference < 0) continue;  // filtered out
       auto t = target.find({width, bands});
       char target_text[32] = "-", met[8] = "-", speedup[32] = "-";

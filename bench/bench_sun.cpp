@@ -5,6 +5,8 @@
 // without the split, is measured beside it as the in-run baseline.
 #include <benchmark/benchmark.h>
 
+#include "bench_report.h"
+
 #include <cstdio>
 #include <map>
 #include <string>
@@ -64,32 +66,14 @@ void BM_ProjectResidual(benchmark::State& state) {
 }
 BENCHMARK(BM_ProjectResidual)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  std::map<std::string, double> ms;
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs)
-      if (run.run_type == Run::RT_Iteration && !run.error_occurred) ms[run.benchmark_name()] = run.GetAdjustedRealTime();
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
-
-double lookup(const std::map<std::string, double>& ms, const std::string& name) {
-  auto it = ms.find(name);
-  return it == ms.end() ? -1.0 : it->second;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  RecordingReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
-  const double extract = lookup(reporter.ms, "BM_Extract/threads:2/real_time");
-  const double window = lookup(reporter.ms, "BM_AutoWindow/bands:5/real_time");
-  const double project = lookup(reporter.ms, "BM_ProjectResidual/real_time");
+  bench::RecordingReporter reporter;
+  if (!bench::run_benchmarks(argc, argv, reporter)) return 1;
+  const double extract = bench::lookup(reporter.ms, "BM_Extract/threads:2/real_time");
+  const double window = bench::lookup(reporter.ms, "BM_AutoWindow/bands:5/real_time");
+  const double project = bench::lookup(reporter.ms, "BM_ProjectResidual/real_time");
   if (extract < 0 || window < 0) return 0;
   std::printf("\nSun/sky split, 2048x1024 sunrise, 2 threads: extraction %.2f ms + auto window (5 bands) %.2f ms = %.2f ms "
               "(target <= 50 ms: %s); projection of the residual to 5 bands %.2f ms (baseline, done with or without the split)\n",
