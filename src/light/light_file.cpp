@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "light/limits.h"
 #include "core/json_depth.h"
 #include "sh/basis.h"
 
@@ -163,7 +164,7 @@ LightFile read_lighting_file(const std::string& path) {
       if (!triple[c].is_number()) fail_file(path, "coefficient " + std::to_string(i) + " has a non-numeric entry");
       const double v = triple[c].get<double>();
       if (!std::isfinite(v)) fail_file(path, "coefficient " + std::to_string(i) + " is not finite");
-      if (!(std::abs(v) <= 1e18)) fail_file(path, "coefficient " + std::to_string(i) + " is out of range (|c| > 1e18)");
+      if (!(std::abs(v) <= kMaxLightValue)) fail_file(path, "coefficient " + std::to_string(i) + " is out of range (|c| > 1e18)");
       out.values[i][c] = v;
     }
   }
