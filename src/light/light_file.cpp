@@ -10,7 +10,7 @@
 #include "core/constants.h"
 #include "core/error.h"
 #include "light/limits.h"
-#include "core/json_depth.h"
+#include "core/json_parse.h"
 #include "sh/basis.h"
 
 namespace prt::light {
@@ -131,13 +131,7 @@ sh::RgbCoefficients read_light_file(const std::string& path) { return read_light
 
 LightFile read_lighting_file(const std::string& path) {
   const std::string text = read_file(path);
-  check_json_depth(text, path);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number such as 1e999
-    fail_file(path, std::string("not valid JSON: ") + e.what());
-  }
+  json root = parse_json(text, path);
   if (!root.is_object()) fail_file(path, "not an SH lighting file (expected a JSON object)");
 
   const json& bands_value = require(root, "bands", path);
