@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -49,24 +50,45 @@ struct UvTriangle {
     return true;
   }
 
-  // The point of the triangle nearest to q, and its squared distance.
-  glm::dvec2 nearest(const glm::dvec2& q, double* distance_sq) const {
+  // The point of the triangle's part inside texel (i, j) nearest to the texel centre q, and its
+  // squared distance: q itself when q is inside the triangle, else a point on the boundary of the
+  // triangle clipped to the texel's square (a convex polygon), so the sample stays in its texel.
+  glm::dvec2 nearest_in_texel(const glm::dvec2& q, int i, int j, double* distance_sq) const {
     const glm::dvec3 w = barycentric(q);
     if (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) {
       *distance_sq = 0.0;
       return q;
     }
-    glm::dvec2 best = p[0];
+    std::vector<glm::dvec2> poly(p, p + 3);
+    poly = clip(poly, 0, double(i), -1.0);
+    poly = clip(poly, 0, double(i + 1), 1.0);
+    poly = clip(poly, 1, double(j), -1.0);
+    poly = clip(poly, 1, double(j + 1), 1.0);
+    if (poly.empty()) poly.assign(p, p + 3);  // only by rounding: fall back to the whole triangle
+    glm::dvec2 best = poly[0];
     double best_sq = std::numeric_limits<double>::infinity();
-    for (int e = 0; e < 3; ++e) {
-      const glm::dvec2 a = p[e], d = p[(e + 1) % 3] - p[e];
-      const double t = std::clamp(glm::dot(q - a, d) / glm::dot(d, d), 0.0, 1.0);
+    for (std::size_t e = 0; e < poly.size(); ++e) {
+      const glm::dvec2 a = poly[e], d = poly[(e + 1) % poly.size()] - poly[e];
+      const double length_sq = glm::dot(d, d);
+      const double t = length_sq > 0.0 ? std::clamp(glm::dot(q - a, d) / length_sq, 0.0, 1.0) : 0.0;
       const glm::dvec2 c = a + t * d;
       const double sq = glm::dot(q - c, q - c);
       if (sq < best_sq) best_sq = sq, best = c;
     }
     *distance_sq = best_sq;
     return best;
+  }
+
+  // The part of `poly` on the side sign * (x[axis] - limit) <= 0 (Sutherland-Hodgman, one line).
+  static std::vector<glm::dvec2> clip(const std::vector<glm::dvec2>& poly, int axis, double limit, double sign) {
+    std::vector<glm::dvec2> out;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const glm::dvec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+      const double da = sign * (a[axis] - limit), db = sign * (b[axis] - limit);
+      if (da <= 0.0) out.push_back(a);
+      if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+    }
+    return out;
   }
 };
 
@@ -114,7 +136,7 @@ void rasterize_triangle(const UvTriangle& tri, std::uint32_t t, int width, int r
         }
       }
       double sq = 0.0;
-      const glm::dvec2 q = tri.nearest(centre, &sq);
+      const glm::dvec2 q = tri.nearest_in_texel(centre, i, j, &sq);
       if (sq < s.distance_sq) s.distance_sq = sq, s.owner = t, s.nearest = q;  // equal: the lower index stays
     }
 }

@@ -7,10 +7,10 @@
 // or at a corner does not count). Every covered texel gets exactly one sample.
 //
 // SAMPLE POINT. Of the triangles overlapping a texel, the one whose UV triangle is nearest to the
-// texel centre (distance 0 when the centre is inside; ties go to the lower triangle index) owns it,
-// and the sample is the point of that UV triangle nearest to the centre: the centre itself when it
-// is inside, else a point on the triangle's boundary (an edge texel samples the nearest point inside
-// the triangle). Position, normal (normalised) and albedo are interpolated barycentrically from that
+// texel centre owns it: distance 0 when the centre is inside, else the distance to the triangle's
+// part inside the texel's square; ties go to the lower triangle index. The sample is that nearest
+// point: the centre itself when it is inside, else a point of the triangle's boundary clipped to the
+// texel (an edge texel samples the nearest point inside the triangle, and stays in its texel). Position, normal (normalised) and albedo are interpolated barycentrically from that
 // triangle's corners at the sample's barycentrics.
 //
 // OVERLAP. Two triangles whose UV triangles both contain a texel centre strictly inside (every
