@@ -61,7 +61,7 @@ mesh::Mesh split_cube_on_floor() {
   QuadBuilder b;
   add_floor(b);
   // Each face: two triangles (0,1,2) and (0,2,3) of the quad, placed in two separate UV slots.
-  const glm::vec3 lo(-0.5f, 0.1f, -0.5f), hi(0.5f, 1.1f, 0.5f);
+  const glm::vec3 lo(-0.5f, 0.4f, -0.5f), hi(0.5f, 1.4f, 0.5f);
   QuadBuilder faces;
   const glm::vec2 none[6] = {};
   add_box(faces, lo, hi, none, 0.0f);

@@ -26,7 +26,7 @@ struct QuadBuilder {
 /// are charts in the rest of the UV square. bottom < 0: the box intersects the floor; 0: it rests on it.
 mesh::Mesh floor_and_box(bool with_box, float bottom = 0.0f);
 
-/// An unwelded unit cube [-0.5, 0.5]^3 lifted to y in [0.1, 1.1] above the floor of floor_and_box
+/// An unwelded unit cube [-0.5, 0.5]^3 lifted to y in [0.4, 1.4] above the floor of floor_and_box
 /// (without its box): each cube face is split along its diagonal into two triangles that are
 /// separate UV charts (so every face has a UV seam across a flat surface).
 mesh::Mesh split_cube_on_floor();

@@ -110,7 +110,7 @@ double luminance(const image::Image& im, const glm::vec2& uv) {
 TEST_CASE("lightmap seams: across the UV seam of every face of a split, unwelded cube the lit values agree to 2%", "[lightmap][slow]") {
   const mesh::Mesh cube = test::split_cube_on_floor();
   const Scene scene("lightmap_seams", cube);
-  const image::Image lit = lit_lightmap(scene, "--lightmap 128 --transfer interreflected --bounces 1 --samples 1024", "cube");
+  const image::Image lit = lit_lightmap(scene, "--lightmap 128 --transfer interreflected --bounces 1 --samples 2048", "cube");
   double worst = 0.0;
   // Triangles 2 + 2f and 3 + 2f are face f's halves (A = corners 0,1,2 and B = corners 0,2,3 of its
   // quad): the seam runs from quad corner 0 (A0, B0) to quad corner 2 (A2, B1).
