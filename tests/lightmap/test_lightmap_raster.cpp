@@ -61,7 +61,8 @@ mesh::Mesh few_triangles() {
                              {{0.55f, 0.05f}, {0.6f, 0.45f}, {0.95f, 0.2f}},    // cw in uv
                              {{0.1f, 0.6f}, {0.9f, 0.62f}, {0.12f, 0.66f}},     // thin sliver
                              {{0.3f, 0.7f}, {0.7f, 0.95f}, {0.3f, 0.95f}},      // axis-aligned edges
-                             {{0.75f, 0.7f}, {0.76f, 0.71f}, {0.755f, 0.72f}}}; // smaller than a texel
+                             {{0.75f, 0.7f}, {0.76f, 0.71f}, {0.755f, 0.72f}},  // smaller than a texel
+                             {{0.5f, 0.5f}, {0.5625f, 0.5f}, {0.5f, 0.5625f}}};  // edges on texel lines (32 x 32)
   for (const auto& t : uv) {
     const std::uint32_t base = std::uint32_t(m.positions.size());
     for (int k = 0; k < 3; ++k) {
