@@ -50,25 +50,22 @@ struct UvTriangle {
     return true;
   }
 
-  // The point of the triangle's part inside texel (i, j) nearest to the texel centre q, and its
-  // squared distance: q itself when q is inside the triangle, else a point on the boundary of the
-  // triangle clipped to the texel's square (a convex polygon), so the sample stays in its texel.
+  // The point of the triangle's part inside texel (i, j) nearest to the texel centre q (outside the
+  // triangle), and its squared distance: a point on the boundary of the triangle clipped to the
+  // texel's square (a convex polygon), so the sample stays in its texel.
   glm::dvec2 nearest_in_texel(const glm::dvec2& q, int i, int j, double* distance_sq) const {
-    const glm::dvec3 w = barycentric(q);
-    if (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) {
-      *distance_sq = 0.0;
-      return q;
+    Polygon poly;
+    poly.size = 3;
+    for (int k = 0; k < 3; ++k) poly.p[k] = p[k];
+    poly = clip(clip(clip(clip(poly, 0, double(i), -1.0), 0, double(i + 1), 1.0), 1, double(j), -1.0), 1, double(j + 1), 1.0);
+    if (poly.size == 0) {  // only by rounding: fall back to the whole triangle
+      poly.size = 3;
+      for (int k = 0; k < 3; ++k) poly.p[k] = p[k];
     }
-    std::vector<glm::dvec2> poly(p, p + 3);
-    poly = clip(poly, 0, double(i), -1.0);
-    poly = clip(poly, 0, double(i + 1), 1.0);
-    poly = clip(poly, 1, double(j), -1.0);
-    poly = clip(poly, 1, double(j + 1), 1.0);
-    if (poly.empty()) poly.assign(p, p + 3);  // only by rounding: fall back to the whole triangle
-    glm::dvec2 best = poly[0];
+    glm::dvec2 best = poly.p[0];
     double best_sq = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 0; e < poly.size(); ++e) {
-      const glm::dvec2 a = poly[e], d = poly[(e + 1) % poly.size()] - poly[e];
+    for (int e = 0; e < poly.size; ++e) {
+      const glm::dvec2 a = poly.p[e], d = poly.p[(e + 1) % poly.size] - poly.p[e];
       const double length_sq = glm::dot(d, d);
       const double t = length_sq > 0.0 ? std::clamp(glm::dot(q - a, d) / length_sq, 0.0, 1.0) : 0.0;
       const glm::dvec2 c = a + t * d;
@@ -79,14 +76,20 @@ struct UvTriangle {
     return best;
   }
 
+  // A convex polygon of at most 3 + 4 corners (a triangle clipped by four lines).
+  struct Polygon {
+    glm::dvec2 p[8];
+    int size = 0;
+  };
+
   // The part of `poly` on the side sign * (x[axis] - limit) <= 0 (Sutherland-Hodgman, one line).
-  static std::vector<glm::dvec2> clip(const std::vector<glm::dvec2>& poly, int axis, double limit, double sign) {
-    std::vector<glm::dvec2> out;
-    for (std::size_t k = 0; k < poly.size(); ++k) {
-      const glm::dvec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+  static Polygon clip(const Polygon& poly, int axis, double limit, double sign) {
+    Polygon out;
+    for (int k = 0; k < poly.size; ++k) {
+      const glm::dvec2 a = poly.p[k], b = poly.p[(k + 1) % poly.size];
       const double da = sign * (a[axis] - limit), db = sign * (b[axis] - limit);
-      if (da <= 0.0) out.push_back(a);
-      if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+      if (da <= 0.0 && out.size < 8) out.p[out.size++] = a;
+      if (((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) && out.size < 8) out.p[out.size++] = a + (b - a) * (da / (da - db));
     }
     return out;
   }
@@ -135,9 +138,14 @@ void rasterize_triangle(const UvTriangle& tri, std::uint32_t t, int width, int r
           if (overlaps.examples.size() < 3) overlaps.examples.emplace_back(s.inside, t);
         }
       }
+      if (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) {
+        if (s.distance_sq > 0.0) s.distance_sq = 0.0, s.owner = t, s.nearest = centre;  // equal: the lower index stays
+        continue;
+      }
+      if (s.distance_sq == 0.0) continue;  // a triangle containing the centre owns it
       double sq = 0.0;
       const glm::dvec2 q = tri.nearest_in_texel(centre, i, j, &sq);
-      if (sq < s.distance_sq) s.distance_sq = sq, s.owner = t, s.nearest = q;  // equal: the lower index stays
+      if (sq < s.distance_sq) s.distance_sq = sq, s.owner = t, s.nearest = q;
     }
 }
 

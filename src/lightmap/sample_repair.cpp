@@ -36,11 +36,18 @@ float texel_world_size(const mesh::Mesh& mesh, std::uint32_t t, int width, int h
 }
 
 bool probe_buried(const trace::Scene& scene, const glm::vec3& p, const glm::vec3& n, float range, std::uint32_t seed,
-                  std::uint32_t index, glm::vec3* moved) {
+                  std::uint32_t index, glm::vec3* moved, trace::RayBatch& batch) {
   const std::vector<glm::vec3>& local = probe_directions();
   const glm::mat3 frame = sh::vertex_frame(n, seed, index);
   const glm::vec3 origin = scene.offset_origin(p, n);
-  trace::RayBatch batch(local.size());
+  const std::size_t needed = static_cast<std::size_t>(std::ceil(kBuriedFraction * float(local.size())));
+  // Occlusion first (cheaper): a sample with fewer hits of any kind within range than the rule needs
+  // back-face hits is not buried.
+  batch.clear();
+  for (const glm::vec3& d : local) batch.push(origin, frame * d, 0.0f, range);
+  scene.occluded(batch);
+  if (batch.occluded_count() < needed) return false;
+  batch.clear();
   for (const glm::vec3& d : local) batch.push(origin, frame * d, 0.0f, range);
   scene.intersect(batch);
   int back = 0;
@@ -57,7 +64,7 @@ bool probe_buried(const trace::Scene& scene, const glm::vec3& p, const glm::vec3
       exit = h + ng * std::max(4.0f * scene.ray_offset(), 1e-3f * range);
     }
   }
-  if (float(back) < kBuriedFraction * float(local.size())) return false;
+  if (std::size_t(back) < needed) return false;
   *moved = exit - n * glm::dot(exit - p, n);
   return true;
 }
@@ -66,12 +73,13 @@ RepairReport repair_samples(const mesh::Mesh& mesh, const trace::Scene& scene, T
                             int threads) {
   std::atomic<std::size_t> moved{0}, unrecoverable{0};
   parallel_for(samples.samples.size(), 64, threads, [&](std::size_t begin, std::size_t end) {
+    trace::RayBatch batch(kProbeRays);
     for (std::size_t k = begin; k < end; ++k) {
       TexelSample& s = samples.samples[k];
       const float range = kProbeRange * texel_world_size(mesh, s.triangle, samples.width, samples.height);
       glm::vec3 out, again;
-      if (!(range > 0.0f) || !probe_buried(scene, s.position, s.normal, range, seed, s.texel, &out)) continue;
-      if (probe_buried(scene, out, s.normal, range, seed, s.texel, &again)) {
+      if (!(range > 0.0f) || !probe_buried(scene, s.position, s.normal, range, seed, s.texel, &out, batch)) continue;
+      if (probe_buried(scene, out, s.normal, range, seed, s.texel, &again, batch)) {
         ++unrecoverable;
         continue;
       }
@@ -82,8 +90,6 @@ RepairReport repair_samples(const mesh::Mesh& mesh, const trace::Scene& scene, T
   RepairReport report;
   report.moved = moved.load();
   report.unrecoverable = unrecoverable.load();
-  report.rays = std::uint64_t(samples.samples.size()) * kProbeRays;  // first probes; moved ones trace twice
-  report.rays += std::uint64_t(report.moved + report.unrecoverable) * kProbeRays;
   return report;
 }
 
