@@ -216,4 +216,62 @@ TEST_CASE("lightmap contact: boxes resting on and intersecting the floor leave n
   }
 }
 
+namespace {
+
+// Whether the ray p + t d (t > 0) meets the box [lo, hi] (slab test).
+bool hits_box(const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi) {
+  double t0 = 1e-9, t1 = 1e30;
+  for (int a = 0; a < 3; ++a) {
+    const double inv = 1.0 / d[a];
+    double near = (lo[a] - p[a]) * inv, far = (hi[a] - p[a]) * inv;
+    if (near > far) std::swap(near, far);
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+  }
+  return t0 <= t1;
+}
+
+}  // namespace
+
+TEST_CASE("lightmap: prt shade --lightmap shades a sun disc per texel, with shadow rays: (albedo/pi) E (n.d) or 0",
+          "[lightmap][slow]") {
+  const Scene scene("lightmap_sun", test::floor_and_box(true));
+  const std::string lm = scene.dir + "/sun.prt";
+  REQUIRE(test::run_prt("bake " + scene.mesh + " --quiet --lightmap 64 --transfer shadowed --samples 256 -o " + lm).exit_code == 0);
+  const std::string shade = "shade " + scene.mesh + " " + lm + " --env " + scene.sky + " --window none --lightmap -o ";
+  REQUIRE(test::run_prt(shade + scene.dir + "/lit_sky.exr --sun none").exit_code == 0);
+  REQUIRE(test::run_prt(shade + scene.dir + "/lit_sun.exr --sun 0.6,0.5,0.3,4,3,2,0.5").exit_code == 0);
+  const image::Image sky = image::read_rgb(scene.dir + "/lit_sky.exr"), sun = image::read_rgb(scene.dir + "/lit_sun.exr");
+  const glm::dvec3 d = glm::normalize(glm::dvec3(0.6, 0.5, 0.3)), irradiance(4, 3, 2);
+  const glm::dvec3 lo(-0.3, 0.0, -0.3), hi(0.3, 0.6, 0.3);
+  const double disc_margin = 0.02;  // the disc's 0.5 degree radius, and texel extents, near the shadow's edge
+  std::size_t lit = 0, shadowed = 0;
+  // Floor texels (chart [0.01, 0.59]^2) away from the box's footprint and from the shadow's edge.
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i) {
+      const double u = (i + 0.5) / 64.0, v = (j + 0.5) / 64.0;
+      if (u < 0.03 || u > 0.57 || v < 0.03 || v > 0.57) continue;
+      const glm::dvec3 p(-1.0 + 2.0 * (u - 0.01) / 0.58, 0.0, 1.0 - 2.0 * (v - 0.01) / 0.58);
+      if (std::max(std::abs(p.x), std::abs(p.z)) < 0.3 + 0.06) continue;
+      bool any = false, all = true;
+      for (const glm::dvec3& o : {glm::dvec3(0), glm::dvec3(disc_margin, 0, 0), glm::dvec3(-disc_margin, 0, 0),
+                                  glm::dvec3(0, 0, disc_margin), glm::dvec3(0, 0, -disc_margin)}) {
+        const bool blocked = hits_box(p + o, d, lo, hi);
+        any = any || blocked;
+        all = all && blocked;
+      }
+      if (any != all) continue;
+      const std::size_t t = std::size_t(i + 64 * j);
+      for (int c = 0; c < 3; ++c) {
+        const double direct = double(sun.pixels[3 * t + c]) - double(sky.pixels[3 * t + c]);
+        const double expected = all ? 0.0 : 0.8 / M_PI * irradiance[c] * d.y;
+        INFO("texel " << i << "," << j << " channel " << c << (all ? " (in the box's shadow)" : " (lit)"));
+        CHECK(std::abs(direct - expected) <= 0.005 * 0.8 / M_PI * irradiance[c] * d.y);
+      }
+      (all ? shadowed : lit) += 1;
+    }
+  CHECK(lit > 300);
+  CHECK(shadowed > 30);
+}
+
 }  // namespace prt
