@@ -223,6 +223,18 @@ TEST_CASE("prt bake --lightmap: bad input gives one line, exit 1 and no file", "
   // prt shade refuses a lightmap without --lightmap and a vertex file with it.
   const test::RunResult s = test::run_prt("shade " + dir + "/good.obj " + dir + "/out.prt --env constant:1,1,1 -o " + dir + "/x.ply");
   CHECK(test::fails_in_one_line(s, "is a lightmap"));
+  // A per-vertex file where a lightmap is needed.
+  REQUIRE(test::run_prt("bake " + dir + "/good.obj --samples 16 --quiet -o " + dir + "/vertex.prt").exit_code == 0);
+  std::size_t files = test::entries_in(dir);
+  CHECK(test::fails_in_one_line(
+      test::run_prt("shade " + dir + "/good.obj " + dir + "/vertex.prt --env constant:1,1,1 --lightmap -o " + dir + "/x.exr"),
+      "--lightmap needs a lightmap"));
+  test::write_test_sky(dir + "/sky.exr");
+  files = test::entries_in(dir);
+  CHECK(test::fails_in_one_line(test::run_prt("reference " + dir + "/good.obj --env " + dir + "/sky.exr --samples 4 --quiet --texels " + dir +
+                                              "/vertex.prt -o " + dir + "/x.exr"),
+                                "not a lightmap"));
+  CHECK(test::entries_in(dir) == files);
 }
 
 }  // namespace prt
