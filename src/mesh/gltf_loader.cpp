@@ -215,6 +215,8 @@ struct Loader {
   bool any_albedo_source = false, any_texture = false, any_skin_or_morph = false;
   bool any_emission = false, any_emissive_texture = false;
   std::size_t primitives_without_normals = 0, primitives_with_bad_normals = 0, skipped_modes = 0;
+  int uv_set = -1;  // the lightmap UV set (TEXCOORD_<uv_set>); -1 when no triangle primitive has one
+  std::string missing_uv{};  // the first primitive without it, for missing_uv_reason
 
   void visit(int node_index, const glm::dmat4& parent, int depth) {
     if (node_index < 0 || std::size_t(node_index) >= model.nodes.size())
@@ -290,10 +292,12 @@ struct Loader {
     } else {
       for (std::size_t i = 0; i < count; ++i) order.push_back(std::uint32_t(i));
     }
+    const std::vector<glm::vec2> uv = read_uv(prim, count, what);
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       if (mirrored) std::swap(b, c);
       raw.indices.insert(raw.indices.end(),
                          {std::uint32_t(base + a), std::uint32_t(base + b), std::uint32_t(base + c)});
+      if (!uv.empty()) raw.corner_uv.insert(raw.corner_uv.end(), {uv[a], uv[b], uv[c]});
     };
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       for (std::size_t t = 0; t + 2 < order.size(); t += 3) emit(order[t], order[t + 1], order[t + 2]);
@@ -306,6 +310,23 @@ struct Loader {
     add_normals(prim, linear, count, what);
     add_albedo(prim, count, what);
     add_emission(prim, count);
+  }
+
+  // The primitive's TEXCOORD_<uv_set> per vertex (glTF's v-down convention is prt's); empty, with
+  // missing_uv noted, when it has none.
+  std::vector<glm::vec2> read_uv(const tinygltf::Primitive& prim, std::size_t count, const std::string& what) {
+    const std::string name = "TEXCOORD_" + std::to_string(uv_set < 0 ? 0 : uv_set);
+    const auto it = prim.attributes.find(name);
+    if (it == prim.attributes.end()) {
+      if (missing_uv.empty()) missing_uv = what + " has no " + name;
+      return {};
+    }
+    int components = 0;
+    const std::vector<double> values = reader.read_accessor(it->second, what + " " + name, &components);
+    if (components != 2 || values.size() != 2 * count) reader.bad(what + ": " + name + " is not a vec2 per vertex");
+    std::vector<glm::vec2> uv(count);
+    for (std::size_t i = 0; i < count; ++i) uv[i] = glm::vec2(float(values[2 * i]), float(values[2 * i + 1]));
+    return uv;
   }
 
   // emissiveFactor times KHR_materials_emissive_strength.emissiveStrength (glTF spec and the extension's).
@@ -467,6 +488,18 @@ tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bo
 
 }  // namespace
 
+// The lightmap UV set: 1 if any triangle primitive has TEXCOORD_1, else 0 if any has TEXCOORD_0, else -1.
+int lightmap_uv_set(const tinygltf::Model& model) {
+  int set = -1;
+  for (const tinygltf::Mesh& mesh : model.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      if (prim.mode >= 0 && prim.mode < TINYGLTF_MODE_TRIANGLES) continue;
+      if (prim.attributes.count("TEXCOORD_1")) return 1;
+      if (prim.attributes.count("TEXCOORD_0")) set = 0;
+    }
+  return set;
+}
+
 RawMesh load_gltf(const std::string& path, bool binary) {
   const std::string bytes = read_file(path);
   if (bytes.size() >= std::numeric_limits<unsigned int>::max())
@@ -495,6 +528,7 @@ RawMesh load_gltf(const std::string& path, bool binary) {
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
       if (!is_child[i]) roots.push_back(int(i));
   }
+  loader.uv_set = lightmap_uv_set(model);
   for (int root : roots) loader.visit(root, glm::dmat4(1.0), 0);
 
   RawMesh raw = std::move(loader.raw);
@@ -516,6 +550,11 @@ RawMesh load_gltf(const std::string& path, bool binary) {
     reason += (reason.empty() ? "" : ", ") + std::to_string(loader.primitives_with_bad_normals) +
               " primitives have zero or non-finite normals";
   raw.computed_normals_reason = reason;
+  raw.uv_set = std::uint32_t(std::max(loader.uv_set, 0));
+  if (!loader.missing_uv.empty() || loader.uv_set < 0 || raw.corner_uv.size() != raw.indices.size()) {
+    raw.corner_uv.clear();
+    raw.missing_uv_reason = loader.uv_set < 0 ? "no primitive has TEXCOORD_0 or TEXCOORD_1" : loader.missing_uv;
+  }
   return raw;
 }
 

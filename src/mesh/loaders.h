@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/srgb.h"
@@ -24,6 +25,11 @@ struct RawMesh {
   std::vector<glm::vec3> albedo;       ///< empty or one per position (linear, not yet clamped)
   std::vector<glm::vec3> emission;     ///< empty or one per position (linear radiance, not yet clamped)
   std::vector<std::uint32_t> indices;  ///< 3 per triangle; each loader has range-checked them
+  /// Lightmap UVs, one per entry of `indices` (per triangle corner), already in prt's v-down
+  /// convention; empty when the file has none for some corner (missing_uv_reason then says why).
+  std::vector<glm::vec2> corner_uv;
+  std::uint32_t uv_set = 0;
+  std::string missing_uv_reason;
   std::size_t skipped_polygons = 0;    ///< faces of fewer than 3 vertices, counted as degenerate
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives
 };

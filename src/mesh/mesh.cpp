@@ -90,7 +90,11 @@ void check_positions_and_indices(const std::string& path, const RawMesh& raw) {
 }
 
 // The non-degenerate triangles; counts the rest in result->skipped_degenerate and notes them.
-std::vector<std::uint32_t> drop_degenerate(const std::string& path, const RawMesh& raw, LoadReport* result) {
+// raw->corner_uv is filtered alike (kept UVs stay with their corners).
+std::vector<std::uint32_t> drop_degenerate(const std::string& path, RawMesh* raw_mesh, LoadReport* result) {
+  const RawMesh& raw = *raw_mesh;
+  const bool with_uv = raw.corner_uv.size() == raw.indices.size() && !raw.corner_uv.empty();
+  std::vector<glm::vec2> uv;
   std::vector<std::uint32_t> indices;
   indices.reserve(raw.indices.size());
   std::size_t degenerate = 0;
@@ -101,7 +105,9 @@ std::vector<std::uint32_t> drop_degenerate(const std::string& path, const RawMes
       continue;
     }
     indices.insert(indices.end(), {a, b, c});
+    if (with_uv) uv.insert(uv.end(), raw.corner_uv.begin() + std::ptrdiff_t(t), raw.corner_uv.begin() + std::ptrdiff_t(t + 3));
   }
+  raw_mesh->corner_uv = std::move(uv);
   result->skipped_degenerate = degenerate + raw.skipped_polygons;
   if (indices.empty()) {
     if (result->skipped_degenerate > 0)
@@ -198,7 +204,12 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
   LoadReport result = std::move(raw.notes_only);
   check_positions_and_indices(path, raw);
   Mesh mesh;
-  mesh.indices = drop_degenerate(path, raw, &result);
+  mesh.indices = drop_degenerate(path, &raw, &result);
+  mesh.lightmap_uv = std::move(raw.corner_uv);
+  mesh.lightmap_uv_set = raw.uv_set;
+  result.missing_uv_reason = mesh.lightmap_uv.empty()
+                                 ? (raw.missing_uv_reason.empty() ? "the file has no texture coordinates" : raw.missing_uv_reason)
+                                 : "";
   mesh.positions = std::move(raw.positions);
   check_extent(path, mesh);
   assign_normals(raw, &mesh, &result);
@@ -254,14 +265,21 @@ std::vector<glm::vec3> area_weighted_normals(const std::vector<glm::vec3>& posit
   return normals;
 }
 
+namespace {
+
+// Folds the `byte_count` low bytes of `value`, little-endian, into the FNV-1a 64 hash.
+void fnv_add_le(std::uint64_t* hash, std::uint64_t value, int byte_count) {
+  for (int k = 0; k < byte_count; ++k) {
+    *hash ^= (value >> (8 * k)) & 0xffu;
+    *hash *= 0x100000001b3ull;
+  }
+}
+
+}  // namespace
+
 std::uint64_t fingerprint(const Mesh& mesh) {
   std::uint64_t hash = 0xcbf29ce484222325ull;
-  auto add_bytes = [&hash](std::uint64_t value, int byte_count) {
-    for (int k = 0; k < byte_count; ++k) {
-      hash ^= (value >> (8 * k)) & 0xffu;
-      hash *= 0x100000001b3ull;
-    }
-  };
+  auto add_bytes = [&hash](std::uint64_t value, int byte_count) { fnv_add_le(&hash, value, byte_count); };
   add_bytes(mesh.positions.size(), 8);
   for (const glm::vec3& p : mesh.positions) {
     for (int c = 0; c < 3; ++c) {
@@ -272,6 +290,19 @@ std::uint64_t fingerprint(const Mesh& mesh) {
   }
   add_bytes(mesh.indices.size(), 8);
   for (std::uint32_t index : mesh.indices) add_bytes(index, 4);
+  return hash;
+}
+
+std::uint64_t uv_fingerprint(const Mesh& mesh) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  auto add_bytes = [&hash](std::uint64_t value, int byte_count) { fnv_add_le(&hash, value, byte_count); };
+  add_bytes(mesh.lightmap_uv.size(), 8);
+  for (const glm::vec2& uv : mesh.lightmap_uv)
+    for (int c = 0; c < 2; ++c) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &uv[c], 4);
+      add_bytes(bits, 4);
+    }
   return hash;
 }
 

@@ -45,11 +45,22 @@
 //   absent); primitives without a material emit 0. Emissive textures are ignored.
 // - PLY: none.
 // Emission is empty when nothing in the file emits (every value 0).
+//
+// LIGHTMAP UVs (Mesh::lightmap_uv), one per triangle CORNER (not per vertex: OBJ indexes "vt" apart
+// from "v", so a position on a UV seam has several), in prt's texture convention (docs/conventions.md,
+// "Lightmap texels"): u to the right, v DOWN, (0,0) the top-left corner of the image, as glTF defines.
+// - glTF: TEXCOORD_1 when any triangle primitive in the file has it, else TEXCOORD_0 (float, or
+//   normalised unsigned byte/short), used as stored; every triangle primitive must have the chosen set.
+// - OBJ: the corners' "vt" (u, v) become (u, 1 - v) (OBJ's v points up); every face corner must have one.
+// - PLY: vertex properties u, v (or s, t, or texture_u, texture_v) become (u, 1 - v) as for OBJ.
+// Where some triangle lacks a UV, lightmap_uv is empty and LoadReport::missing_uv_reason says why. UVs are not validated here
+// (range, overlaps and zero-area charts are the lightmap baker's checks, lightmap/uv_validation.h).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace prt::mesh {
@@ -68,9 +79,15 @@ struct Mesh {
   std::vector<glm::vec3> albedo;       ///< linear diffuse reflectance in [0,1] per vertex; empty if none given
   std::vector<glm::vec3> emission;     ///< linear emitted radiance (>= 0) per vertex; empty if nothing emits
   std::vector<std::uint32_t> indices;  ///< 3 per triangle, counter-clockwise front faces; degenerate removed
+  /// Lightmap UVs per triangle corner: lightmap_uv[3t + k] is the UV of corner k of triangle t (the
+  /// vertex indices[3t + k]); empty, or exactly indices.size() entries. See "LIGHTMAP UVs" above.
+  std::vector<glm::vec2> lightmap_uv;
+  /// Which UV set lightmap_uv came from: glTF TEXCOORD_<n>; 0 for OBJ vt and PLY u,v.
+  std::uint32_t lightmap_uv_set = 0;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }
+  bool has_lightmap_uv() const { return !lightmap_uv.empty(); }
 };
 
 /// What loading found, for messages and tests.
@@ -82,6 +99,9 @@ struct LoadReport {
   bool emission_from_file = false;        ///< some material emits (OBJ Ke, glTF emissiveFactor)
   std::size_t skipped_primitives = 0;     ///< glTF primitives in point/line modes or without POSITION
   std::vector<std::string> notes;         ///< the one-line notes printed on stderr (also when quiet)
+  /// Why Mesh::lightmap_uv is empty ("the file has no vt", "primitive 2 has no TEXCOORD_0", ...);
+  /// empty when the mesh has lightmap UVs. Not printed: the lightmap baker names it in its error.
+  std::string missing_uv_reason;
 };
 
 /// Loads .obj (+ .mtl Kd), .ply (ASCII / binary little or big endian, optional red/green/blue),
@@ -112,6 +132,11 @@ bool is_degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 /// little-endian; index count as uint64 little-endian; each index as uint32 little-endian.
 /// Identical on every machine; any change of one position bit or one index changes it.
 std::uint64_t fingerprint(const Mesh& mesh);
+
+/// 64-bit fingerprint of the lightmap UVs, stored in texel transfer files next to fingerprint():
+/// FNV-1a 64 as above over the corner count as uint64 little-endian, then each corner's u, v float
+/// bit patterns as uint32 little-endian. 0xcbf29ce484222325 folded with a zero count for no UVs.
+std::uint64_t uv_fingerprint(const Mesh& mesh);
 
 /// Axis-aligned bounds.
 struct Bounds {

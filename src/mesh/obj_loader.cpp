@@ -152,7 +152,25 @@ ObjData read_obj(const std::string& path, RawMesh* raw) {
 struct FaceRefs {
   DistinctPairs position_normals, position_materials;
   bool any_corner_without_normal = false, any_material = false;
+  std::size_t corners_without_uv = 0;
 };
+
+// The corner's "vt" as (u, 1 - v) (prt's v points down, OBJ's up), range-checked; (0, 0) and a
+// count in refs when the corner has none.
+glm::vec2 corner_uv(const std::string& path, const ObjData& obj, const tinyobj::index_t& corner, std::size_t face_number,
+                    FaceRefs* refs) {
+  if (corner.texcoord_index < 0) {
+    if (corner.texcoord_index < -1)
+      fail_file(path, "face " + std::to_string(face_number) + " refers to a texture coordinate before the first");
+    ++refs->corners_without_uv;
+    return glm::vec2(0.0f);
+  }
+  const std::size_t t = std::size_t(corner.texcoord_index);
+  if (t >= obj.attrib.texcoords.size() / 2)
+    fail_file(path, "face " + std::to_string(face_number) + " refers to texture coordinate " + std::to_string(t + 1) +
+                        " (1-based), but the file has " + std::to_string(obj.attrib.texcoords.size() / 2));
+  return glm::vec2(obj.attrib.texcoords[2 * t], 1.0f - obj.attrib.texcoords[2 * t + 1]);
+}
 
 // Range-checks one face corner's vertex and normal indices; face_number names it in errors.
 void check_corner(const std::string& path, const tinyobj::index_t& corner, std::size_t face_number,
@@ -186,18 +204,24 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
         fail_file(path, "face " + std::to_string(face_number) + " has an unknown material");
       if (material >= 0) refs.any_material = true;
       std::uint32_t first = 0, previous = 0;
+      glm::vec2 first_uv(0.0f), previous_uv(0.0f);
       for (std::size_t j = 0; j < n; ++j) {
         const tinyobj::index_t& corner = m.indices[offset + j];
         check_corner(path, corner, face_number, vertex_count, normal_count);
+        const glm::vec2 uv = corner_uv(path, obj, corner, face_number, &refs);
         const std::uint32_t index = std::uint32_t(corner.vertex_index);
         if (corner.normal_index < 0)
           refs.any_corner_without_normal = true;
         else
           refs.position_normals.add(index, corner.normal_index);
         refs.position_materials.add(index, material);
-        if (j == 0) first = index;
-        if (j >= 2) raw->indices.insert(raw->indices.end(), {first, previous, index});  // fan
+        if (j == 0) first = index, first_uv = uv;
+        if (j >= 2) {  // fan
+          raw->indices.insert(raw->indices.end(), {first, previous, index});
+          raw->corner_uv.insert(raw->corner_uv.end(), {first_uv, previous_uv, uv});
+        }
         previous = index;
+        previous_uv = uv;
       }
       if (n < 3) ++raw->skipped_polygons;
       offset += n;
@@ -294,6 +318,11 @@ RawMesh load_obj(const std::string& path) {
   RawMesh raw;
   const ObjData obj = read_obj(path, &raw);
   FaceRefs refs = triangulate_faces(path, obj, &raw);
+  if (refs.corners_without_uv > 0) {
+    raw.corner_uv.clear();
+    raw.missing_uv_reason = obj.attrib.texcoords.empty() ? "the OBJ file has no vt lines"
+                                                         : std::to_string(refs.corners_without_uv) + " face corners have no vt";
+  }
   obj_normals(obj, &refs, &raw);
   obj_materials(obj, &refs, &raw);
   return raw;

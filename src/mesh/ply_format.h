@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace prt::mesh::detail {
@@ -18,6 +19,7 @@ struct PlyContents {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  ///< empty unless the vertex has nx, ny and nz
   std::vector<double> colours;     ///< 3 stored values per vertex, unconverted; empty unless red, green, blue
+  std::vector<glm::vec2> uv;       ///< u, v (s, t) per vertex as stored; empty unless both exist
   PlyType colour_types[3] = {PlyType::UInt8, PlyType::UInt8, PlyType::UInt8};
   bool partial_colours = false;        ///< some but not all of red/green/blue exist (they are ignored)
   std::vector<std::uint32_t> indices;  ///< faces fan-triangulated; every index < positions.size()

@@ -266,7 +266,7 @@ class BodyReader {
 };
 
 /// Where each vertex property goes.
-enum Slot { kX, kY, kZ, kNx, kNy, kNz, kRed, kGreen, kBlue, kIgnored };
+enum Slot { kX, kY, kZ, kNx, kNy, kNz, kRed, kGreen, kBlue, kU, kV, kIgnored };
 
 Slot slot_of(const std::string& name) {
   if (name == "x") return kX;
@@ -278,6 +278,8 @@ Slot slot_of(const std::string& name) {
   if (name == "red" || name == "diffuse_red") return kRed;
   if (name == "green" || name == "diffuse_green") return kGreen;
   if (name == "blue" || name == "diffuse_blue") return kBlue;
+  if (name == "u" || name == "s" || name == "texture_u" || name == "texture_s") return kU;
+  if (name == "v" || name == "t" || name == "texture_v" || name == "texture_t") return kV;
   return kIgnored;
 }
 
@@ -351,6 +353,7 @@ std::vector<Slot> vertex_slots(const std::string& path, const Element& vertex_el
   out->positions.resize(vertex_count);
   if (want_normals) out->normals.resize(vertex_count);
   if (want_colours) out->colours.resize(3 * vertex_count);
+  if (has[kU] && has[kV]) out->uv.resize(vertex_count);
   return slots;
 }
 
@@ -435,6 +438,8 @@ class BodyParser {
       if (!out_->normals.empty()) out_->normals[e][slot - kNx] = float(value);
     } else if (slot <= kBlue) {
       if (!out_->colours.empty()) out_->colours[3 * e + std::size_t(slot - kRed)] = value;
+    } else if (slot <= kV) {
+      if (!out_->uv.empty()) out_->uv[e][slot - kU] = float(value);
     }
   }
 
@@ -467,6 +472,10 @@ RawMesh load_ply(const std::string& path) {
   raw.indices = std::move(ply.indices);
   raw.skipped_polygons = ply.skipped_polygons;
   const std::size_t n = raw.positions.size();
+  // u, v per vertex become per-corner (u, 1 - v): PLY's v points up, as OBJ's (mesh/mesh.h).
+  if (ply.uv.empty()) raw.missing_uv_reason = "the PLY vertices have no u, v (or s, t) properties";
+  for (std::size_t k = 0; k < raw.indices.size() && !ply.uv.empty(); ++k)
+    raw.corner_uv.emplace_back(ply.uv[raw.indices[k]].x, 1.0f - ply.uv[raw.indices[k]].y);
 
   if (!ply.normals.empty()) {
     std::size_t bad = 0;

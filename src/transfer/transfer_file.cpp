@@ -20,6 +20,9 @@ namespace {
 constexpr char kMagic[8] = {'P', 'R', 'T', 'X', 'F', 'E', 'R', '\0'};
 constexpr std::uint32_t kVersion = 1;            // one payload section
 constexpr std::uint32_t kVersionBounce = 2;      // two: the transfer, then its bounce-only part
+constexpr std::uint32_t kVersionTexel = 3;       // texel file (lightmap), one payload section
+constexpr std::uint32_t kVersionTexelBounce = 4; // texel file, two sections
+constexpr std::size_t kTexelBlockBytes = 24;     // width, height, UV set, reserved, UV fingerprint
 constexpr std::size_t kFixedHeaderBytes = 76;  // up to and including the parameters length
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
 constexpr float kMaxTransferMagnitude = 1e15f;
@@ -61,14 +64,28 @@ void validate(const std::string& path, const Header& h) {
   if (h.parameters_json.size() > kMaxParametersBytes) fail_file(path, "parameters block larger than 1 MiB");
   if (h.bounce_only_section && h.kind != Kind::interreflected && h.kind != Kind::glossy_interreflected)
     fail_file(path, std::string("a bounce-only section (version 2) needs an interreflected kind, not ") + kind_name(h.kind));
+  if (h.is_texel() || h.texel_height != 0) {
+    if (is_glossy(h.kind)) fail_file(path, std::string("texel (lightmap) files hold diffuse kinds only, not ") + kind_name(h.kind));
+    if (h.texel_width < 1 || h.texel_width > kMaxTexelSide || h.texel_height < 1 || h.texel_height > kMaxTexelSide)
+      fail_file(path, "lightmap size " + std::to_string(h.texel_width) + "x" + std::to_string(h.texel_height) +
+                          " out of range 1..16384");
+  }
 }
+
+std::uint32_t version_of(const Header& h) {
+  if (h.is_texel()) return h.bounce_only_section ? kVersionTexelBounce : kVersionTexel;
+  return h.bounce_only_section ? kVersionBounce : kVersion;
+}
+
+// Bytes of the coverage mask in the payload (padded to 8); 0 for per-vertex files.
+std::uint64_t coverage_bytes(const Header& h) { return h.is_texel() ? (h.block_count() + 7) / 8 * 8 : 0; }
 
 std::uint64_t sections_of(const Header& h) { return h.bounce_only_section ? 2 : 1; }
 
 // Serialises the header including its trailing checksum.
 std::string encode_header(const Header& h, std::uint64_t payload_bytes, std::uint64_t payload_checksum) {
   std::string out(kMagic, kMagic + 8);
-  put_u32(out, h.bounce_only_section ? kVersionBounce : kVersion);
+  put_u32(out, version_of(h));
   put_u32(out, static_cast<std::uint32_t>(h.kind));
   put_u32(out, h.bands);
   put_u32(out, h.bands_out);
@@ -82,6 +99,13 @@ std::string encode_header(const Header& h, std::uint64_t payload_bytes, std::uin
   put_u32(out, static_cast<std::uint32_t>(h.parameters_json.size()));
   out += h.parameters_json;
   while (out.size() % 8) out.push_back('\0');
+  if (h.is_texel()) {
+    put_u32(out, h.texel_width);
+    put_u32(out, h.texel_height);
+    put_u32(out, h.uv_set);
+    put_u32(out, 0);
+    put_u64(out, h.uv_fingerprint);
+  }
   put_u64(out, fnv1a64(out.data(), out.size()));
   return out;
 }
@@ -93,6 +117,28 @@ struct DecodedHeader {
   std::uint64_t payload_checksum = 0;
 };
 
+void decode_texel_block(const std::string& path, const unsigned char* p, Header* h) {
+  h->texel_width = get_u32(p);
+  h->texel_height = get_u32(p + 4);
+  h->uv_set = get_u32(p + 8);
+  if (get_u32(p + 12) != 0) fail_file(path, "corrupt header: reserved texel field is not 0");
+  h->uv_fingerprint = get_u64(p + 16);
+  if (h->texel_width == 0) fail_file(path, "lightmap size 0x" + std::to_string(h->texel_height) + " out of range 1..16384");
+}
+
+// The block count is bounded by the file size before it is multiplied (2^62 + 4 would wrap).
+void check_payload_size(const std::string& path, const DecodedHeader& d, std::uint64_t file_size) {
+  const Header& h = d.header;
+  const char* blocks = h.is_texel() ? " texels" : " vertices";
+  if (h.block_count() > file_size / (sections_of(h) * h.values_per_vertex() * scalar_bytes(h.scalar)))
+    fail_file(path, "corrupt header: " + std::to_string(h.block_count()) + blocks + " do not fit in a file of " +
+                        std::to_string(file_size) + " bytes");
+  std::uint64_t expected = coverage_bytes(h) + sections_of(h) * h.block_count() * h.values_per_vertex() * scalar_bytes(h.scalar);
+  if (d.payload_bytes != expected)
+    fail_file(path, std::string("corrupt header: payload size does not match ") +
+                        (h.is_texel() ? "lightmap size" : "vertex count") + ", bands and channels");
+}
+
 DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uint64_t file_size) {
   if (file_size < kFixedHeaderBytes + 8) fail_file(path, "truncated: " + std::to_string(file_size) + " bytes is shorter than a transfer header");
   std::string fixed(kFixedHeaderBytes, '\0');
@@ -101,11 +147,12 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   const auto* p = reinterpret_cast<const unsigned char*>(fixed.data());
   if (std::memcmp(p, kMagic, 8) != 0) fail_file(path, "not a prt transfer file (wrong magic)");
   std::uint32_t version = get_u32(p + 8);
-  if (version != kVersion && version != kVersionBounce)
-    fail_file(path, "unsupported transfer file version " + std::to_string(version) + " (this prt reads versions 1 and 2)");
+  if (version < kVersion || version > kVersionTexelBounce)
+    fail_file(path, "unsupported transfer file version " + std::to_string(version) + " (this prt reads versions 1 to 4)");
   DecodedHeader d;
   Header& h = d.header;
-  h.bounce_only_section = version == kVersionBounce;
+  h.bounce_only_section = version == kVersionBounce || version == kVersionTexelBounce;
+  const bool texel = version >= kVersionTexel;
   h.kind = static_cast<Kind>(get_u32(p + 12));
   h.bands = get_u32(p + 16);
   h.bands_out = get_u32(p + 20);
@@ -118,7 +165,8 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   d.payload_checksum = get_u64(p + 64);
   std::uint32_t params = get_u32(p + 72);
   if (params > kMaxParametersBytes) fail_file(path, "corrupt header: parameters block of " + std::to_string(params) + " bytes");
-  std::uint64_t padded = (kFixedHeaderBytes + params + 7) / 8 * 8;
+  const std::uint64_t padded_params = (kFixedHeaderBytes + params + 7) / 8 * 8;
+  const std::uint64_t padded = padded_params + (texel ? kTexelBlockBytes : 0);
   d.header_bytes = padded + 8;
   if (file_size < d.header_bytes) fail_file(path, "truncated header");
   std::string rest(static_cast<std::size_t>(d.header_bytes - kFixedHeaderBytes), '\0');
@@ -128,14 +176,10 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   std::uint64_t stored = get_u64(reinterpret_cast<const unsigned char*>(all.data()) + padded);
   if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != stored) fail_file(path, "header checksum mismatch (file is corrupt)");
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
+  if (texel) decode_texel_block(path, reinterpret_cast<const unsigned char*>(all.data()) + padded_params, &h);
   check_json_depth(h.parameters_json, path);
   validate(path, h);
-  // The vertex count is bounded by the file size before it is multiplied (2^62 + 4 would wrap).
-  if (h.vertex_count > file_size / (sections_of(h) * h.values_per_vertex() * scalar_bytes(h.scalar)))
-    fail_file(path, "corrupt header: " + std::to_string(h.vertex_count) + " vertices do not fit in a file of " +
-                        std::to_string(file_size) + " bytes");
-  std::uint64_t expected = sections_of(h) * h.vertex_count * h.values_per_vertex() * scalar_bytes(h.scalar);
-  if (d.payload_bytes != expected) fail_file(path, "corrupt header: payload size does not match vertex count, bands and channels");
+  check_payload_size(path, d, file_size);
   if (file_size < d.header_bytes + d.payload_bytes)
     fail_file(path, "truncated: payload has " + std::to_string(file_size - d.header_bytes) + " of " +
                         std::to_string(d.payload_bytes) + " bytes");
@@ -173,6 +217,10 @@ const char* kind_name(Kind kind) {
 }
 
 bool is_glossy(Kind kind) { return kind == Kind::glossy_shadowed || kind == Kind::glossy_interreflected; }
+
+std::uint64_t Header::block_count() const {
+  return is_texel() ? static_cast<std::uint64_t>(texel_width) * texel_height : vertex_count;
+}
 
 std::uint64_t Header::values_per_vertex() const {
   std::uint64_t in = static_cast<std::uint64_t>(bands) * bands;
@@ -216,8 +264,10 @@ void decode_values(const unsigned char* p, std::size_t count, Scalar scalar, std
 void write_transfer(const std::string& path, const TransferData& data) {
   const Header& h = data.header;
   validate(path, h);
-  if (data.values.size() != h.vertex_count * h.values_per_vertex())
+  if (data.values.size() != h.block_count() * h.values_per_vertex())
     fail_file(path, "internal: value count does not match the header");
+  if (data.coverage.size() != (h.is_texel() ? h.block_count() : 0))
+    fail_file(path, "internal: coverage mask does not match the header");
   if (h.bounce_only_section != !data.bounce_only.empty() || (h.bounce_only_section && data.bounce_only.size() != data.values.size()))
     fail_file(path, "internal: bounce-only section does not match the header");
   const std::vector<const std::vector<float>*> sections =
@@ -227,15 +277,19 @@ void write_transfer(const std::string& path, const TransferData& data) {
   // transfer is ever held in memory.
   constexpr std::size_t kChunk = 1 << 16;
   std::string chunk;
-  std::uint64_t checksum = kFnvOffset;
+  std::string mask(data.coverage.begin(), data.coverage.end());
+  mask.resize(static_cast<std::size_t>(coverage_bytes(h)), '\0');
+  std::uint64_t checksum = fnv1a64(mask.data(), mask.size(), kFnvOffset);
   for (const std::vector<float>* values : sections)
     for (std::size_t first = 0; first < values->size(); first += kChunk) {
       encode_values(*values, first, std::min(kChunk, values->size() - first), h.scalar, chunk);
       checksum = fnv1a64(chunk.data(), chunk.size(), checksum);
     }
-  const std::string header = encode_header(h, sections.size() * data.values.size() * scalar_bytes(h.scalar), checksum);
+  const std::string header =
+      encode_header(h, mask.size() + sections.size() * data.values.size() * scalar_bytes(h.scalar), checksum);
   AtomicFile file(path);
   file.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
+  file.stream().write(mask.data(), static_cast<std::streamsize>(mask.size()));
   for (const std::vector<float>* values : sections)
     for (std::size_t first = 0; first < values->size(); first += kChunk) {
       encode_values(*values, first, std::min(kChunk, values->size() - first), h.scalar, chunk);
@@ -254,8 +308,30 @@ void check_payload_range(const std::string& path, const TransferData& data) {
     for (std::size_t i = 0; i < section->size(); ++i)
       if (!(std::abs((*section)[i]) <= kMaxTransferMagnitude))
         fail_file(path, std::string(section == &data.values ? "" : "bounce-only ") + "payload value " + std::to_string(i % per_vertex) +
-                            " of vertex " + std::to_string(i / per_vertex) +
+                            (data.header.is_texel() ? " of texel " : " of vertex ") + std::to_string(i / per_vertex) +
                             (std::isfinite((*section)[i]) ? " is out of range (|v| > 1e15)" : " is not finite"));
+}
+
+// Texel files: mask values 0, 1, 2 only, zero padding, and empty texels' values all zero.
+void decode_coverage(const std::string& path, const unsigned char* p, TransferData* data) {
+  const Header& h = data->header;
+  const std::size_t texels = static_cast<std::size_t>(h.block_count());
+  data->coverage.assign(p, p + texels);
+  for (std::size_t t = 0; t < texels; ++t)
+    if (data->coverage[t] > kTexelGutter)
+      fail_file(path, "coverage of texel " + std::to_string(t) + " is " + std::to_string(data->coverage[t]) + " (0, 1 or 2 expected)");
+  for (std::size_t t = texels; t < coverage_bytes(h); ++t)
+    if (p[t] != 0) fail_file(path, "coverage padding is not zero");
+}
+
+void check_empty_texels(const std::string& path, const TransferData& data) {
+  const std::size_t per = static_cast<std::size_t>(data.header.values_per_vertex());
+  for (std::size_t t = 0; t < data.coverage.size(); ++t) {
+    if (data.coverage[t] != kTexelEmpty) continue;
+    for (const std::vector<float>* section : {&data.values, &data.bounce_only})
+      for (std::size_t k = 0; k < per && !section->empty(); ++k)
+        if ((*section)[t * per + k] != 0.0f) fail_file(path, "empty texel " + std::to_string(t) + " has a non-zero value");
+  }
 }
 
 }  // namespace
@@ -274,11 +350,14 @@ TransferData read_transfer(const std::string& path) {
   if (fnv1a64(payload.data(), payload.size()) != d.payload_checksum) fail_file(path, "payload checksum mismatch (file is corrupt)");
   TransferData data;
   data.header = d.header;
-  const std::size_t count = static_cast<std::size_t>(d.header.vertex_count * d.header.values_per_vertex());
+  const std::size_t count = static_cast<std::size_t>(d.header.block_count() * d.header.values_per_vertex());
   const auto* p = reinterpret_cast<const unsigned char*>(payload.data());
+  if (d.header.is_texel()) decode_coverage(path, p, &data);
+  p += coverage_bytes(d.header);
   decode_values(p, count, d.header.scalar, data.values);
   if (d.header.bounce_only_section) decode_values(p + count * scalar_bytes(d.header.scalar), count, d.header.scalar, data.bounce_only);
   check_payload_range(path, data);
+  check_empty_texels(path, data);
   return data;
 }
 
@@ -293,6 +372,14 @@ void check_mesh_match(const std::string& path, const Header& h, std::uint64_t ve
   }
 }
 
+void check_uv_match(const std::string& path, const Header& h, std::uint64_t fingerprint) {
+  if (!h.is_texel() || h.uv_fingerprint == fingerprint) return;
+  std::ostringstream msg;
+  msg << "transfer was baked for different lightmap UVs (file: UV fingerprint " << std::hex << h.uv_fingerprint
+      << "; mesh: " << fingerprint << std::dec << ")";
+  fail_file(path, msg.str());
+}
+
 std::string describe(const Header& h) {
   std::ostringstream s;
   s << "kind: " << kind_name(h.kind) << "\n";
@@ -303,8 +390,14 @@ std::string describe(const Header& h) {
   s << "vertices: " << h.vertex_count << "\n";
   s << "triangles: " << h.triangle_count << "\n";
   s << "mesh fingerprint: " << std::hex << h.mesh_fingerprint << std::dec << "\n";
-  s << "values per vertex: " << h.values_per_vertex() << "\n";
-  s << "bounce-only section: " << (h.bounce_only_section ? "yes (version 2)" : "no") << "\n";
+  if (h.is_texel()) {
+    s << "lightmap: " << h.texel_width << "x" << h.texel_height << " texels (UV set " << h.uv_set << ", UV fingerprint "
+      << std::hex << h.uv_fingerprint << std::dec << ")\n";
+    s << "values per texel: " << h.values_per_vertex() << "\n";
+  } else {
+    s << "values per vertex: " << h.values_per_vertex() << "\n";
+  }
+  s << "bounce-only section: " << (h.bounce_only_section ? "yes (version " + std::to_string(version_of(h)) + ")" : "no") << "\n";
   s << "parameters: " << h.parameters_json << "\n";
   return s.str();
 }

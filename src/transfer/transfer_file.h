@@ -4,6 +4,11 @@
 //
 // A transfer file belongs to one mesh: it stores the mesh's vertex count, triangle count and
 // fingerprint (prt::mesh::fingerprint), and readers check them against the mesh they are given.
+//
+// Two variants: PER-VERTEX (versions 1, 2: one block of values per mesh vertex) and TEXEL (versions
+// 3, 4: a lightmap, one block per texel of a width x height grid over the mesh's lightmap UVs, plus a
+// coverage mask; docs/formats.md "Texel transfer files", docs/conventions.md "Lightmap texels").
+// Texel files hold diffuse kinds only (glossy matrices per texel wait for transfer compression).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,16 +48,42 @@ struct Header {
   /// version 2, interreflected kinds only). Version 1 files have none.
   bool bounce_only_section = false;
 
+  /// TEXEL files (lightmaps) only; texel_width == 0 marks a per-vertex file. A texel file's blocks are
+  /// per texel, texel_width * texel_height of them in row-major order (texel (i, j) at i + j * width,
+  /// row j = 0 the image's top row, v = 0); vertex_count stays the mesh's vertex count (for
+  /// check_mesh_match). Width and height 1..kMaxTexelSide each.
+  std::uint32_t texel_width = 0, texel_height = 0;
+  std::uint32_t uv_set = 0;            ///< the mesh's lightmap UV set (glTF TEXCOORD_<n>; 0 for OBJ, PLY)
+  std::uint64_t uv_fingerprint = 0;    ///< prt::mesh::uv_fingerprint of the mesh baked (check_uv_match)
+
+  bool is_texel() const { return texel_width != 0; }
+  /// Blocks of values: texel_width * texel_height for a texel file, else vertex_count.
+  std::uint64_t block_count() const;
+
   /// Floats per vertex: channels * bands^2 (diffuse) or channels * bands_out^2 * bands^2 (glossy).
   std::uint64_t values_per_vertex() const;
 };
 
-/// A transfer file in memory. `values` is vertex-major: vertex v's block starts at
-/// v * header.values_per_vertex(); inside a block channel-major, then (glossy) row-major
-/// [out coefficient][in coefficient]. Always float32 in memory, whatever the file's scalar type.
+/// Largest lightmap side a texel file may have.
+inline constexpr std::uint32_t kMaxTexelSide = 16384;
+
+/// Texel coverage values (TransferData::coverage).
+enum Coverage : std::uint8_t {
+  kTexelEmpty = 0,    ///< no triangle and no gutter: values all zero
+  kTexelCovered = 1,  ///< a triangle touches the texel (conservative rasterization): baked at its sample point
+  kTexelGutter = 2,   ///< in a chart's gutter: values dilated from covered texels (docs/conventions.md, "Lightmap texels")
+};
+
+/// A transfer file in memory. `values` is block-major (a block per vertex, or per texel in row-major
+/// texel order for a texel file): block b starts at b * header.values_per_vertex(); inside a block
+/// channel-major, then (glossy) row-major [out coefficient][in coefficient]. Always float32 in
+/// memory, whatever the file's scalar type.
 struct TransferData {
   Header header;
   std::vector<float> values;
+  /// Texel files only: texel_width * texel_height Coverage values, row-major as the blocks; empty
+  /// for per-vertex files.
+  std::vector<std::uint8_t> coverage;
   /// Interreflected kinds only, optional: the BOUNCE-ONLY part of `values` (interreflected minus the
   /// direct, shadowed pass), same layout and size as `values`; empty when the file has none (version 1
   /// files). A renderer that shades a disc (light/disc.h) exactly applies this part to the disc's SH
@@ -77,6 +108,10 @@ TransferData read_transfer(const std::string& path);
 /// vertex count, triangle count and fingerprint match.
 void check_mesh_match(const std::string& path, const Header& header, std::uint64_t vertex_count,
                       std::uint64_t triangle_count, std::uint64_t fingerprint);
+
+/// Texel files: throws prt::Error("<path>: transfer was baked for different lightmap UVs (...)")
+/// unless header.uv_fingerprint == fingerprint. Per-vertex files: no check.
+void check_uv_match(const std::string& path, const Header& header, std::uint64_t fingerprint);
 
 /// Multi-line human-readable description of a header, for `prt info`.
 std::string describe(const Header& header);
