@@ -38,19 +38,57 @@ void validate_options(const BakeOptions& o) {
     if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
 }
 
-namespace {
-
 bool all_grey(const std::vector<glm::vec3>& albedo) {
   for (const glm::vec3& a : albedo)
     if (a.r != a.g || a.r != a.b) return false;
   return true;
 }
 
-double pass_energy(const std::vector<float>& values, std::size_t vertex_stride, std::size_t channel_stride, int channels) {
+double pass_energy(const std::vector<float>& values, std::size_t point_stride, std::size_t channel_stride, int channels) {
   double sum = 0.0;
-  for (std::size_t base = 0; base < values.size(); base += vertex_stride)
+  for (std::size_t base = 0; base < values.size(); base += point_stride)
     for (int c = 0; c < channels; ++c) sum += values[base + c * channel_stride];
   return sum;
+}
+
+std::vector<float> apply_albedo(std::vector<float>&& geometric, const std::vector<glm::vec3>& albedo, int channels, std::size_t n) {
+  const std::size_t points = albedo.size();
+  if (channels == 1) {
+    std::vector<float> values = std::move(geometric);
+    for (std::size_t v = 0; v < points; ++v)
+      for (std::size_t i = 0; i < n; ++i) values[v * n + i] *= albedo[v].r;
+    return values;
+  }
+  const std::size_t stride = 3 * n;
+  std::vector<float> values(points * stride, 0.0f);
+  for (std::size_t v = 0; v < points; ++v)
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i) values[v * stride + c * n + i] = albedo[v][c] * geometric[v * n + i];
+  std::vector<float>().swap(geometric);
+  return values;
+}
+
+void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const BakeOptions& options,
+                  std::vector<float> prev, const PrevFromNext& prev_from_next, std::vector<float>& values,
+                  std::vector<float>& bounce_only, BakeReport& rep) {
+  const std::size_t n = static_cast<std::size_t>(options.bands) * options.bands;
+  const std::size_t stride = n * static_cast<std::size_t>(channels);
+  const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
+  std::vector<float> next;
+  bounce_only.assign(values.size(), 0.0f);
+  for (int b = 1; b <= max_passes; ++b) {
+    const std::string label = "bake bounce " + std::to_string(b);
+    rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
+    for (std::size_t i = 0; i < next.size(); ++i) {
+      values[i] += next[i];
+      bounce_only[i] += next[i];
+    }
+    const double energy = pass_energy(next, stride, n, channels);
+    rep.pass_energy.push_back(energy);
+    rep.bounces_done = b;
+    if (options.bounces < 0 && !(energy >= kBounceEnergyThreshold * rep.pass_energy.front())) break;
+    if (b < max_passes) prev_from_next(next, prev);
+  }
 }
 
 std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bounces_done, float ray_offset) {
@@ -74,8 +112,6 @@ std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bo
     j["albedo"] = "mesh";
   return j.dump();
 }
-
-}  // namespace
 
 std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback) {
   if (!mesh.albedo.empty()) return mesh.albedo;
@@ -109,7 +145,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   float ray_offset = 0.0f;
   if (options.kind == transfer::Kind::unshadowed) {
     auto start = std::chrono::steady_clock::now();
-    unshadowed_geometric(mesh, options.bands, options.threads, geometric);
+    unshadowed_geometric(mesh.normals, options.bands, options.threads, geometric);
     rep.seconds_visibility = seconds_since(start);
   }
 
@@ -130,40 +166,16 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     rep.seconds_visibility = seconds_since(start);
   }
 
-  if (channels == 1) {
-    data.values = std::move(geometric);
-    for (std::size_t v = 0; v < vertices; ++v)
-      for (std::size_t i = 0; i < n; ++i) data.values[v * n + i] *= albedo[v].r;
-  } else {
-    data.values.assign(vertices * stride, 0.0f);
-    for (std::size_t v = 0; v < vertices; ++v)
-      for (int c = 0; c < 3; ++c)
-        for (std::size_t i = 0; i < n; ++i) data.values[v * stride + c * n + i] = albedo[v][c] * geometric[v * n + i];
-    std::vector<float>().swap(geometric);
-  }
+  data.values = apply_albedo(std::move(geometric), albedo, channels, n);
   rep.pass_energy.push_back(pass_energy(data.values, stride, n, channels));
 
   if (options.kind == transfer::Kind::interreflected) {
     auto start = std::chrono::steady_clock::now();
-    const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
-    std::vector<float> prev = data.values, next;
     // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
     // renderer can shade a disc's direct light exactly and only its bounces through the transfer.
-    data.bounce_only.assign(data.values.size(), 0.0f);
     h.bounce_only_section = true;
-    for (int b = 1; b <= max_passes; ++b) {
-      const std::string label = "bake bounce " + std::to_string(b);
-      rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
-      for (std::size_t i = 0; i < next.size(); ++i) {
-        data.values[i] += next[i];
-        data.bounce_only[i] += next[i];
-      }
-      const double energy = pass_energy(next, stride, n, channels);
-      rep.pass_energy.push_back(energy);
-      rep.bounces_done = b;
-      prev.swap(next);
-      if (options.bounces < 0 && !(energy >= kBounceEnergyThreshold * rep.pass_energy.front())) break;
-    }
+    interreflect(ctx, albedo, channels, options, data.values, [](std::vector<float>& next, std::vector<float>& prev) { prev.swap(next); },
+                 data.values, data.bounce_only, rep);
     rep.seconds_bounces = seconds_since(start);
   }
 

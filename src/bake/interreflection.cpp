@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 
@@ -57,6 +58,30 @@ class WeightMap {
   std::size_t mask_ = 0;
 };
 
+// The hit's lightmap UV (barycentric over the triangle's corner UVs) spread bilinearly over the four
+// nearest texel centres of `grid` (clamped to the edge); empty texels are left out and the remaining
+// weights renormalised, so a hit beside a chart without gutter still reads the chart's own values.
+void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, float v, WeightMap& weights) {
+  const glm::vec2* c = grid.corner_uv->data() + 3 * triangle;
+  const glm::vec2 uv = (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
+  const float x = uv.x * static_cast<float>(grid.width) - 0.5f, y = uv.y * static_cast<float>(grid.height) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float ax = x - fx, ay = y - fy;
+  std::uint32_t texel[4];
+  float w[4];
+  float total = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    const int i = std::clamp(static_cast<int>(fx) + (k & 1), 0, grid.width - 1);
+    const int j = std::clamp(static_cast<int>(fy) + (k >> 1), 0, grid.height - 1);
+    texel[k] = static_cast<std::uint32_t>(i + j * grid.width);
+    w[k] = ((*grid.coverage)[texel[k]] == 0) ? 0.0f : ((k & 1) ? ax : 1.0f - ax) * ((k >> 1) ? ay : 1.0f - ay);
+    total += w[k];
+  }
+  if (!(total > 0.0f)) return;
+  for (int k = 0; k < 4; ++k)
+    if (w[k] > 0.0f) weights.add(texel[k], w[k] / total);
+}
+
 // Per chunk: merges the barycentric weights of v's front-face hits per hit vertex, then reads each
 // distinct vertex's previous transfer once.
 class BounceWorker {
@@ -65,7 +90,7 @@ class BounceWorker {
                std::vector<float>& next)
       : ctx_(ctx), albedo_(albedo), channels_(channels), prev_(prev), next_(next),
         n_(static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands), stride_(n_ * channels),
-        weights_(3 * ctx.samples->directions.size()), gathered_(stride_) {}
+        weights_(4 * ctx.samples->directions.size()), gathered_(stride_) {}
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
 
@@ -78,6 +103,10 @@ class BounceWorker {
       const glm::vec3& p0 = mesh.positions[tri[0]];
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
+      if (ctx_.grid) {
+        add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, weights_);
+        continue;
+      }
       weights_.add(tri[0], 1.0f - hit.u - hit.v);
       weights_.add(tri[1], hit.u);
       weights_.add(tri[2], hit.v);
@@ -114,8 +143,9 @@ class BounceWorker {
 
 std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label) {
-  next.assign(prev.size(), 0.0f);
-  Progress progress(label, "vertices", ctx.mesh->positions.size(), ctx.progress);
+  const std::size_t stride = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands * static_cast<std::size_t>(channels);
+  next.assign(ctx.point_count() * stride, 0.0f);
+  Progress progress(label, ctx.point_unit(), ctx.point_count(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::closest_hit), progress,
                                   [&] { return BounceWorker(ctx, albedo, channels, prev, next); });
 }

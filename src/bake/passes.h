@@ -1,12 +1,16 @@
 #pragma once
-// Internal to prt_bake: the passes of a diffuse bake. All buffers are vertex-major; "geometric"
-// transfer has no albedo (bands^2 floats per vertex), "channel" transfer has `channels` blocks of
-// bands^2 floats per vertex (docs/formats.md payload layout).
+// Internal to prt_bake (and the lightmap baker, src/lightmap): the passes of a diffuse bake. All
+// buffers are point-major; "geometric" transfer has no albedo (bands^2 floats per point), "channel"
+// transfer has `channels` blocks of bands^2 floats per point (docs/formats.md payload layout). The
+// points are the mesh's vertices, or (PassContext::points) the texel sample points of a lightmap.
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "bake/bake.h"
 #include "bake/vertex_samples.h"
 #include "core/progress.h"
 #include "mesh/mesh.h"
@@ -14,6 +18,21 @@
 #include "trace/vertex_rays.h"
 
 namespace prt::bake {
+
+/// Surface sample points other than the mesh's vertices: unit normals, one per position.
+struct SamplePoints {
+  const std::vector<glm::vec3>* positions = nullptr;
+  const std::vector<glm::vec3>* normals = nullptr;
+};
+
+/// Where a bounce pass reads the previous pass's transfer at a hit: a texel grid over the mesh's
+/// lightmap UVs, filtered bilinearly (texel centres at ((i + 0.5)/W, (j + 0.5)/H), clamped to the
+/// edge; texels of weight-0 coverage (kTexelEmpty) are left out and the other weights renormalised).
+struct TexelGrid {
+  const std::vector<glm::vec2>* corner_uv = nullptr;     ///< mesh.lightmap_uv
+  const std::vector<std::uint8_t>* coverage = nullptr;   ///< width x height, transfer::Coverage
+  int width = 0, height = 0;
+};
 
 /// What every ray-tracing pass shares.
 struct PassContext {
@@ -24,11 +43,17 @@ struct PassContext {
   std::uint32_t seed = 0;
   int threads = 0;
   bool progress = false;
+  SamplePoints points{};         ///< null members: the mesh's vertices
+  const TexelGrid* grid = nullptr;  ///< null: bounce passes gather per vertex (barycentric)
 
-  /// The per-vertex ray loop of this context (trace/vertex_rays.h) with query `query`.
+  /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`.
   trace::VertexRays rays(trace::Query query) const {
-    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query};
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals};
   }
+  const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
+  std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }
+  /// What the loop calls a point in its progress bar.
+  const char* point_unit() const { return points.positions ? "texels" : "vertices"; }
 };
 
 /// (1/pi) A_l, l < bands: the clamped-cosine factors of the unshadowed transfer.
@@ -37,17 +62,44 @@ std::vector<double> unshadowed_factors(int bands);
 /// (1/pi) A_l Y_lm(n) at one unit normal: the albedo-free unshadowed transfer (bands^2 floats).
 void unshadowed_vertex(int bands, const std::vector<double>& factors, const glm::vec3& normal, float* out);
 
-/// The albedo-free unshadowed transfer of every vertex, closed form.
-void unshadowed_geometric(const mesh::Mesh& mesh, int bands, int threads, std::vector<float>& out);
+/// The albedo-free unshadowed transfer at every normal (a mesh's vertices, or sample points), closed form.
+void unshadowed_geometric(const std::vector<glm::vec3>& normals, int bands, int threads, std::vector<float>& out);
 
 /// The albedo-free shadowed transfer of every vertex with the control-variate estimator (bake.h).
 /// Returns the number of rays traced.
 std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out);
 
 /// One interreflection pass: next[v] = albedo_v / S * sum over front-face hits of prev interpolated at
-/// the hit. `albedo` has one entry per vertex; `channels` is 1 (albedo grey: its red value is used) or 3.
-/// Returns the number of rays traced.
+/// the hit (barycentrically over the hit triangle's vertices, or bilinearly in ctx.grid). `albedo` has
+/// one entry per point; `channels` is 1 (albedo grey: its red value is used) or 3. `prev` has a block
+/// per vertex (per texel of ctx.grid); `next` gets one per point. Returns the number of rays traced.
 std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label);
+
+/// Shared by the vertex and the texel (src/lightmap) bakes.
+/// True if every albedo is grey (r = g = b): the transfer then has one channel.
+bool all_grey(const std::vector<glm::vec3>& albedo);
+
+/// Channel transfer from albedo-free transfer: `channels` (1: albedo.r folded in; 3: one block per
+/// channel) blocks of n floats per point. `geometric` is consumed.
+std::vector<float> apply_albedo(std::vector<float>&& geometric, const std::vector<glm::vec3>& albedo, int channels, std::size_t n);
+
+/// A pass's energy: the sum over points and channels of the l = 0 coefficient (bake.h).
+double pass_energy(const std::vector<float>& values, std::size_t point_stride, std::size_t channel_stride, int channels);
+
+/// Turns a bounce pass's per-point result `next` into the `prev` buffer the following pass gathers
+/// from (vertex bakes: the same buffer, swapped; texel bakes: scattered into the texel grid and dilated).
+using PrevFromNext = std::function<void(std::vector<float>& next, std::vector<float>& prev)>;
+
+/// The interreflection passes after the direct pass (bounce rule of BakeOptions::bounces):
+/// `values` (per point, the direct pass) gains every pass; `bounce_only` (resized) receives their sum
+/// alone. `prev` starts as what the first pass gathers from. Fills rep's bounces_done, pass_energy
+/// (after the direct pass's entry) and rays_traced.
+void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const BakeOptions& options,
+                  std::vector<float> prev, const PrevFromNext& prev_from_next, std::vector<float>& values,
+                  std::vector<float>& bounce_only, BakeReport& rep);
+
+/// The bake parameters block of a diffuse transfer file (JSON object text).
+std::string parameters_json(const BakeOptions& options, const mesh::Mesh& mesh, int bounces_done, float ray_offset);
 
 }  // namespace prt::bake

@@ -24,7 +24,7 @@ class ShadowedWorker : public OccludedSamples<ShadowedWorker> {
   void finish(std::uint32_t v, const glm::mat3& frame) {
     const int bands = ctx_.samples->bands;
     float* o = out_.data() + static_cast<std::size_t>(v) * n_;
-    unshadowed_vertex(bands, factors_, ctx_.mesh->normals[v], o);
+    unshadowed_vertex(bands, factors_, ctx_.point_normals()[v], o);
     if (!any_occluded()) return;
     const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
     sh::rotate(bands, frame, local_sum_.data(), world_sum_.data());
@@ -44,8 +44,8 @@ class ShadowedWorker : public OccludedSamples<ShadowedWorker> {
 std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out) {
   const std::size_t n = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands;
   const std::vector<double> factors = unshadowed_factors(ctx.samples->bands);
-  out.assign(ctx.mesh->positions.size() * n, 0.0f);
-  Progress progress("bake shadowed", "vertices", ctx.mesh->positions.size(), ctx.progress);
+  out.assign(ctx.point_count() * n, 0.0f);
+  Progress progress("bake shadowed", ctx.point_unit(), ctx.point_count(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::occluded), progress,
                                   [&] { return ShadowedWorker(ctx, factors, out); });
 }

@@ -22,12 +22,12 @@ void unshadowed_vertex(int bands, const std::vector<double>& factors, const glm:
     for (int m = -l; m <= l; ++m) out[sh::index(l, m)] = static_cast<float>(factors[l] * y[sh::index(l, m)]);
 }
 
-void unshadowed_geometric(const mesh::Mesh& mesh, int bands, int threads, std::vector<float>& out) {
+void unshadowed_geometric(const std::vector<glm::vec3>& normals, int bands, int threads, std::vector<float>& out) {
   const std::size_t n = static_cast<std::size_t>(bands) * bands;
   const std::vector<double> factors = unshadowed_factors(bands);
-  out.assign(mesh.positions.size() * n, 0.0f);
-  parallel_for(mesh.positions.size(), 1024, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) unshadowed_vertex(bands, factors, mesh.normals[v], out.data() + v * n);
+  out.assign(normals.size() * n, 0.0f);
+  parallel_for(normals.size(), 1024, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) unshadowed_vertex(bands, factors, normals[v], out.data() + v * n);
   });
 }
 

@@ -6,6 +6,7 @@
 #include "bake/bake.h"
 #include "brdf/brdf.h"
 #include "cli/arguments.h"
+#include "cli/cmd_bake_lightmap.h"
 #include "cli/cmd_compress.h"
 #include "cli/output_paths.h"
 #include "cli/commands.h"
@@ -36,6 +37,9 @@ struct BakeCommandOptions {
   int threads = 0;
   bool quiet = false;
   bool float16 = false;
+  std::string lightmap;  // "WxH" or "SIZE": bake texels (cmd_bake_lightmap.h)
+  int gutter = 2;
+  bool no_repair = false;
 };
 
 void run_bake(const BakeCommandOptions& o) {
@@ -55,6 +59,11 @@ void run_bake(const BakeCommandOptions& o) {
   }
   options.bands_out = o.bands_out;
   bake::validate_options(options);
+  if (!o.lightmap.empty()) {
+    if (!o.compress.empty()) fail("--compress applies to per-vertex transfer only (not with --lightmap)");
+    run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16, o.quiet});
+    return;
+  }
   int clusters = 0, pca = 0;
   if (!o.compress.empty() && !parse_compress_setting(o.compress, clusters, pca))
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
@@ -132,6 +141,12 @@ void add_bake_command(CLI::App& app) {
   cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
   cmd->add_option("--compress", options->compress,
                   "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file");
+  cmd->add_option("--lightmap", options->lightmap,
+                  "WxH or SIZE: bake transfer per texel of the mesh's lightmap UVs (glTF TEXCOORD_1, else TEXCOORD_0; OBJ vt) "
+                  "instead of per vertex (diffuse kinds)");
+  cmd->add_option("--gutter", options->gutter, "--lightmap: gutter (chart dilation) in texels, 0..64")->capture_default_str();
+  cmd->add_flag("--no-sample-repair", options->no_repair,
+                "--lightmap: keep texel samples that lie inside geometry where they are (default: move them out)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar or summary");
   cmd->callback([options] { run_bake(*options); });
 }

@@ -11,6 +11,7 @@
 #include "brdf/brdf.h"
 #include "camera/camera.h"
 #include "cli/arguments.h"
+#include "cli/cmd_reference_texels.h"
 #include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -42,6 +43,7 @@ struct ReferenceCommandOptions {
   bool quiet = false;
   // --image and the options that only it takes (as `prt render`'s).
   bool image = false;
+  std::string texels;  // a lightmap (.prt): the reference at its texel sample points (cmd_reference_texels.h)
   std::string camera = "auto", size = "1024x1024", rotate, object_rotate, background = "env", tone_map = "aces";
   double exposure = 0.0;
 };
@@ -144,7 +146,10 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
   if (glossy || !o.eye.empty() || given.brdf_bands) glossy_reference = glossy_options(o, given, options);
   const std::string extension = lower_extension(o.output);
   reference::ImageOptions image;
-  if (o.image) {
+  if (!o.texels.empty()) {
+    if (o.image || glossy) fail("--texels: the texel reference is diffuse, without --image");
+    if (extension != ".exr") fail_file(o.output, "--texels output must be .exr (linear radiance per texel)");
+  } else if (o.image) {
     image = image_options(o, extension);
   } else {
     if (!given.image_only.empty()) fail(given.image_only.front() + " is an option of --image");
@@ -152,7 +157,7 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
       fail_file(o.output, extension == ".exr" || extension == ".png" ? "an image output needs --image"
                                                                      : "output must be .ply (or .exr/.png with --image)");
   }
-  check_outputs({o.output}, {o.mesh_path, o.env, o.brdf});
+  check_outputs({o.output}, {o.mesh_path, o.env, o.brdf, o.texels});
 
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, o.quiet);
   light::Environment environment = light::load_environment(o.env);
@@ -164,6 +169,10 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
   }
   const reference::EnvironmentSampler sampler(std::move(environment));
 
+  if (!o.texels.empty()) {
+    run_reference_texels(mesh, o.mesh_path, sampler, options, o.texels, o.output, o.quiet);
+    return;
+  }
   if (!o.image) {
     reference::ReferenceReport report;
     const std::vector<glm::vec3> radiance = glossy ? reference::glossy_vertex_radiance(mesh, sampler, glossy_reference, &report)
@@ -209,6 +218,9 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar or summary");
+  cmd->add_option("--texels", options->texels,
+                  "LIGHTMAP.prt (prt bake --lightmap): the reference at its texel sample points, as an .exr of the lightmap's "
+                  "size (covered texels; others 0)");
   cmd->add_flag("--image", options->image,
                 "Render an image from the camera of `prt render`: one ray per pixel centre, the outgoing radiance at "
                 "the hit (--samples paths), the environment (or black) behind");

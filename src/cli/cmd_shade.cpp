@@ -11,6 +11,8 @@
 #include "cli/lighting_input.h"
 #include "compress/cprt_file.h"
 #include "core/error.h"
+#include "image/image.h"
+#include "lightmap/lightmap_shading.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
 #include "shade/glossy.h"
@@ -27,6 +29,7 @@ struct ShadeCommandOptions {
   LightingArguments lighting;
   shade::DiscShadingOptions discs;
   bool quiet = false;
+  bool lightmap = false;  // texel transfer: write the lit lightmap (EXR)
   int threads = 0;
 };
 
@@ -37,11 +40,15 @@ bool has_extension(const std::string& path, const std::string& ext) {
 void run_shade(const ShadeCommandOptions& o) {
   if (o.env.empty() == o.light.empty()) fail("shade: give exactly one of --env ENV and --light LIGHT.json");
   const bool glb = has_extension(o.output, ".glb");
-  if (!glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
+  if (o.lightmap && !has_extension(o.output, ".exr")) fail_file(o.output, "--lightmap output must be .exr (linear radiance)");
+  if (!o.lightmap && !glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
   check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.light, o.brdf});
   const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, true);
   const transfer::TransferData transfer = compress::read_transfer_or_cprt(o.transfer_path);  // .prt or .cprt
+  if (transfer.header.is_texel() != o.lightmap)
+    fail_file(o.transfer_path, o.lightmap ? "--lightmap needs a lightmap (bake it with prt bake --lightmap WxH)"
+                                          : "is a lightmap: shade it with --lightmap -o OUT.exr");
   transfer::check_mesh_match(o.transfer_path, transfer.header, mesh.positions.size(), mesh.indices.size() / 3,
                              mesh::fingerprint(mesh));
   const bool glossy = transfer::is_glossy(transfer.header.kind);
@@ -54,6 +61,11 @@ void run_shade(const ShadeCommandOptions& o) {
   shade::DiscShadingOptions disc_options = o.discs;
   disc_options.threads = o.threads;
   shade::SplitReport report;
+  if (o.lightmap) {
+    image::write(o.output, lightmap::shade_lightmap(mesh, transfer, lighting, o.transfer_path, disc_options, &report));
+    if (!report.warning.empty()) std::fprintf(stderr, "prt: warning: %s\n", report.warning.c_str());
+    return;
+  }
   std::vector<glm::vec3> radiance;
   if (glossy) {
     // The BRDF matrix at the transfer's output bands, from --brdf or the BRDF recorded at bake time.
@@ -91,6 +103,9 @@ void add_shade_command(CLI::App& app) {
   add_lighting_options(cmd, options->lighting);
   cmd->add_option("--sun-samples", options->discs.samples, "Stratified shadow rays per vertex and disc (rounded up to a square)")
       ->capture_default_str();
+  cmd->add_flag("--lightmap", options->lightmap,
+                "TRANSFER is a lightmap (prt bake --lightmap): write the lit lightmap, one linear RGB texel per lightmap texel, as "
+                "-o OUT.exr");
   cmd->add_flag("-q,--quiet", options->quiet, "No summary line");
   cmd->callback([options] { run_shade(*options); });
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -62,9 +64,14 @@ void check_options(const ReferenceOptions& o) {
     if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
 }
 
-std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
-                                       const ReferenceOptions& options, ReferenceReport* report,
-                                       std::vector<glm::vec3>* standard_error) {
+namespace {
+
+// The diffuse estimate at every point: point k at positions[k], as make_point(tracer, scene, k) says.
+template <class MakePoint>
+std::vector<glm::vec3> diffuse_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
+                                        const ReferenceOptions& options, const std::vector<glm::vec3>& positions,
+                                        const char* label, ReferenceReport* report, std::vector<glm::vec3>* standard_error,
+                                        const MakePoint& make_point) {
   check_options(options);
   ReferenceReport local_report;
   ReferenceReport& rep = report ? *report : local_report;
@@ -77,10 +84,34 @@ std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const Environment
   rep.seconds_build = seconds_since(start);
   const PathTracer tracer(mesh, albedo, scene, environment, EstimatorOptions{options.bounces});
   return detail::trace_every_vertex<PathWorkspace>(
-      mesh, "reference", options.seed, options.samples, options.threads, options.progress, rep, standard_error,
+      positions, label, options.seed, options.samples, options.threads, options.progress, rep, standard_error,
       [&](std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
-        return tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
+        return tracer.outgoing_radiance(make_point(tracer, scene, v), options.samples, stream, workspace);
       });
+}
+
+}  // namespace
+
+std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
+                                       const ReferenceOptions& options, ReferenceReport* report,
+                                       std::vector<glm::vec3>* standard_error) {
+  return diffuse_radiance(mesh, environment, options, mesh.positions, "reference", report, standard_error,
+                          [](const PathTracer& tracer, const trace::Scene&, std::uint32_t v) { return tracer.vertex_point(v); });
+}
+
+std::vector<glm::vec3> point_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
+                                      const ReferenceOptions& options, const std::vector<PointSample>& points,
+                                      ReferenceReport* report) {
+  std::vector<glm::vec3> positions;
+  for (const PointSample& p : points) positions.push_back(p.position);
+  return diffuse_radiance(mesh, environment, options, positions, "reference points", report, nullptr,
+                          [&](const PathTracer&, const trace::Scene& scene, std::uint32_t k) {
+                            SurfacePoint point;
+                            point.normal = glm::normalize(glm::dvec3(points[k].normal));
+                            point.origin = glm::dvec3(scene.offset_origin(points[k].position, points[k].normal));
+                            point.albedo = glm::dvec3(points[k].albedo);
+                            return point;
+                          });
 }
 
 int band_limited_height(int bands) { return std::max(256, 16 * bands); }

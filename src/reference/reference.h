@@ -75,6 +75,18 @@ std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const Environment
                                        const ReferenceOptions& options, ReferenceReport* report = nullptr,
                                        std::vector<glm::vec3>* standard_error = nullptr);
 
+/// A surface point given explicitly (a lightmap texel's sample point): position, unit normal, albedo.
+struct PointSample {
+  glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f}, albedo{0.8f};
+};
+
+/// Outgoing radiance at each of `points` on the surface of `mesh`, estimated as vertex_radiance does
+/// for vertices (rays from Scene::offset_origin(position, normal); bounce hits use the mesh's
+/// interpolated albedo), point k with SampleStream(options.seed, k). Bit-identical for any thread count.
+std::vector<glm::vec3> point_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
+                                      const ReferenceOptions& options, const std::vector<PointSample>& points,
+                                      ReferenceReport* report = nullptr);
+
 /// Height in pixels of the equirect image band_limited_environment renders for `bands` bands:
 /// max(256, 16 * bands), width twice that. Why this is fine enough: the reconstruction is looked up
 /// bilinearly between texel centres (Environment::radiance); for a band-limited function the

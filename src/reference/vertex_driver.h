@@ -29,15 +29,16 @@ constexpr std::size_t kVerticesPerChunk = 8;
 void summarise_noise(const std::vector<glm::vec3>& radiance, const std::vector<glm::dvec3>& error,
                      ReferenceReport& rep, std::vector<glm::vec3>* standard_error);
 
-/// Runs `estimate(v, stream, workspace) -> RadianceEstimate` for every vertex of `mesh` in Morton
-/// order on `threads` threads, each vertex with SampleStream(seed, v). Fills rep.seconds_trace, rays,
-/// paths (= vertices * samples) and the noise figure; returns per-vertex radiance.
+/// Runs `estimate(v, stream, workspace) -> RadianceEstimate` for every point (a mesh's vertices, or
+/// other sample points) at `positions` in Morton order on `threads` threads, each point with
+/// SampleStream(seed, v). Fills rep.seconds_trace, rays, paths (= points * samples) and the noise
+/// figure; returns per-point radiance.
 template <class Workspace, class Estimate>
-std::vector<glm::vec3> trace_every_vertex(const mesh::Mesh& mesh, const char* label, std::uint32_t seed,
+std::vector<glm::vec3> trace_every_vertex(const std::vector<glm::vec3>& positions, const char* label, std::uint32_t seed,
                                           int samples, int threads, bool show_progress, ReferenceReport& rep,
                                           std::vector<glm::vec3>* standard_error, const Estimate& estimate) {
-  const std::size_t vertices = mesh.positions.size();
-  const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
+  const std::size_t vertices = positions.size();
+  const std::vector<std::uint32_t> order = trace::morton_order(positions);
   std::vector<glm::vec3> radiance(vertices);
   std::vector<glm::dvec3> error(vertices);
   std::atomic<std::uint64_t> rays{0};

@@ -55,13 +55,17 @@ std::vector<glm::vec3> clamped(std::vector<glm::vec3> radiance, const light::Sce
 
 std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
                                            const light::SceneLighting& lighting, const std::string& origin,
-                                           const DiscShadingOptions& options, SplitReport* report) {
+                                           const DiscShadingOptions& options, SplitReport* report,
+                                           const trace::Scene* shadow_scene_given) {
   std::vector<glm::vec3> out = shade_diffuse(transfer, lighting.sky);
   if (lighting.discs.empty()) return clamped(std::move(out), lighting);
   if (const auto bounce = bounce_part(transfer, origin, report))
     add_into(out, shade_diffuse(*bounce, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs)));
-  const auto scene = shadow_scene(mesh, transfer.header, options.threads);
-  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, scene.get(), options));
+  const auto scene = shadow_scene_given ? nullptr : shadow_scene(mesh, transfer.header, options.threads);
+  const trace::Scene* shadows = transfer.header.kind == transfer::Kind::unshadowed ? nullptr
+                                : shadow_scene_given                               ? shadow_scene_given
+                                                                                   : scene.get();
+  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, shadows, options));
   return clamped(std::move(out), lighting);
 }
 

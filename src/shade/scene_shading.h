@@ -20,6 +20,10 @@
 #include "shade/disc_direct.h"
 #include "transfer/transfer_file.h"
 
+namespace prt::trace {
+class Scene;
+}
+
 namespace prt::shade {
 
 /// What shading with discs could not do exactly, for a warning line (empty when all was exact).
@@ -29,9 +33,12 @@ struct SplitReport {
 
 /// Diffuse transfer: per-vertex outgoing radiance under `lighting`. `origin` names the transfer in
 /// errors and the warning. Throws prt::Error for a glossy transfer or mismatched sizes.
+/// `shadow_scene`: the scene the discs' shadow rays are traced against; null: built from `mesh` (a
+/// lightmap passes a mesh of texel sample points and the real scene).
 std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
                                            const light::SceneLighting& lighting, const std::string& origin,
-                                           const DiscShadingOptions& options = {}, SplitReport* report = nullptr);
+                                           const DiscShadingOptions& options = {}, SplitReport* report = nullptr,
+                                           const trace::Scene* shadow_scene = nullptr);
 
 /// Glossy transfer toward the eye point `eye` with BRDF `surface` (its matrix `matrix` at the transfer's
 /// output bands).

@@ -12,7 +12,7 @@ std::vector<glm::vec3> shade_diffuse(const transfer::TransferData& transfer, con
   const std::size_t coefficients = static_cast<std::size_t>(h.bands) * h.bands;
   const std::size_t used = std::min<std::size_t>(coefficients, lighting.values.size());
   const std::size_t stride = h.values_per_vertex();
-  std::vector<glm::vec3> out(h.vertex_count);
+  std::vector<glm::vec3> out(h.block_count());  // per vertex, or per texel of a lightmap
   for (std::size_t v = 0; v < out.size(); ++v) {
     const float* t = transfer.values.data() + v * stride;
     glm::dvec3 sum(0.0);

@@ -4,6 +4,8 @@
 // each vertex traces the same local sample directions turned into its own frame
 // sh::vertex_frame(n, seed, v), from Scene::offset_origin(p, n), in batches of up to
 // kDefaultBatchCapacity rays. What a pass does with the hits is its worker's business.
+// The "vertices" may be other surface sample points (a lightmap's texel samples): VertexRays::positions
+// and ::normals then replace the mesh's, and the index v names a sample point.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -33,6 +35,10 @@ struct VertexRays {
   std::uint32_t seed = 0;                             ///< of sh::vertex_frame
   int threads = 0;
   Query query = Query::closest_hit;
+  /// Sample points other than the mesh's vertices (both set, same size; `order` indexes them); null:
+  /// the mesh's positions and normals.
+  const std::vector<glm::vec3>* positions = nullptr;
+  const std::vector<glm::vec3>* normals = nullptr;
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
@@ -45,7 +51,8 @@ struct VertexRays {
 /// rays and their order do not depend on the thread that runs them.
 template <class MakeWorker>
 std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWorker make_worker) {
-  const mesh::Mesh& mesh = *r.mesh;
+  const std::vector<glm::vec3>& positions = r.positions ? *r.positions : r.mesh->positions;
+  const std::vector<glm::vec3>& normals = r.normals ? *r.normals : r.mesh->normals;
   const std::vector<glm::vec3>& local = *r.directions;
   const std::size_t samples = local.size();
   std::atomic<std::uint64_t> rays{0};
@@ -54,8 +61,8 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     auto worker = make_worker();
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
-      const glm::mat3 frame = sh::vertex_frame(mesh.normals[v], r.seed, v);
-      const glm::vec3 origin = r.scene->offset_origin(mesh.positions[v], mesh.normals[v]);
+      const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
+      const glm::vec3 origin = r.scene->offset_origin(positions[v], normals[v]);
       worker.start(v, frame);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);

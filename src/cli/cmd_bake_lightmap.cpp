@@ -1,0 +1,45 @@
+#include "cli/cmd_bake_lightmap.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "cli/output_paths.h"
+#include "core/error.h"
+#include "lightmap/texel_bake.h"
+#include "mesh/mesh.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::cli {
+
+void run_bake_lightmap(const bake::BakeOptions& options, const LightmapBakeRequest& r) {
+  lightmap::LightmapOptions lightmap;
+  lightmap::parse_lightmap_size(r.size, lightmap.width, lightmap.height);
+  lightmap.gutter = r.gutter;
+  lightmap.repair = r.repair;
+  lightmap.mesh_path = r.mesh_path;
+  if (!r.gltf_output.empty()) fail("--gltf with --lightmap: the texture output is not available in this build");
+  check_outputs({r.output}, {r.mesh_path});
+  mesh::LoadReport load_report;
+  const mesh::Mesh mesh = mesh::load_mesh(r.mesh_path, &load_report, r.quiet);
+  lightmap.missing_uv_reason = load_report.missing_uv_reason;
+  lightmap::check_lightmap(mesh, options, lightmap);
+  const auto start = std::chrono::steady_clock::now();
+  lightmap::LightmapReport report;
+  transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report);
+  if (r.float16) data.header.scalar = transfer::Scalar::float16;
+  transfer::write_transfer(r.output, data);
+  if (r.quiet) return;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "prt bake: %s lightmap %dx%d, %zu covered texels, %zu gutter, %zu samples moved out of geometry, %zu unrecoverable, "
+               "%u bands, %u channel(s)",
+               transfer::kind_name(options.kind), lightmap.width, lightmap.height, report.covered, report.gutter, report.moved,
+               report.unrecoverable, data.header.bands, data.header.channels);
+  const bake::BakeReport& b = report.bake;
+  if (b.rays_traced > 0)
+    std::fprintf(stderr, ", %llu rays (%.2f Mrays/s)", static_cast<unsigned long long>(b.rays_traced),
+                 b.rays_traced / 1e6 / std::max(1e-9, b.seconds_visibility + b.seconds_bounces));
+  if (options.kind == transfer::Kind::interreflected) std::fprintf(stderr, ", %d bounce(s)", b.bounces_done);
+  std::fprintf(stderr, ", %.2f s -> %s\n", seconds, r.output.c_str());
+}
+
+}  // namespace prt::cli

@@ -1,0 +1,231 @@
+#include "lightmap/texel_bake.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <memory>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/passes.h"
+#include "bake/vertex_samples.h"
+#include "core/error.h"
+#include "lightmap/gutter.h"
+#include "lightmap/sample_repair.h"
+#include "lightmap/uv_validation.h"
+#include "trace/scene.h"
+
+namespace prt::lightmap {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool parse_side(const std::string& part, int& out) {
+  if (part.empty() || part.size() > 6 || part.find_first_not_of("0123456789") != std::string::npos) return false;
+  out = std::atoi(part.c_str());
+  return true;
+}
+
+std::string size_text(const LightmapOptions& l) { return std::to_string(l.width) + "x" + std::to_string(l.height); }
+
+}  // namespace
+
+void parse_lightmap_size(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find('x');
+  const bool ok = x == std::string::npos ? parse_side(text, width) && parse_side(text, height = width)
+                                         : parse_side(text.substr(0, x), width) && parse_side(text.substr(x + 1), height);
+  if (!ok) fail("--lightmap: expected WxH or SIZE (texels), got '" + text + "'");
+  const int side_max = static_cast<int>(transfer::kMaxTexelSide);
+  if (width < 1 || height < 1 || width > side_max || height > side_max)
+    fail("--lightmap " + text + ": each side must be 1.." + std::to_string(side_max) + " texels");
+}
+
+std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions& o, int channels) {
+  const std::uint64_t texels = std::uint64_t(l.width) * std::uint64_t(l.height);
+  const std::uint64_t stride_bytes = 4ull * std::uint64_t(o.bands) * std::uint64_t(o.bands) * std::uint64_t(channels);
+  // Per texel: raster state and coverage (~40 bytes), the sample (~80), and transfer buffers: values;
+  // with bounces also bounce-only, prev grid, next and the per-sample sums (5 more).
+  const std::uint64_t buffers = o.kind == transfer::Kind::interreflected ? 6 : 2;
+  return texels * (120 + buffers * stride_bytes);
+}
+
+void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t available) {
+  if (available == 0) available = std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
+  const std::uint64_t need = estimated_bytes(l, o, channels);
+  if (need > available / 10 * 8) {
+    const double gib = double(1ull << 30);
+    char text[160];
+    std::snprintf(text, sizeof text, "--lightmap %s: needs about %.1f GiB, more than 80%% of this machine's %.1f GiB", size_text(l).c_str(),
+                  double(need) / gib, double(available) / gib);
+    fail(text);
+  }
+}
+
+TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, const std::vector<glm::vec3>& albedo,
+                           const LightmapOptions& lightmap, std::uint32_t seed, int threads, LightmapReport* report) {
+  LightmapReport local;
+  if (!report) report = &local;
+  if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
+  UvProblems problems = check_uvs(mesh);
+  auto start = std::chrono::steady_clock::now();
+  TexelSamples samples =
+      rasterize(mesh, albedo, lightmap.width, lightmap.height, threads);
+  report->seconds_raster = seconds_since(start);
+  problems.overlapping_texels = samples.overlapping_texels;
+  problems.overlap_examples = samples.overlap_examples;
+  if (!problems.ok()) fail_file(lightmap.mesh_path, problems.message());
+  report->covered = samples.samples.size();
+  if (lightmap.repair) {
+    start = std::chrono::steady_clock::now();
+    const RepairReport repair = repair_samples(mesh, scene, samples, seed, threads);
+    report->moved = repair.moved;
+    report->unrecoverable = repair.unrecoverable;
+    report->seconds_repair = seconds_since(start);
+  }
+  return samples;
+}
+
+BakedLightmap baked_lightmap(const transfer::Header& header, const std::string& path) {
+  if (!header.is_texel()) fail_file(path, "not a lightmap (a per-vertex transfer file)");
+  BakedLightmap out;
+  out.options.width = static_cast<int>(header.texel_width);
+  out.options.height = static_cast<int>(header.texel_height);
+  const nlohmann::json j = nlohmann::json::parse(header.parameters_json, nullptr, false);
+  if (!j.is_object() || !j.contains("lightmap") || !j["lightmap"].is_object())
+    fail_file(path, "the bake parameters have no \"lightmap\" entry");
+  const nlohmann::json& l = j["lightmap"];
+  if (!l.value("gutter", nlohmann::json()).is_number_integer() || !l.value("sample_repair", nlohmann::json()).is_boolean())
+    fail_file(path, "the bake parameters' \"lightmap\" entry lacks gutter or sample_repair");
+  out.options.gutter = l["gutter"].get<int>();
+  out.options.repair = l["sample_repair"].get<bool>();
+  out.options.mesh_path = path;
+  if (l.contains("seed") && l["seed"].is_number_unsigned()) out.seed = l["seed"].get<std::uint32_t>();
+  return out;
+}
+
+void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap) {
+  bake::validate_options(options);
+  if (transfer::is_glossy(options.kind))
+    fail(std::string("--lightmap: ") + transfer::kind_name(options.kind) +
+         " transfer per texel is not supported (glossy matrices per texel wait for transfer compression); use unshadowed, "
+         "shadowed or interreflected");
+  if (lightmap.gutter < 0 || lightmap.gutter > 64) fail("--gutter " + std::to_string(lightmap.gutter) + " is out of range 0..64");
+  const int side_max = static_cast<int>(transfer::kMaxTexelSide);
+  if (lightmap.width < 1 || lightmap.height < 1 || lightmap.width > side_max || lightmap.height > side_max)
+    fail("--lightmap " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
+  if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
+  check_memory(lightmap, options, bake::all_grey(bake::effective_albedo(mesh, options.albedo)) ? 1 : 3);
+}
+
+namespace {
+
+// Per-sample blocks into the texel grid (empty texels zero), then the gutters filled.
+struct GridWriter {
+  const TexelSamples& samples;
+  const std::vector<std::uint8_t>& coverage;  // grown by grow_gutter
+  const std::vector<std::vector<std::uint32_t>>& rounds;
+  std::size_t stride;
+
+  void operator()(const std::vector<float>& per_sample, std::vector<float>& grid) const {
+    grid.assign(coverage.size() * stride, 0.0f);
+    for (std::size_t k = 0; k < samples.samples.size(); ++k)
+      std::copy_n(per_sample.begin() + std::ptrdiff_t(k * stride), stride, grid.begin() + std::ptrdiff_t(samples.samples[k].texel * stride));
+    fill_gutter(grid, stride, coverage, rounds, samples.width, samples.height);
+  }
+};
+
+std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Mesh& mesh, const LightmapOptions& l,
+                                const LightmapReport& rep, float ray_offset) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(bake::parameters_json(options, mesh, rep.bake.bounces_done, ray_offset));
+  j["lightmap"] = {{"width", l.width},
+                   {"height", l.height},
+                   {"uv_set", mesh.lightmap_uv_set},
+                   {"gutter", l.gutter},
+                   {"sample_repair", l.repair},
+                   {"seed", options.seed},
+                   {"covered", rep.covered},
+                   {"moved", rep.moved},
+                   {"unrecoverable", rep.unrecoverable}};
+  return j.dump();
+}
+
+transfer::Header texel_header(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& l, int channels) {
+  transfer::Header h;
+  h.kind = options.kind;
+  h.bands = static_cast<std::uint32_t>(options.bands);
+  h.channels = static_cast<std::uint32_t>(channels);
+  h.vertex_count = mesh.vertex_count();
+  h.triangle_count = mesh.triangle_count();
+  h.mesh_fingerprint = mesh::fingerprint(mesh);
+  h.texel_width = static_cast<std::uint32_t>(l.width);
+  h.texel_height = static_cast<std::uint32_t>(l.height);
+  h.uv_set = mesh.lightmap_uv_set;
+  h.uv_fingerprint = mesh::uv_fingerprint(mesh);
+  h.bounce_only_section = options.kind == transfer::Kind::interreflected;
+  return h;
+}
+
+}  // namespace
+
+transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap,
+                                     LightmapReport* report) {
+  check_lightmap(mesh, options, lightmap);
+  LightmapReport local;
+  LightmapReport& rep = report ? *report : local;
+  rep = LightmapReport{};
+  const int channels = bake::all_grey(bake::effective_albedo(mesh, options.albedo)) ? 1 : 3;
+  auto start = std::chrono::steady_clock::now();
+  const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
+  rep.bake.seconds_build = seconds_since(start);
+  const TexelSamples samples =
+      texel_samples(mesh, scene, bake::effective_albedo(mesh, options.albedo), lightmap, options.seed, options.threads, &rep);
+  std::vector<glm::vec3> positions, normals, albedo;
+  for (const TexelSample& s : samples.samples) {
+    positions.push_back(s.position);
+    normals.push_back(s.normal);
+    albedo.push_back(s.albedo);
+  }
+  std::vector<std::uint8_t> coverage = samples.coverage;
+  const auto rounds = grow_gutter(coverage, lightmap.width, lightmap.height, lightmap.gutter);
+  rep.gutter = 0;
+  for (const auto& round : rounds) rep.gutter += round.size();
+  const std::size_t n = std::size_t(options.bands) * std::size_t(options.bands), stride = n * std::size_t(channels);
+  const GridWriter to_grid{samples, coverage, rounds, stride};
+
+  const std::vector<std::uint32_t> order = trace::morton_order(positions);
+  const bake::LocalSampleSet set = bake::make_local_sample_set(options.samples, options.bands, options.seed);
+  const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height};
+  bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress, {&positions, &normals}, &grid};
+  start = std::chrono::steady_clock::now();
+  std::vector<float> geometric;
+  if (options.kind == transfer::Kind::unshadowed)
+    bake::unshadowed_geometric(normals, options.bands, options.threads, geometric);
+  else
+    rep.bake.rays_traced += bake::shadowed_geometric(ctx, geometric);
+  rep.bake.seconds_visibility = seconds_since(start);
+  std::vector<float> values = bake::apply_albedo(std::move(geometric), albedo, channels, n), bounce_only;
+  rep.bake.pass_energy.push_back(bake::pass_energy(values, stride, n, channels));
+
+  transfer::TransferData data;
+  data.header = texel_header(mesh, options, lightmap, channels);
+  if (options.kind == transfer::Kind::interreflected) {
+    start = std::chrono::steady_clock::now();
+    std::vector<float> prev;
+    to_grid(values, prev);
+    bake::interreflect(ctx, albedo, channels, options, std::move(prev),
+                       [&](std::vector<float>& next, std::vector<float>& prev_grid) { to_grid(next, prev_grid); }, values,
+                       bounce_only, rep.bake);
+    rep.bake.seconds_bounces = seconds_since(start);
+    to_grid(bounce_only, data.bounce_only);
+  }
+  to_grid(values, data.values);
+  data.coverage = std::move(coverage);
+  data.header.parameters_json = lightmap_parameters(options, mesh, lightmap, rep, scene.ray_offset());
+  return data;
+}
+
+}  // namespace prt::lightmap
