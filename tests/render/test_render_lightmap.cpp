@@ -14,7 +14,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "bake/bake.h"
 #include "cpu_raster.h"
+#include "light/scene_lighting.h"
+#include "lightmap/lightmap_scenes.h"  // tests/lightmap
+#include "lightmap/lightmap_shading.h"
+#include "lightmap/texel_bake.h"
 #include "light/disc.h"
 #include "mesh/mesh.h"
 #include "render/headless_context.h"
@@ -325,4 +330,45 @@ TEST_CASE("lightmap render in the camera's view equals the CPU's bilinear lookup
   // smooth data (and its 2-texel gutter, which keeps a chart's rim from reading empty texels) that is
   // below 1e-4 of the largest value.
   CHECK(worst <= 1e-4);
+}
+
+TEST_CASE("lightmap render at texel centres equals prt shade --lightmap of a baked lightmap", "[render][gl][lightmap]") {
+  // A box on a two-triangle floor baked into a 64 x 64 lightmap (interreflected, one bounce), lit by
+  // the sky alone; the CPU side is lightmap::shade_lightmap, what `prt shade --lightmap` writes.
+  const mesh::Mesh mesh = test::floor_and_box(true, 0.0f);
+  bake::BakeOptions options;
+  options.kind = transfer::Kind::interreflected;
+  options.bands = 4;
+  options.samples = 64;
+  options.bounces = 1;
+  options.threads = 1;
+  lightmap::LightmapOptions size;
+  size.width = size.height = 64;
+  const transfer::TransferData transfer = lightmap::bake_lightmap(mesh, options, size);
+  light::SceneLighting lighting;
+  lighting.sky = test_lighting(4);
+  lighting.clamp_negative = false;
+  const image::Image cpu_image = lightmap::shade_lightmap(mesh, transfer, lighting, "baked.prt");
+
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  renderer.set_mesh(mesh);
+  const int index = renderer.add_lightmap(transfer, "baked.prt");
+  renderer.set_lighting(lighting.sky, nullptr);
+  render::FrameSettings settings;
+  settings.transfer = index;
+  renderer.render_texels(settings);
+  const image::Image gpu = renderer.read_radiance();
+  const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
+  std::vector<glm::vec3> cpu(std::size_t(64) * 64);
+  for (std::size_t texel = 0; texel < cpu.size(); ++texel)
+    for (int c = 0; c < 3; ++c) cpu[texel][c] = cpu_image.at(int(texel % 64), int(texel / 64), c);
+  std::size_t drawn = 0, drawn_not_covered = 0;
+  for (std::size_t texel = 0; texel < ids.size(); ++texel)
+    drawn_not_covered += ids[texel] != render::kNoTriangle && transfer.coverage[texel] != transfer::kTexelCovered;
+  const double worst = texel_error(gpu, cpu, texel_scale(transfer, transfer.values, lighting.sky), ids, 2e-6 * 16, drawn);
+  INFO("drawn texels " << drawn << ", worst error / tolerance " << worst);
+  CHECK(drawn > 1000);
+  CHECK(drawn_not_covered == 0);  // conservative rasterisation covers every texel centre a triangle covers
+  CHECK(worst <= 1.0);
 }
