@@ -1,7 +1,8 @@
 // Writes a texel transfer and its lightmap glTF for tests/engines/test_lightmap_gltf.mjs, independently
 // of the baker: a mesh of two charts (a floor quad and a wall quad sharing an edge whose vertices get
 // different UVs on each side, so the writer must split them) and synthetic texel blocks.
-// Usage: lightmap_glb_fixture OUT_DIR  -> OUT_DIR/{lightmap.prt, lightmap.glb, lightmap_grey.prt, lightmap_grey.glb}
+// Usage: lightmap_glb_fixture OUT_DIR  -> OUT_DIR/{lightmap.prt, lightmap.glb, lightmap_grey.prt, lightmap_grey.glb}, and the
+// mesh as OUT_DIR/scene.obj (with vt) for `prt bake --lightmap --gltf`.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -9,6 +10,7 @@
 #include "cli/lightmap_glb.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
+#include "lightmap/lightmap_scenes.h"  // tests/lightmap
 #include "support/texel_transfer.h"
 #include "transfer/transfer_file.h"
 
@@ -53,7 +55,9 @@ int main(int argc, char** argv) {
   }
   try {
     const std::string dir = argv[1];
-    const mesh::Mesh mesh = two_charts();
+    mesh::Mesh mesh = two_charts();
+    test::write_obj_with_uv(dir + "/scene.obj", mesh);
+    mesh = mesh::load_mesh(dir + "/scene.obj", nullptr, true);  // as prt loads it (its fingerprints)
     const transfer::TransferData rgb = synthetic(mesh, 37, 23, 3, 3, true);  // 27 values: 7 layers, the last padded
     transfer::write_transfer(dir + "/lightmap.prt", rgb);
     cli::write_lightmap_glb(dir + "/lightmap.glb", mesh, rgb);

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -102,4 +103,28 @@ TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle flo
   CHECK(vertex_ratio > 3.0 * ref_ratio);
   INFO("rel_rms lightmap " << lightmap_error << ", per-vertex " << vertex_error);
   CHECK(lightmap_error < 0.5 * vertex_error);
+}
+
+TEST_CASE("prt render refuses a lightmap with a mesh whose lightmap UVs differ, in one line, writing nothing",
+          "[render][gl][lightmap][cli]") {
+  const std::string dir = test::fresh_temp_dir("render_lightmap_bad");
+  mesh::Mesh mesh = test::floor_and_box(false);
+  test::write_obj_with_uv(dir + "/floor.obj", mesh);
+  const test::RunResult bake = test::run_prt("bake " + dir + "/floor.obj --transfer unshadowed --bands 2 --lightmap 16x16 -q -o " +
+                                             dir + "/floor.prt");
+  INFO(bake.output);
+  REQUIRE(bake.exit_code == 0);
+  REQUIRE(test::run_prt("light 'constant:1,1,1' --bands 2 -o " + dir + "/white.json").exit_code == 0);
+  for (glm::vec2& uv : mesh.lightmap_uv) uv = glm::vec2(0.5f) + 0.5f * (uv - glm::vec2(0.5f));  // same positions, other UVs
+  test::write_obj_with_uv(dir + "/moved.obj", mesh);
+  const test::RunResult r = test::run_prt("render " + dir + "/moved.obj " + dir + "/floor.prt --env " + dir +
+                                          "/white.json --size 32x32 -o " + dir + "/out.png");
+  INFO(r.output);
+  CHECK(test::fails_in_one_line(r, "different lightmap UVs"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/out.png"));
+  const test::RunResult ok = test::run_prt("render " + dir + "/floor.obj " + dir + "/floor.prt --env " + dir +
+                                           "/white.json --size 32x32 -q -o " + dir + "/out.png");
+  INFO(ok.output);
+  CHECK(ok.exit_code == 0);
+  CHECK(std::filesystem::exists(dir + "/out.png"));
 }
