@@ -28,6 +28,7 @@
 #include "sh/rotation.h"
 #include "shade/shade.h"
 #include "support/texel_transfer.h"
+#include "transfer/half.h"
 
 using namespace prt;
 using namespace prt::render_test;
@@ -186,15 +187,21 @@ TEST_CASE("lightmap render at texel centres equals the CPU dot product of each t
     const char* name;
     int bands, channels, truncate;
     glm::dvec3 environment_ypr, object_ypr;
+    bool half;  // a float16 file: RGBA16F layers
   };
   const Case cases[] = {
-      {"5 bands RGB, rotated lighting and object", 5, 3, 0, {70, 20, -10}, {-30, 15, 5}},
-      {"4 bands grey truncated to 2", 4, 1, 2, {0, 0, 90}, {0, 40, 0}},
-      {"6 bands RGB (27 layers)", 6, 3, 0, {-45, 0, 0}, {0, 0, 0}},
+      {"5 bands RGB, rotated lighting and object", 5, 3, 0, {70, 20, -10}, {-30, 15, 5}, false},
+      {"4 bands grey truncated to 2", 4, 1, 2, {0, 0, 90}, {0, 40, 0}, false},
+      {"6 bands RGB (27 layers)", 6, 3, 0, {-45, 0, 0}, {0, 0, 0}, false},
+      {"5 bands RGB stored as float16 (RGBA16F layers)", 5, 3, 0, {10, -20, 0}, {0, 0, 0}, true},
   };
   for (const Case& c : cases) {
     SECTION(c.name) {
-      const transfer::TransferData transfer = texel_transfer(mesh, c.bands, c.channels, false, false);
+      transfer::TransferData transfer = texel_transfer(mesh, c.bands, c.channels, false, false);
+      if (c.half) {  // as read from a float16 file: the values are halves
+        transfer.header.scalar = transfer::Scalar::float16;
+        for (float& v : transfer.values) v = transfer::half_to_float(transfer::float_to_half(v));
+      }
       const int index = renderer.add_lightmap(transfer, "test.prt");
       CHECK(renderer.is_lightmap(index));
       const sh::RgbCoefficients lighting = test_lighting(c.bands);
