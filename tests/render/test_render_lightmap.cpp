@@ -379,3 +379,48 @@ TEST_CASE("lightmap render at texel centres equals prt shade --lightmap of a bak
   CHECK(drawn_not_covered == 0);  // conservative rasterisation covers every texel centre a triangle covers
   CHECK(worst <= 1.0);
 }
+
+TEST_CASE("a lightmap's per-pixel sun equals the per-vertex pass's (same shadow maps and direct term)", "[render][gl][lightmap]") {
+  // Zero transfer and a black sky: both images are the disc's direct light alone, per pixel, with the
+  // box's shadow on the floor from the same shadow maps (prt_sun.frag and prt_lightmap.frag share
+  // sun_light.glsl); they must agree to float rounding.
+  const mesh::Mesh mesh = test::floor_and_box(true, 0.0f);
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  renderer.set_mesh(mesh);
+  const int lightmap = renderer.add_lightmap(test::empty_texel_transfer(mesh, 32, 32, 3, 3, false), "zero.prt");
+  transfer::TransferData zero;
+  zero.header = test::empty_texel_transfer(mesh, 1, 1, 3, 3, false).header;
+  zero.header.texel_width = zero.header.texel_height = 0;
+  zero.values.assign(mesh.vertex_count() * zero.header.values_per_vertex(), 0.0f);
+  const int vertex = renderer.add_transfer(zero, "zero-vertex.prt");
+  const std::vector<glm::vec3> albedo(mesh.vertex_count(), glm::vec3(0.7f, 0.6f, 0.5f));
+  renderer.set_surface_albedo(lightmap, albedo);
+  renderer.set_surface_albedo(vertex, albedo);
+  renderer.set_lighting(sh::RgbCoefficients(3), nullptr);
+  light::Disc sun;
+  sun.direction = glm::normalize(glm::dvec3(0.6, 0.55, 0.45));
+  sun.irradiance = glm::dvec3(4.0, 3.5, 3.0);
+  sun.angular_radius = 0.02;
+  renderer.set_discs({sun});
+  render::FrameSettings settings;
+  settings.camera = render::Camera{215.0, 50.0, 0.0};
+  settings.background = render::Background::black;
+  settings.transfer = lightmap;
+  renderer.render(settings, 160, 120);
+  const image::Image a = renderer.read_radiance();
+  settings.transfer = vertex;
+  renderer.render(settings, 160, 120);
+  const image::Image b = renderer.read_radiance();
+  double largest = 0.0, worst = 0.0;
+  std::size_t lit = 0, shadowed = 0;
+  for (std::size_t k = 0; k < b.pixels.size(); ++k) largest = std::max(largest, double(b.pixels[k]));
+  for (std::size_t k = 0; k < b.pixels.size(); ++k) {
+    worst = std::max(worst, std::abs(double(a.pixels[k]) - b.pixels[k]) / largest);
+    if (k % 3 == 0) (b.pixels[k] > 0.5 * largest ? lit : shadowed) += 1;
+  }
+  INFO("largest " << largest << ", worst difference / largest " << worst << ", lit pixels " << lit << ", other " << shadowed);
+  CHECK(largest > 0.5);
+  CHECK(lit > 2000);
+  CHECK(worst <= 1e-5);
+}
