@@ -38,11 +38,19 @@ in vec3 surface_albedo;   // the albedo the transfer was baked with
 #include "sun_light.glsl"
 #endif
 
+// Render_texels (TEXEL_SPACE) reads level 0, the texels themselves; the camera's view filters
+// trilinearly over the mip chain (renderer_lightmap.h).
+#ifdef TEXEL_SPACE
+#define SAMPLE(layers_sampler, p) textureLod(layers_sampler, p, 0.0)
+#else
+#define SAMPLE(layers_sampler, p) texture(layers_sampler, p)
+#endif
+
 // sum += per channel, the dot product of the first used_count coefficients of the filtered texel block
 // of `layers_sampler` with the coefficients `light` (a grey transfer multiplies all three channels).
 #define ACCUMULATE(layers_sampler, light)                                                    \
   for (int k = 0; k < layers; ++k) {                                                       \
-    vec4 t = texture(layers_sampler, vec3(uv, float(k)));                                   \
+    vec4 t = SAMPLE(layers_sampler, vec3(uv, float(k)));                                    \
     for (int j = 0; j < 4; ++j) {                                                           \
       int value = 4 * k + j;                                                                \
       int c = value / coefficient_count, i = value - c * coefficient_count;                 \

@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "render/lightmap_mips.h"
 #include "render/renderer_sun.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
@@ -33,7 +34,7 @@ int lightmap_layers(std::uint64_t values_per_texel) { return static_cast<int>((v
 std::string lightmap_memory_label(const transfer::Header& header) {
   const double texels = static_cast<double>(header.texel_width) * header.texel_height;
   const double bytes = texels * lightmap_layers(header.values_per_vertex()) * (header.scalar == transfer::Scalar::float16 ? 8 : 16) *
-                       (header.bounce_only_section ? 2 : 1);
+                       (header.bounce_only_section ? 2 : 1) * 4.0 / 3.0;  // with the mip chain
   char text[96];
   std::snprintf(text, sizeof text, ", lightmap %ux%u, %.1f MB", header.texel_width, header.texel_height, bytes * 1e-6);
   return text;
@@ -60,33 +61,48 @@ LightmapTextures::LightmapTextures(const transfer::TransferData& transfer, const
                           " texels a side, " + std::to_string(max_layers) + " layers)");
   const bool half = header_.scalar == transfer::Scalar::float16;
   const GLenum format = half ? GL_RGBA16F : GL_RGBA32F;
-  transfer_ = upload(transfer.values, format);
-  if (!transfer.bounce_only.empty()) bounce_ = upload(transfer.bounce_only, format);
-  bytes_ = static_cast<std::size_t>(texels * static_cast<std::uint64_t>(layers_) * (half ? 8 : 16)) * (bounce_ != 0 ? 2 : 1);
+  if (!transfer.coverage.empty() && transfer.coverage.size() != texels)
+    fail_file(origin, "texel transfer's coverage mask does not match its header");
+  transfer_ = upload(transfer.values, transfer.coverage, format);
+  if (!transfer.bounce_only.empty()) bounce_ = upload(transfer.bounce_only, transfer.coverage, format);
+  // The mip chain adds at most a third.
+  bytes_ = static_cast<std::size_t>(texels * static_cast<std::uint64_t>(layers_) * (half ? 8 : 16) * 4 / 3) * (bounce_ != 0 ? 2 : 1);
   check_gl("uploading a texel transfer");
 }
 
-// One RGBA layer at a time: layer k of texel b = values[b * V + 4k .. 4k + 3] (zero past V).
-GLuint LightmapTextures::upload(const std::vector<float>& values, GLenum internal_format) {
+// One RGBA layer at a time: layer k of texel b = values[b * V + 4k .. 4k + 3] (zero past V), then its
+// mip chain (lightmap_mips.h), filled where the coverage mask is not empty.
+GLuint LightmapTextures::upload(const std::vector<float>& values, const std::vector<std::uint8_t>& coverage,
+                                GLenum internal_format) {
   const GLsizei width = static_cast<GLsizei>(header_.texel_width), height = static_cast<GLsizei>(header_.texel_height);
   const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   const std::size_t per_texel = static_cast<std::size_t>(header_.values_per_vertex());
+  const int levels = mip_level_count(width, height);
   GLuint texture = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
-  glTextureStorage3D(texture, 1, internal_format, width, height, layers_);
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureStorage3D(texture, levels, internal_format, width, height, layers_);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  std::vector<float> layer(texels * 4);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  MipLevel level;
   for (int k = 0; k < layers_; ++k) {
-    for (std::size_t b = 0; b < texels; ++b)
+    level.width = width;
+    level.height = height;
+    level.rgba.resize(texels * 4);
+    level.filled.resize(texels);
+    for (std::size_t b = 0; b < texels; ++b) {
+      level.filled[b] = coverage.empty() || coverage[b] != transfer::kTexelEmpty;
       for (std::size_t j = 0; j < 4; ++j) {
         const std::size_t value = 4 * static_cast<std::size_t>(k) + j;
-        layer[4 * b + j] = value < per_texel ? values[b * per_texel + value] : 0.0f;
+        level.rgba[4 * b + j] = value < per_texel ? values[b * per_texel + value] : 0.0f;
       }
-    glTextureSubImage3D(texture, 0, 0, 0, k, width, height, 1, GL_RGBA, GL_FLOAT, layer.data());
+    }
+    for (int l = 0; l < levels; ++l) {
+      if (l > 0) level = next_mip_level(level);
+      glTextureSubImage3D(texture, l, 0, 0, k, level.width, level.height, 1, GL_RGBA, GL_FLOAT, level.rgba.data());
+    }
   }
   return texture;
 }

@@ -9,10 +9,12 @@
 // ceil(channels bands^2 / 4) layers (19 for 5-band RGB). Internal format RGBA32F, or RGBA16F when the
 // file's payload is float16 (exact: its values are halves already). Texel rows go up in file order,
 // row 0 (v = 0) at t = 0, so the UV samples the array as it is (docs/conventions.md, "Lightmap
-// texels"). Filtering: bilinear, clamped to the edge, one level (no mipmaps: the gutters of the bake
-// keep bilinear reads inside a chart's values; a minified mip chain would average charts with the
-// empty texels between them). A version-2 (interreflected) file's bounce-only section gets a second
-// array of the same shape, which the discs' SH is applied to (formats.md, "Bounce-only section").
+// texels"). Filtering: trilinear (GL_LINEAR_MIPMAP_LINEAR), clamped to the edge, over a full mip chain
+// computed on the CPU from the coverage mask (lightmap_mips.h: each level averages only filled texels
+// and is dilated by one texel, so a distant chart keeps its own values at its rim; the bake's gutters
+// do the same for bilinear reads at level 0). A version-4 (interreflected) file's bounce-only section
+// gets a second array of the same shape, which the discs' SH is applied to (formats.md, "Bounce-only
+// section").
 //
 // Per frame the fragment shader (prt_lightmap.frag) samples every layer at the pixel's interpolated
 // lightmap UV and takes, per channel, the dot product of the first k^2 filtered coefficients with the
@@ -48,18 +50,18 @@ class LightmapTextures {
   int layers() const { return layers_; }
   GLuint transfer_texture() const { return transfer_; }
   GLuint bounce_texture() const { return bounce_; }  ///< 0 when the file has no bounce-only section
-  /// Bytes on the GPU (both arrays).
+  /// Bytes on the GPU (both arrays, with their mip chains).
   std::size_t gpu_bytes() const { return bytes_; }
 
  private:
-  GLuint upload(const std::vector<float>& values, GLenum internal_format);
+  GLuint upload(const std::vector<float>& values, const std::vector<std::uint8_t>& coverage, GLenum internal_format);
   transfer::Header header_;
   int layers_ = 0;
   GLuint transfer_ = 0, bounce_ = 0;
   std::size_t bytes_ = 0;
 };
 
-/// For the viewer's transfer list: ", lightmap 512x512, 75.5 MB" (both arrays on the GPU).
+/// For the viewer's transfer list: ", lightmap 512x512, 100.7 MB" (both arrays and mip chains on the GPU).
 std::string lightmap_memory_label(const transfer::Header& header);
 
 /// Layers a texel block of `values_per_texel` values takes: ceil(values_per_texel / 4).

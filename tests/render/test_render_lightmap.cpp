@@ -2,10 +2,12 @@
 // - at texel centres (Renderer::render_texels: each triangle drawn at its lightmap UV, pixel (i, j) =
 //   texel (i, j)), the GPU's per-pixel sampling and dot product equal prt::shade::shade_diffuse of each
 //   texel's own block under the object-frame lighting (rotated in double by sh::Rotation), with and
-//   without discs (their bounce-only layers and their exact direct light);
+//   without discs (their bounce-only layers and their exact direct light), and prt shade --lightmap of
+//   a baked lightmap;
 // - in the camera's view, every pixel equals the CPU's bilinear lookup of the texel grid at the UV of the
-//   pixel's surface point, found by a double ray cast (cpu_raster.h), dotted with the lighting.
-// The transfers are synthetic (texel blocks made here, not baked), so the test needs no baker.
+//   pixel's surface point, found by a double ray cast (cpu_raster.h), dotted with the lighting; the
+//   per-pixel sun equals the per-vertex pass's; a distant chart is filtered over the coverage-aware mips.
+// The transfers are synthetic (texel blocks made here), except the one compared with prt shade --lightmap.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -333,9 +335,10 @@ TEST_CASE("lightmap render in the camera's view equals the CPU's bilinear lookup
     }
   INFO("compared pixels " << compared << ", max error relative to the largest texel value " << worst);
   CHECK(compared > std::size_t(kWidth * kHeight / 10));
-  // llvmpipe filters with float weights (measured 2.5e-7); GPUs keep 8 fractional bits: between texels of the
-  // smooth data (and its 2-texel gutter, which keeps a chart's rim from reading empty texels) that is
-  // below 1e-4 of the largest value.
+  // llvmpipe filters with float weights; GPUs keep 8 fractional bits: between texels of the smooth data
+  // (and its 2-texel gutter, which keeps a chart's rim from reading empty texels) that is below 1e-4 of
+  // the largest value. Where the view minifies, trilinear filtering mixes in mip level 1, which for this
+  // smooth data is within the same bound of level 0 (measured 8e-7 in all; 2.5e-7 at level 0 alone).
   CHECK(worst <= 1e-4);
 }
 
@@ -423,4 +426,81 @@ TEST_CASE("a lightmap's per-pixel sun equals the per-vertex pass's (same shadow 
   CHECK(largest > 0.5);
   CHECK(lit > 2000);
   CHECK(worst <= 1e-5);
+}
+
+TEST_CASE("a distant lightmap is filtered over a coverage-aware mip chain", "[render][gl][lightmap]") {
+  // One floor chart in a 64 x 64 lightmap seen from far away (about 3 texels per pixel): trilinear
+  // filtering reads mip levels 1-2. With a constant block on the chart (and its gutter), every pixel
+  // must be exactly T . L, also at the rim, where a plain box-filtered chain would mix in the empty
+  // texels around the chart; with a texel checkerboard of +-80% about it, the mips average it out
+  // (level 0 alone would alias: pixels anywhere between 0.2 and 1.8 times the mean).
+  mesh::Mesh mesh;
+  add_chart(mesh, {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, {0.1f, 0.75f}, {0.5f, 0.0f}, {0.0f, -0.5f});
+  const sh::RgbCoefficients lighting = test_lighting(3);
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  renderer.set_mesh(mesh);
+  const transfer::TransferData smooth = texel_transfer(mesh, 3, 3, true, false);
+  transfer::TransferData flat = smooth, checker = smooth;
+  const std::size_t per = smooth.header.values_per_vertex();
+  std::size_t first = 0;  // the first filled texel: its block everywhere on the chart
+  while (smooth.coverage[first] == transfer::kTexelEmpty) ++first;
+  std::size_t filled = 0;
+  for (std::size_t texel = 0; texel < smooth.coverage.size(); ++texel) {
+    if (smooth.coverage[texel] == transfer::kTexelEmpty) continue;
+    ++filled;
+    const float factor = ((texel % kTexelsWide) + (texel / kTexelsWide)) % 2 == 0 ? 1.8f : 0.2f;
+    for (std::size_t k = 0; k < per; ++k) {
+      flat.values[texel * per + k] = smooth.values[first * per + k];
+      checker.values[texel * per + k] = factor * smooth.values[first * per + k];
+    }
+  }
+  REQUIRE(filled > 500);
+  const int flat_index = renderer.add_lightmap(flat, "flat.prt");
+  const int checker_index = renderer.add_lightmap(checker, "checker.prt");
+  renderer.set_lighting(lighting, nullptr);
+  render::FrameSettings settings;
+  settings.camera = render::Camera{0.0, 60.0, 30.0};
+  settings.background = render::Background::black;
+  constexpr int kWidth = 160, kHeight = 120;
+  // The expected radiance: the block's dot product with the lighting (CPU).
+  transfer::TransferData one = smooth;
+  one.header.texel_width = one.header.texel_height = 1;
+  one.values.assign(smooth.values.begin() + long(first * per), smooth.values.begin() + long((first + 1) * per));
+  one.coverage.assign(1, transfer::kTexelCovered);
+  const glm::vec3 expected = shade_texels(one, one.values, lighting)[0];
+  REQUIRE(expected.z > 0.1f);
+
+  settings.transfer = flat_index;
+  renderer.render(settings, kWidth, kHeight);
+  const image::Image a = renderer.read_radiance();
+  const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
+  double worst = 0.0;
+  std::size_t pixels = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (ids[std::size_t(y) * kWidth + x] == render::kNoTriangle) continue;
+      ++pixels;
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(a.at(x, y, c) - expected[c]) / double(expected[c]));
+    }
+  INFO("floor pixels " << pixels << ", worst relative error of the constant chart " << worst);
+  CHECK(pixels > 50);
+  CHECK(pixels < 400);  // distant: about 3 texels a pixel
+  CHECK(worst <= 1e-5);
+
+  settings.transfer = checker_index;
+  renderer.render(settings, kWidth, kHeight);
+  const image::Image b = renderer.read_radiance();
+  double sum = 0.0, squares = 0.0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (ids[std::size_t(y) * kWidth + x] == render::kNoTriangle) continue;
+      const double v = b.at(x, y, 2) / expected[2];
+      sum += v;
+      squares += v * v;
+    }
+  const double mean = sum / double(pixels), spread = std::sqrt(std::max(0.0, squares / double(pixels) - mean * mean));
+  INFO("checkerboard: mean " << mean << " of the flat value, standard deviation " << spread);
+  CHECK(std::abs(mean - 1.0) < 0.05);
+  CHECK(spread < 0.1);
 }
