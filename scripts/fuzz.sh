@@ -3,7 +3,7 @@
 # UndefinedBehaviorSanitizer in build-fuzz/, and runs them.
 # Usage: scripts/fuzz.sh [--ci] [--runs N] [--time SECONDS] [--jobs J] [TARGET...]
 #   (no option)   run each target for 10 minutes (long runs by hand; stop with Ctrl-C)
-#   --ci          run each target for its fixed number of executions (about 30 s each, the counts
+#   --ci          run each target for its fixed number of executions (about 12 s each, the counts
 #                 below), seed 1: the fuzz step of .ci/run
 #   --runs N      N executions per target;  --time S  S seconds per target
 #   --build-only  build the targets and stop
@@ -18,10 +18,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 all=(ply obj gltf image prt brdf light probes points)
-# Executions per target for --ci: about 30 s each at the rates measured on the shared (heavily
+# Executions per target for --ci: about 12 s each at the rates measured on the shared (heavily
 # loaded) AMD EPYC development machine, so less on an idle CI machine (tests/fuzz/README.md).
-declare -A ci_runs=([ply]=31000 [obj]=21000 [gltf]=26000 [image]=1100 [prt]=72000 [brdf]=15000
-                    [light]=26000 [probes]=67000 [points]=32000)
+declare -A ci_runs=([ply]=12400 [obj]=8400 [gltf]=10400 [image]=400 [prt]=28800 [brdf]=6000 [light]=10400 [probes]=26800 [points]=12800)
 mode=time; seconds=600; runs=0; build_only=0; targets=()
 while (($#)); do
   case "$1" in

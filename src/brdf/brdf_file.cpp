@@ -10,7 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/json_depth.h"
+#include "core/json_parse.h"
 #include "core/little_endian.h"
 #include "core/text.h"
 #include "sh/basis.h"
@@ -58,13 +58,7 @@ std::string json_text(const BrdfMatrix& m) {
 }
 
 BrdfMatrix read_json(const std::string& path, const std::string& text) {
-  check_json_depth(text, path);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    fail_file(path, std::string("not valid JSON: ") + e.what());
-  }
+  nlohmann::json doc = parse_json(text, path);
   // Comparisons, not value(): value() throws json::type_error for a key of another type (found by fuzz_brdf).
   if (!doc.is_object() || !doc.contains("format") || doc["format"] != "prt-brdf-matrix")
     fail_file(path, "not a prt BRDF matrix (format != prt-brdf-matrix)");

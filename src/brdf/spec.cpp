@@ -10,7 +10,7 @@
 #include "brdf/brdf.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/json_depth.h"
+#include "core/json_parse.h"
 
 namespace prt::brdf {
 
@@ -190,13 +190,7 @@ void add_json_lobe(const nlohmann::json& object, const std::string& path, Brdf& 
 
 Brdf parse_material_file(const std::string& path) {
   const std::string text = read_file(path);
-  check_json_depth(text, path);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    fail_file(path, std::string("not valid JSON: ") + e.what());
-  }
+  nlohmann::json doc = parse_json(text, path);
   Brdf out;
   if (doc.is_object() && doc.contains("lobes")) {
     if (!doc["lobes"].is_array() || doc["lobes"].empty()) fail_file(path, "\"lobes\" must be a non-empty array");

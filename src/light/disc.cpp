@@ -9,6 +9,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "light/limits.h"
 #include "light/analytic.h"
 #include "sh/sampling.h"
 
@@ -24,7 +25,7 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     // Beyond 1e18 a disc's radiance and its SH overflow float coefficients (a value of 1e308 did).
-    if (item.empty() || end == item.c_str() || *end != '\0' || !(std::abs(x) <= 1e18))
+    if (item.empty() || end == item.c_str() || *end != '\0' || !(std::abs(x) <= kMaxLightValue))
       fail(option + ": " + usage + " (numbers of magnitude at most 1e18)");
     v.push_back(x);
   }

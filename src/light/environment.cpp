@@ -7,6 +7,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "light/limits.h"
 
 namespace prt::light {
 
@@ -142,6 +143,21 @@ void cube_face_st(const glm::dvec3& direction, int& face, double& s, double& t) 
   t = 0.5 * (tc / ma + 1.0);
 }
 
+// Refuses a finite pixel value above kMaxLightValue (NaN and Inf are repaired, not refused).
+void check_radiance_range(const image::Image& image, const std::string& file) {
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const float v = image.pixels[i];
+    if (std::isfinite(v) && std::abs(v) > kMaxLightValue) {
+      const std::size_t pixel = i / static_cast<std::size_t>(image.channels);
+      char value[32];
+      std::snprintf(value, sizeof value, "%.3g", static_cast<double>(v));
+      fail_file(file, "pixel (" + std::to_string(pixel % static_cast<std::size_t>(image.width)) + ", " +
+                          std::to_string(pixel / static_cast<std::size_t>(image.width)) + ") holds " + value +
+                          ", above the limit of 1e18 for lighting values");
+    }
+  }
+}
+
 PixelRepairCounts zero_invalid_values(image::Image& image) {
   PixelRepairCounts counts;
   for (float& v : image.pixels) {
@@ -235,6 +251,7 @@ Environment load_environment(const std::string& spec) {
   PixelRepairCounts repaired;
   if (face_files.empty()) {
     image::Image im = image::read_rgb(spec);
+    check_radiance_range(im, spec);
     if (im.width == 2 * im.height) {
       env.layout = Environment::Layout::equirect;
       env.equirect = std::move(im);
@@ -252,6 +269,7 @@ Environment load_environment(const std::string& spec) {
     env.layout = Environment::Layout::cube;
     for (int f = 0; f < 6; ++f) {
       env.faces[f] = image::read_rgb(face_files[f]);
+      check_radiance_range(env.faces[f], face_files[f]);
       const image::Image& im = env.faces[f];
       if (im.width != im.height) fail_file(face_files[f], "cube face is " + size_text(im) + ", not square");
       if (f > 0 && im.width != env.faces[0].width)

@@ -9,7 +9,8 @@
 #include "core/atomic_file.h"
 #include "core/constants.h"
 #include "core/error.h"
-#include "core/json_depth.h"
+#include "light/limits.h"
+#include "core/json_parse.h"
 #include "sh/basis.h"
 
 namespace prt::light {
@@ -130,13 +131,7 @@ sh::RgbCoefficients read_light_file(const std::string& path) { return read_light
 
 LightFile read_lighting_file(const std::string& path) {
   const std::string text = read_file(path);
-  check_json_depth(text, path);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number such as 1e999
-    fail_file(path, std::string("not valid JSON: ") + e.what());
-  }
+  json root = parse_json(text, path);
   if (!root.is_object()) fail_file(path, "not an SH lighting file (expected a JSON object)");
 
   const json& bands_value = require(root, "bands", path);
@@ -163,7 +158,7 @@ LightFile read_lighting_file(const std::string& path) {
       if (!triple[c].is_number()) fail_file(path, "coefficient " + std::to_string(i) + " has a non-numeric entry");
       const double v = triple[c].get<double>();
       if (!std::isfinite(v)) fail_file(path, "coefficient " + std::to_string(i) + " is not finite");
-      if (!(std::abs(v) <= 1e18)) fail_file(path, "coefficient " + std::to_string(i) + " is out of range (|c| > 1e18)");
+      if (!(std::abs(v) <= kMaxLightValue)) fail_file(path, "coefficient " + std::to_string(i) + " is out of range (|c| > 1e18)");
       out.values[i][c] = v;
     }
   }

@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -91,6 +92,23 @@ std::string format_threejs(const ProbeSet& p) {
   return doc.dump() + "\n";
 }
 
+namespace {
+
+// The version-1 JSON of the Unity and Godot exports: format name, frame and layout text, then the
+// list of probes ({index, position, valid, sh}).
+std::string probe_list_document(const char* format, const char* frame, const char* sh_layout, Json probes) {
+  Json doc;
+  doc["format"] = format;
+  doc["version"] = 1;
+  doc["frame"] = frame;
+  doc["sh_layout"] = sh_layout;
+  doc["count"] = probes.size();
+  doc["probes"] = std::move(probes);
+  return doc.dump(1) + "\n";
+}
+
+}  // namespace
+
 std::string format_unity(const ProbeSet& p) {
   check_probe_set(p, "Unity export");
   Json probes = Json::array();
@@ -101,14 +119,10 @@ std::string format_unity(const ProbeSet& p) {
                       {"valid", p.valid[i] != 0},
                       {"sh", channel_major(unity_coefficients(p.probe(i)))}});
   }
-  Json doc;
-  doc["format"] = "prt-probes-unity";
-  doc["version"] = 1;
-  doc["frame"] = "Unity (left-handed, +Y up): x = -x of prt's right-handed frame, as UnityGLTF imports glTF";
-  doc["sh_layout"] = "SphericalHarmonicsL2: sh[channel * 9 + i], pre-scaled so that ShadeSH9 returns E/pi";
-  doc["count"] = p.count();
-  doc["probes"] = probes;
-  return doc.dump(1) + "\n";
+  return probe_list_document("prt-probes-unity",
+                             "Unity (left-handed, +Y up): x = -x of prt's right-handed frame, as UnityGLTF imports glTF",
+                             "SphericalHarmonicsL2: sh[channel * 9 + i], pre-scaled so that ShadeSH9 returns E/pi",
+                             std::move(probes));
 }
 
 std::string format_godot(const ProbeSet& p) {
@@ -121,14 +135,10 @@ std::string format_godot(const ProbeSet& p) {
                       {"valid", p.valid[i] != 0},
                       {"sh", nine_flat(godot_coefficients(p.probe(i)))}});
   }
-  Json doc;
-  doc["format"] = "prt-probes-godot";
-  doc["version"] = 1;
-  doc["frame"] = "Godot (right-handed, +Y up), LightmapGI node with identity transform";
-  doc["sh_layout"] = "LightmapGIData probe_data[\"sh\"]: 9 Colors per point (r,g,b), radiance / pi, no Condon-Shortley phase";
-  doc["count"] = p.count();
-  doc["probes"] = probes;
-  return doc.dump(1) + "\n";
+  return probe_list_document(
+      "prt-probes-godot", "Godot (right-handed, +Y up), LightmapGI node with identity transform",
+      "LightmapGIData probe_data[\"sh\"]: 9 Colors per point (r,g,b), radiance / pi, no Condon-Shortley phase",
+      std::move(probes));
 }
 
 std::string format_filament(const ProbeSet& p, const std::string& probe) {

@@ -12,7 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
-#include "core/json_depth.h"
+#include "core/json_parse.h"
 #include "mesh/mesh.h"
 
 namespace prt::probes {
@@ -67,13 +67,7 @@ std::vector<glm::dvec3> read_points_csv(const std::string& path, const std::stri
 }
 
 std::vector<glm::dvec3> read_points_json(const std::string& path, const std::string& text) {
-  check_json_depth(text, path);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
-    fail_file(path, std::string("invalid JSON: ") + e.what());
-  }
+  nlohmann::json doc = parse_json(text, path);
   const nlohmann::json* list = &doc;
   if (doc.is_object()) {
     if (!doc.contains("points")) fail_file(path, "expected an array of [x, y, z] or an object with \"points\"");

@@ -74,6 +74,16 @@ std::string with_includes(const std::string& text) {
   return out;
 }
 
+// The info log of a shader (glGetShaderiv, glGetShaderInfoLog) or a program (the glGetProgram pair).
+template <typename GetIv, typename GetLog>
+std::string info_log(GLuint id, GetIv get_iv, GetLog get_log) {
+  GLint length = 0;
+  get_iv(id, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
+  get_log(id, static_cast<GLsizei>(log.size()), nullptr, log.data());
+  return log;
+}
+
 GLuint compile(const std::string& name, const std::string& defines) {
   const ShaderSource source = shader_source(name);
   GLuint shader = glCreateShader(stage_of(name));
@@ -84,10 +94,7 @@ GLuint compile(const std::string& name, const std::string& defines) {
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
-    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
     fail_file(source.origin, "GLSL compile error: " + first_line(log));
   }
@@ -135,10 +142,7 @@ Program::Program(const std::vector<std::string>& stage_names, const std::string&
   GLint ok = GL_FALSE;
   glGetProgramiv(id_, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
-    glGetProgramInfoLog(id_, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    const std::string log = info_log(id_, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(id_);
     id_ = 0;
     fail_file(origins, "GLSL link error: " + first_line(log));

@@ -253,18 +253,17 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
       sh::rotation_from_yaw_pitch_roll(state.object_angles.x, state.object_angles.y, state.object_angles.z);
 }
 
-}  // namespace
+// Refuses a --screenshot the scripted run cannot honour, before anything is loaded.
+void check_screenshot_option(const ViewerOptions& options) {
+  if (options.screenshot.empty()) return;
+  if (options.frames <= 0) fail("--screenshot needs --frames N (the frame to save)");
+  if (!image::is_display_format(options.screenshot) && std::filesystem::path(options.screenshot).extension() != ".exr")
+    fail_file(options.screenshot, "screenshot must be .png (tone mapped) or .exr (linear radiance)");
+}
 
-void run_viewer(const ViewerOptions& options) {
-  if (!options.screenshot.empty()) {
-    if (options.frames <= 0) fail("--screenshot needs --frames N (the frame to save)");
-    if (!image::is_display_format(options.screenshot) &&
-        std::filesystem::path(options.screenshot).extension() != ".exr")
-      fail_file(options.screenshot, "screenshot must be .png (tone mapped) or .exr (linear radiance)");
-  }
-  SceneInputs scene = load_scene(options.mesh_path, options.transfer_paths);
-  Session session;
-  ViewerState& state = session.state;
+// Fills the viewer state from the loaded scene and the options: lighting, the transfers' labels,
+// bands and BRDFs, and the initial view settings.
+void init_state(ViewerState& state, const SceneInputs& scene, const ViewerOptions& options) {
   state.projection_bands = max_bands(scene);
   state.sun_request = options.sun;
   state.window_request = options.window;
@@ -296,17 +295,10 @@ void run_viewer(const ViewerOptions& options) {
   state.object_angles = options.object_rotate;
   if (options.bands < 0 || options.bands > state.current_bands())
     fail("--bands: must be between 1 and the transfer's " + std::to_string(state.current_bands()) + " bands");
+}
 
-  const bool scripted = options.frames > 0;
-  Window window(options.width, options.height, !scripted);
-  glfwSetWindowUserPointer(window.get(), &session);
-  glfwSetMouseButtonCallback(window.get(), on_mouse_button);
-  glfwSetCursorPosCallback(window.get(), on_cursor);
-  glfwSetScrollCallback(window.get(), on_scroll);
-  glfwSetKeyCallback(window.get(), on_key);
-  glfwSetDropCallback(window.get(), on_drop);
-
-  Renderer renderer;
+// Uploads the mesh and every transfer (with its BRDF or surface albedo) to the renderer.
+void upload_scene(Renderer& renderer, const SceneInputs& scene, const ViewerState& state) {
   renderer.set_mesh(scene.mesh);
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const int index = add_scene_transfer(renderer, scene, i);
@@ -315,23 +307,38 @@ void run_viewer(const ViewerOptions& options) {
     else
       renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[i].header, scene.transfer_paths[i]));
   }
-  const mesh::Bounds bounds = mesh::bounds(scene.mesh);
-  scene = SceneInputs();  // the GPU holds what is needed now
-  state.renderer_name = describe_current_context();
+}
 
-  int width = 0, height = 0;
-  glfwGetFramebufferSize(window.get(), &width, &height);
-  Camera initial_camera = options.camera;
-  initial_camera.distance = orbit_view(options.camera, bounds, std::max(width, 1), std::max(height, 1)).distance;
-  state.settings.camera = initial_camera;
+void install_callbacks(GLFWwindow* window, Session& session) {
+  glfwSetWindowUserPointer(window, &session);
+  glfwSetMouseButtonCallback(window, on_mouse_button);
+  glfwSetCursorPosCallback(window, on_cursor);
+  glfwSetScrollCallback(window, on_scroll);
+  glfwSetKeyCallback(window, on_key);
+  glfwSetDropCallback(window, on_drop);
+}
 
-  Gui gui(window.get());
+// Saves a screenshot pair (PNG + EXR) under the next free prt-view-NNN name.
+void save_screenshot(const Renderer& renderer, ViewerState& state) {
+  const std::string stem = free_screenshot_stem();
+  save_image(renderer, state, stem + ".png");
+  save_image(renderer, state, stem + ".exr");
+  state.message = "saved " + stem + ".png and " + stem + ".exr";
+  std::fprintf(stderr, "prt view: %s\n", state.message.c_str());
+}
+
+// The frame loop: events, panel, render, present, until the window closes, the user quits or the
+// scripted frame count is reached.
+void run_frames(GLFWwindow* window, Session& session, Renderer& renderer, const Camera& initial_camera,
+                const ViewerOptions& options) {
+  ViewerState& state = session.state;
+  const bool scripted = options.frames > 0;
   FrameTimer timer;
-  int frames_drawn = 0;
+  int frames_drawn = 0, width = 0, height = 0;
   auto last = std::chrono::steady_clock::now();
-  while (!glfwWindowShouldClose(window.get()) && !session.quit) {
+  while (!glfwWindowShouldClose(window) && !session.quit) {
     glfwPollEvents();
-    glfwGetFramebufferSize(window.get(), &width, &height);
+    glfwGetFramebufferSize(window, &width, &height);
     if (width <= 0 || height <= 0) {  // minimised
       glfwWaitEvents();
       continue;
@@ -354,24 +361,47 @@ void run_viewer(const ViewerOptions& options) {
 
     if (state.screenshot_requested) {
       state.screenshot_requested = false;
-      const std::string stem = free_screenshot_stem();
-      save_image(renderer, state, stem + ".png");
-      save_image(renderer, state, stem + ".exr");
-      state.message = "saved " + stem + ".png and " + stem + ".exr";
-      std::fprintf(stderr, "prt view: %s\n", state.message.c_str());
+      save_screenshot(renderer, state);
     }
     ++frames_drawn;
     if (scripted && frames_drawn >= options.frames) {
       if (!options.screenshot.empty()) save_image(renderer, state, options.screenshot);
       break;
     }
-    glfwSwapBuffers(window.get());
+    glfwSwapBuffers(window);
 
     const auto now = std::chrono::steady_clock::now();
     const double ms = std::chrono::duration<double, std::milli>(now - last).count();
     last = now;
     state.frame_ms = state.frame_ms == 0.0 ? ms : 0.9 * state.frame_ms + 0.1 * ms;
   }
+}
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+  check_screenshot_option(options);
+  SceneInputs scene = load_scene(options.mesh_path, options.transfer_paths);
+  Session session;
+  ViewerState& state = session.state;
+  init_state(state, scene, options);
+
+  Window window(options.width, options.height, options.frames <= 0);
+  install_callbacks(window.get(), session);
+  Renderer renderer;
+  upload_scene(renderer, scene, state);
+  const mesh::Bounds bounds = mesh::bounds(scene.mesh);
+  scene = SceneInputs();  // the GPU holds what is needed now
+  state.renderer_name = describe_current_context();
+
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window.get(), &width, &height);
+  Camera initial_camera = options.camera;
+  initial_camera.distance = orbit_view(options.camera, bounds, std::max(width, 1), std::max(height, 1)).distance;
+  state.settings.camera = initial_camera;
+
+  Gui gui(window.get());
+  run_frames(window.get(), session, renderer, initial_camera, options);
   glfwSetWindowUserPointer(window.get(), nullptr);
   glFinish();
 }

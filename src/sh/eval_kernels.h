@@ -33,7 +33,8 @@
 #include "core/constants.h"
 #include "sh/basis.h"
 
-#if defined(__GNUC__)
+// PRT_SH_NO_FORCE_INLINE (set by the sanitizer builds, src/sh/CMakeLists.txt) leaves inlining to the compiler.
+#if defined(__GNUC__) && !defined(PRT_SH_NO_FORCE_INLINE)
 #define PRT_SH_INLINE inline __attribute__((always_inline))
 #define PRT_SH_LAMBDA_INLINE __attribute__((always_inline))
 #else
@@ -56,7 +57,8 @@ namespace prt::sh::detail {
 #define PRT_SH_VECTOR_BYTES_ 16
 #endif
 
-#if defined(__GNUC__)
+// PRT_SH_NO_FORCE_INLINE (set by the sanitizer builds, src/sh/CMakeLists.txt) leaves inlining to the compiler.
+#if defined(__GNUC__) && !defined(PRT_SH_NO_FORCE_INLINE)
 typedef float VecFloat __attribute__((vector_size(PRT_SH_VECTOR_BYTES_)));
 typedef double VecDouble __attribute__((vector_size(PRT_SH_VECTOR_BYTES_)));
 #else

@@ -96,6 +96,28 @@ TEST_CASE("finite but extreme option values are refused before they reach Embree
   REQUIRE_FALSE(fs::exists(scene().dir + "/p.prtprobes"));
 }
 
+TEST_CASE("an environment map pixel above 1e18 is refused, one at 1e18 is accepted", "[hardening][cli][range]") {
+  // 3e38 is finite, but its SH coefficients times transfer overflow float in shading and rendering.
+  const std::string out = scene().dir + "/bright.json";
+  for (const float value : {3e38f, 1.5e18f}) {
+    image::Image env(16, 8, 3);
+    env.pixels.assign(env.pixels.size(), 1.0f);
+    env.at(5, 2, 1) = value;
+    const std::string path = scene().dir + "/bright.exr";
+    image::write(path, env);
+    require_one_line_error(run_prt("light " + path + " --sun none -o " + out), "pixel (5, 2)");
+    REQUIRE_FALSE(fs::exists(out));
+  }
+  image::Image env(16, 8, 3);
+  env.pixels.assign(env.pixels.size(), 1.0f);
+  env.at(5, 2, 1) = 1e18f * 0.999f;
+  image::write(scene().dir + "/bright.exr", env);
+  const RunResult ok = run_prt("light " + scene().dir + "/bright.exr --sun none -o " + out);
+  INFO(ok.output);
+  REQUIRE(ok.exit_code == 0);
+  REQUIRE(fs::exists(out));
+}
+
 TEST_CASE("glossy shade with --eye 1e308 is refused instead of writing NaN", "[hardening][cli][range]") {
   const std::string prt_file = scene().dir + "/glossy.prt";
   const RunResult bake = run_prt("bake " + scene().mesh + " -o " + prt_file +

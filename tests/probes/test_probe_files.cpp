@@ -201,7 +201,7 @@ TEST_CASE("prt probes bakes every format, probes-relight applies a rotated sky",
   const std::string dir = test::fresh_temp_dir("probe_cli_formats");
   const std::string scene = write_scene(dir);
   const std::string base = "probes " + scene + " --env " + sky() + " --grid 3,2,3 --rays 256 --surface-samples 64 -q ";
-  for (const std::string& f : {"prt", "threejs", "unity", "godot", "filament", "bevy"}) {
+  for (const char* f : {"prt", "threejs", "unity", "godot", "filament", "bevy"}) {
     const test::RunResult r = test::run_prt(base + "--format " + f + " -o " + dir + "/out." + f);
     INFO(f << ": " << r.output);
     CHECK(r.exit_code == 0);

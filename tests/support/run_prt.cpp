@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 namespace prt::test {
@@ -25,7 +27,9 @@ RunResult run_prt(const std::string& arguments) {
 
 std::string fresh_temp_dir(const std::string& name) {
   namespace fs = std::filesystem;
-  fs::path dir = fs::temp_directory_path() / "prt_tests" / name;
+  // One folder per process: ctest runs each test case as its own process, in parallel, and two cases
+  // of one file must not clear each other's folder.
+  fs::path dir = fs::temp_directory_path() / "prt_tests" / (name + "-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();

@@ -19,7 +19,8 @@ bool fails_in_one_line(const RunResult& result, const std::string& expected);
 /// Path of the prt binary in the build tree.
 std::string prt_binary();
 
-/// A fresh empty folder under the system temp dir, named after `name`.
+/// A fresh empty folder under the system temp dir, named after `name` and this process (pid), so
+/// test cases that ctest runs in parallel never share one.
 std::string fresh_temp_dir(const std::string& name);
 
 /// Number of entries in a folder (to check that nothing, not even a temporary, was left behind).
