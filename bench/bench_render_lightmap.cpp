@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
   benchmark::Shutdown();
   std::printf("\nSummary (floor of 8192 triangles filling most of a %dx%d frame, 5 bands RGB, 19 RGBA32F layers)\n",
               kFrameSize, kFrameSize);
-  std::printf("%-10s %12s %12s %16s %12s %10s\n", "lightmap", "lightmap ms", "vertex ms", "lightmap/vertex", "upload ms", "GPU MB");
+  std::printf("%-10s %12s %12s %16s %12s %10s\n", "lightmap", "lightmap ms", "vertex ms", "lightmap/vertex", "upload ms", "level-0 MB");
   for (const auto& [texels, r] : results)
     std::printf("%4dx%-5d %12.2f %12.2f %16.2f %12.1f %10.1f\n", texels, texels, r.lightmap_ms, r.vertex_ms, r.lightmap_ms / r.vertex_ms,
                 r.upload_ms, r.megabytes);
