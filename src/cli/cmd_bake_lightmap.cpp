@@ -2,8 +2,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <memory>
 
+#include "cli/lightmap_glb.h"
 #include "cli/output_paths.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "lightmap/texel_bake.h"
 #include "mesh/mesh.h"
@@ -17,8 +20,7 @@ void run_bake_lightmap(const bake::BakeOptions& options, const LightmapBakeReque
   lightmap.gutter = r.gutter;
   lightmap.repair = r.repair;
   lightmap.mesh_path = r.mesh_path;
-  if (!r.gltf_output.empty()) fail("--gltf with --lightmap: the texture output is not available in this build");
-  check_outputs({r.output}, {r.mesh_path});
+  check_outputs({r.output, r.gltf_output}, {r.mesh_path});
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(r.mesh_path, &load_report, r.quiet);
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
@@ -27,7 +29,16 @@ void run_bake_lightmap(const bake::BakeOptions& options, const LightmapBakeReque
   lightmap::LightmapReport report;
   transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report);
   if (r.float16) data.header.scalar = transfer::Scalar::float16;
-  transfer::write_transfer(r.output, data);
+  // Both outputs are written to temporaries and committed together: a failing .glb leaves no .prt.
+  AtomicFile prt_file(r.output);
+  write_staged(prt_file, [&](const std::string& path) { transfer::write_transfer(path, data); });
+  std::unique_ptr<AtomicFile> glb_file;
+  if (!r.gltf_output.empty()) {
+    glb_file = std::make_unique<AtomicFile>(r.gltf_output);
+    write_staged(*glb_file, [&](const std::string& path) { write_lightmap_glb(path, mesh, data); });
+  }
+  prt_file.commit();
+  if (glb_file) glb_file->commit();
   if (r.quiet) return;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "prt bake: %s lightmap %dx%d, %zu covered texels, %zu gutter, %zu samples moved out of geometry, %zu unrecoverable, "

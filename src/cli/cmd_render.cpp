@@ -38,7 +38,7 @@ void add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Render the relit mesh headless (OpenGL 4.5 through EGL; no display needed) to PNG or EXR");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfer was baked for")->required();
-  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt, or .cprt compressed): diffuse, or glossy (view-dependent)")->required();
+  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt, or .cprt compressed): diffuse, or glossy (view-dependent); a lightmap .prt (prt bake --lightmap) is sampled per pixel")->required();
   cmd->add_option("--env", options->env,
                   "Environment image (equirect 2:1, cross, or six faces; projected to the transfer's bands) or SH "
                   "lighting .json")

@@ -61,4 +61,23 @@ struct VertexAttribute {
 void write_glb(const std::string& path, const Mesh& mesh, const std::vector<VertexAttribute>& extra_attributes,
                const std::vector<glm::vec3>& colour_0 = {});
 
+/// An image stored in a GLB's BIN chunk: a glTF "images" entry with a bufferView and mimeType.
+struct GlbImage {
+  std::string bytes;
+  std::string mime_type;  ///< e.g. "image/ktx2"
+};
+
+/// Writes `mesh` with its lightmap UVs (Mesh::lightmap_uv, one per corner) as a glTF 2.0 binary: the
+/// GLB layout above without COLOR_0 and extra attributes, except that the vertices are split by UV:
+/// one vertex per distinct (mesh vertex, corner UV) pair, in order of first use by the corners, with
+/// POSITION, NORMAL (if the mesh has normals) and TEXCOORD_0 = the lightmap UV as Mesh keeps it (glTF's
+/// convention), then the indices, then each of `images` as a buffer view and a glTF image (in order:
+/// image i is `images[i]`). The primitive gets extensions[extension_name] = `extension_json` (a JSON
+/// object, which refers to the images by index); extension_name is listed in extensionsUsed, not in
+/// extensionsRequired (an engine without it still loads the mesh). Throws prt::Error naming `path` for
+/// a mesh write_glb refuses, a mesh without lightmap UVs or with a non-finite one, an extension that is
+/// not a JSON object, or a failed write.
+void write_glb_textured(const std::string& path, const Mesh& mesh, const std::vector<GlbImage>& images,
+                        const std::string& extension_name, const std::string& extension_json);
+
 }  // namespace prt::mesh

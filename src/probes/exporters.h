@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "probes/probe_set.h"
+#include "transfer/ktx2.h"
 
 namespace prt::light {
 struct Environment;
@@ -71,10 +72,7 @@ std::vector<glm::vec3> dilate_invalid(const ProbeSet& probes);
 
 /// Parses a KTX2 file written by format_bevy_ktx2 back into its float texels (RGBA, x fastest) and
 /// size, checking the identifier, format, DFD and level index. For tests and `prt info`-like tools.
-struct Ktx2Texture {
-  int width = 0, height = 0, depth = 0;
-  std::vector<float> rgba;
-};
+using Ktx2Texture = transfer::Ktx2Image;
 Ktx2Texture read_bevy_ktx2(const std::string& bytes, const std::string& name);
 
 /// glTF: writes a .glb (path must end in .glb) of the scene with EXT_lights_image_based (one light,

@@ -24,4 +24,14 @@ void check_gl(const char* what) {
   fail(std::string(what) + ": OpenGL error " + code);
 }
 
+void delete_buffer(GLuint& buffer) {
+  if (buffer != 0) glDeleteBuffers(1, &buffer);
+  buffer = 0;
+}
+
+void delete_texture(GLuint& texture) {
+  if (texture != 0) glDeleteTextures(1, &texture);
+  texture = 0;
+}
+
 }  // namespace prt::render

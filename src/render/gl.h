@@ -21,4 +21,8 @@ std::string describe_current_context();
 /// Throws prt::Error("<what>: OpenGL error 0x...") if glGetError reports an error (draining all flags).
 void check_gl(const char* what);
 
+/// Deletes the buffer (texture) if it is not 0 and sets the name to 0.
+void delete_buffer(GLuint& buffer);
+void delete_texture(GLuint& texture);
+
 }  // namespace prt::render

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 #include "render/renderer_cpca.h"
+#include "render/renderer_lightmap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,16 +32,6 @@ GLuint make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags) {
   glCreateBuffers(1, &buffer);
   glNamedBufferStorage(buffer, std::max<GLsizeiptr>(bytes, 4), data, flags);
   return buffer;
-}
-
-void delete_buffer(GLuint& buffer) {
-  if (buffer != 0) glDeleteBuffers(1, &buffer);
-  buffer = 0;
-}
-
-void delete_texture(GLuint& texture) {
-  if (texture != 0) glDeleteTextures(1, &texture);
-  texture = 0;
 }
 
 glm::mat3 to_float(const glm::dmat3& m) { return glm::mat3(m); }
@@ -143,6 +134,7 @@ Renderer::Renderer()
       upload_(kMaxCoefficients, glm::vec4(0.0f)) {
   prt_program(3, 25, 25, 1);  // compile errors in prt_diffuse.vert surface here, not at the first frame
   sun_ = std::make_unique<SunPass>();
+  lightmap_ = std::make_unique<LightmapPass>();
   glCreateVertexArrays(1, &empty_vao_);
   object_lighting_ = make_buffer(kLightingBytes, upload_.data(), GL_DYNAMIC_STORAGE_BIT);
   environment_lighting_ = make_buffer(kLightingBytes, upload_.data(), GL_DYNAMIC_STORAGE_BIT);
@@ -151,6 +143,7 @@ Renderer::Renderer()
 
 Renderer::~Renderer() {
   sun_.reset();
+  lightmap_.reset();
   transfers_.clear();
   compressed_.clear();
   for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
@@ -172,6 +165,7 @@ Renderer::~Renderer() {
 
 void Renderer::set_mesh(const mesh::Mesh& mesh) {
   sun_->clear_mesh();
+  lightmap_->set_mesh(mesh);
   transfers_.clear();
   compressed_.clear();
   for (GLuint& buffer : brdf_buffers_) delete_buffer(buffer);
@@ -227,6 +221,7 @@ int Renderer::add_transfer(const transfer::TransferData& transfer, const std::st
 const transfer::Header& Renderer::transfer_header(int index) const {
   if (index < 0 || index >= transfer_count()) fail("renderer: no transfer " + std::to_string(index));
   if (is_compressed(index)) return compressed_[static_cast<std::size_t>(index)]->header();
+  if (is_lightmap(index)) return lightmap_header(index);
   return transfers_[static_cast<std::size_t>(index)]->header();
 }
 
@@ -339,6 +334,8 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
   draw_background(settings, bands);
   if (prt && is_compressed(settings.transfer))
     draw_cpca(settings, bands);
+  else if (prt && is_lightmap(settings.transfer))
+    draw_lightmap(settings, bands, sun, false);
   else if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))
     draw_glossy(settings, bands, sun);
   else

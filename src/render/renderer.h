@@ -27,6 +27,11 @@
 //               add_compressed): the CPU multiplies each cluster's mean and PCA directions with the
 //               lighting (glossy: then B), the compute pass blends them per vertex with its weights
 //               (glossy: evaluated toward the eye at the vertex), the draw interpolates (renderer_cpca.h).
+//   prt_lightmap prt_lightmap.vert + prt_lightmap.frag, for a texel (lightmap) transfer (add_lightmap):
+//               the transfer is uploaded once as texture arrays, four values per layer; per pixel the
+//               fragment shader samples them bilinearly at the lightmap UV and takes the dot product with
+//               the object-frame lighting; with discs, also the bounce-only layers with the discs' SH and
+//               the discs' direct light per pixel as prt_sun.frag (renderer_lightmap.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
 //   sun         discs (light/disc.h: a sun, lamps; set_discs), renderer_sun.cpp: when the lighting
@@ -187,6 +192,19 @@ class Renderer {
   /// same list as add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs.
   int add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin);
   bool is_compressed(int transfer) const;
+  /// Uploads a texel (lightmap) transfer (transfer::Header::is_texel; diffuse kinds) for the current
+  /// mesh, which must have lightmap UVs (renderer_lightmap.h); returns its index in the same list as
+  /// add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs from the mesh's, the
+  /// mesh has no lightmap UVs or the textures exceed the OpenGL limits. (Callers check the mesh and UV
+  /// fingerprints first.)
+  int add_lightmap(const transfer::TransferData& transfer, const std::string& origin);
+  bool is_lightmap(int transfer) const;
+  /// Draws lightmap transfer `settings.transfer` in texel space into the float framebuffer, resized to
+  /// its texel_width x texel_height: each triangle at its lightmap UV, so that read_radiance()'s pixel
+  /// (i, j) is texel (i, j) shaded at its centre (as render() shades it per pixel: the rotations, bands,
+  /// discs and shadow maps of `settings`; camera and background ignored). Texels no triangle's
+  /// rasterisation covers stay 0 (read_triangle_ids: kNoTriangle). For tests: the GPU at texel centres.
+  void render_texels(const FrameSettings& settings);
   int transfer_count() const { return static_cast<int>(transfers_.size()); }
   const transfer::Header& transfer_header(int index) const;
 
@@ -262,6 +280,13 @@ class Renderer {
   void draw_cpca(const FrameSettings& settings, int bands);
   /// set_brdf for a compressed transfer (kept on the CPU for the products); false if `transfer` is not one.
   bool set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix);
+  /// The lightmap pass (renderer_lightmap.cpp).
+  struct LightmapPass;
+  std::unique_ptr<LightmapPass> lightmap_;
+  const transfer::Header& lightmap_header(int transfer) const;
+  const Program& lightmap_program(const transfer::Header& header, int used_count, bool sun, bool bounce, bool texel_space);
+  void upload_lightmap_disc_lighting(const FrameSettings& settings, int bands);
+  void draw_lightmap(const FrameSettings& settings, int bands, bool sun, bool texel_space);
 
   Program background_, lambert_, tonemap_;
   std::map<std::tuple<int, int, int, int, bool>, Program> prt_programs_;

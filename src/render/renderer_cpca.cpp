@@ -1,6 +1,7 @@
 // The renderer's CPCA pass (renderer_cpca.h; renderer.h, PASSES: prt_cpca).
 #include "render/renderer_cpca.h"
 #include "render/renderer_sun.h"
+#include "render/renderer_lightmap.h"
 
 #include <cstdio>
 
@@ -154,6 +155,7 @@ bool Renderer::is_compressed(int index) const {
 
 int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i) {
   if (i < scene.compressed.size() && scene.compressed[i]) return renderer.add_compressed(*scene.compressed[i], scene.transfer_paths[i]);
+  if (scene.transfers[i].header.is_texel()) return renderer.add_lightmap(scene.transfers[i], scene.transfer_paths[i]);
   return renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
 }
 
@@ -170,6 +172,7 @@ std::string transfer_memory_label(const SceneInputs& scene, std::size_t i) {
     }
     return label;
   }
+  if (scene.transfers[i].header.is_texel()) return lightmap_memory_label(scene.transfers[i].header);
   std::snprintf(text, sizeof text, ", %.1f MB", compress::uncompressed_bytes(scene.transfers[i].header, transfer::Scalar::float32) * 1e-6);
   return text;
 }

@@ -43,6 +43,7 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
     scene.compressed.push_back(compress::read_transfer_or_model(path, data));
     transfer::check_mesh_match(path, data.header, scene.mesh.vertex_count(), scene.mesh.triangle_count(),
                                fingerprint);
+    transfer::check_uv_match(path, data.header, mesh::uv_fingerprint(scene.mesh));  // texel files only
     scene.transfers.push_back(std::move(data));
     scene.transfer_paths.push_back(path);
   }

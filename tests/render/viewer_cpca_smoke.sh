@@ -7,13 +7,7 @@
 set -eu
 prt="$1"
 make_fixtures="$2"
-if ! command -v xvfb-run >/dev/null 2>&1; then
-  echo "SKIPPED: xvfb-run is not installed (scripts/setup.sh installs xvfb); the viewer needs an X display"
-  exit 77
-fi
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-"$make_fixtures" "$dir"
+. "$(dirname "$0")/viewer_common.sh"
 "$prt" bake "$dir/mesh.ply" --transfer glossy-shadowed --brdf phong:exponent=24,ks=0.5,kd=0.4 --bands 4 --samples 32 -q \
   -o "$dir/glossy.prt"
 "$prt" compress "$dir/glossy.prt" --clusters 16 --pca 4 -q -o "$dir/glossy.cprt"
