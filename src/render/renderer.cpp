@@ -338,7 +338,7 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
 
   draw_background(settings, bands);
   if (prt && is_compressed(settings.transfer))
-    draw_cpca(settings, bands);
+    draw_cpca(settings, bands, sun);
   else if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))
     draw_glossy(settings, bands, sun);
   else

@@ -24,6 +24,7 @@
 #include "brdf/brdf.h"
 #include "brdf/frame.h"
 #include "brdf/projection.h"
+#include "compress/compressed.h"
 #include "cpu_raster.h"
 #include "light/disc.h"
 #include "mesh/mesh.h"
@@ -168,11 +169,15 @@ TEST_CASE("diffuse render with a sun equals shade_diffuse_split on the box and f
   const trace::Scene scene(mesh);
   const std::vector<float> rays = shade::disc_visibility(mesh, sun, scene);
 
+  // Also CPCA-compressed (renderer_cpca.cpp): its bounce-only part in the products, the direct light as here.
+  for (const bool compressed : {false, true})
   for (const transfer::Kind kind : {transfer::Kind::shadowed, transfer::Kind::interreflected}) {
-    SECTION(transfer::kind_name(kind)) {
-      const transfer::TransferData transfer = bake_transfer(mesh, kind, 3);
-      if (kind == transfer::Kind::interreflected) REQUIRE(!transfer.bounce_only.empty());
-      const int index = renderer.add_transfer(transfer, "test");
+    SECTION(std::string(transfer::kind_name(kind)) + (compressed ? ", CPCA K 24 N 4" : "")) {
+      const transfer::TransferData baked = bake_transfer(mesh, kind, 3);
+      if (kind == transfer::Kind::interreflected) REQUIRE(!baked.bounce_only.empty());
+      const compress::CompressedTransfer model = compress::compress_transfer(baked, {24, 4}, transfer::Scalar::float32, "test");
+      const transfer::TransferData transfer = compressed ? compress::decompress(model) : baked;  // what the GPU should shade
+      const int index = compressed ? renderer.add_compressed(model, "test") : renderer.add_transfer(transfer, "test");
       renderer.set_surface_albedo(index, shade::surface_albedo(mesh, transfer.header, "test"));
       light::SceneLighting lighting;
       lighting.sky = test_lighting(3);
