@@ -46,7 +46,7 @@ Fixture make_fixture(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("prt compress: same bytes for 1 and 2 threads and from bake --compress; info; shade of .cprt", "[compress][cli]") {
+TEST_CASE("prt compress: same bytes for 1 and 2 threads and from bake --compress, info, shade of .cprt", "[compress][cli]") {
   const Fixture f = make_fixture("compress_cli");
   const std::string common = "compress " + f.transfer_path + " --clusters 12 --pca 3 --light " + f.light_path;
   const test::RunResult one = test::run_prt(common + " --threads 1 -o " + f.dir + "/one.cprt");
