@@ -67,9 +67,6 @@ void render_to_file(const RenderOptions& options) {
     renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[0].header, scene.transfer_paths[0]));
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
   renderer.set_discs(lighting.discs);
-  if (!lighting.discs.empty() && glossy && renderer.is_compressed(index))  // Renderer::sun_active
-    std::fprintf(stderr, "prt: warning: %s: compressed glossy transfer is drawn without the discs' light for now (prt shade applies it)\n",
-                 scene.transfer_paths[0].c_str());
 
   FrameSettings settings;
   settings.camera = options.camera;

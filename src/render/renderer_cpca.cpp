@@ -153,14 +153,16 @@ int Renderer::add_compressed(const compress::CompressedTransfer& compressed, con
   compressed_.resize(transfers_.size());
   compressed_.push_back(std::make_unique<CpcaTransfer>(compressed, origin));
   transfers_.push_back(nullptr);
-  // The discs' pass (diffuse only, Renderer::sun_active): direct light with shadows unless unshadowed;
-  // the bounce light comes from the model's bounce-only part in the products (draw_cpca), so the sun
-  // pass's own bounce stays 0 -- it warns, as for a version 1 .prt, only if the model has no such part.
+  // The discs' pass: direct light with shadows unless unshadowed (glossy: through the BRDF terms that
+  // set_brdf(..., surface) records); the bounce light comes from the model's bounce-only part in the
+  // products (draw_cpca), so the sun pass's own per-vertex bounce stays 0 -- which is why `glossy` stays
+  // false here (its glossy bounce pass reads an uncompressed buffer) -- and it warns, as for a version 1
+  // .prt, only if an interreflected model has no such part.
   SunPass::PerTransfer& discs = sun_->transfers.emplace_back();
+  const transfer::Kind kind = compressed.source.kind;
   discs.origin = origin;
-  discs.glossy = transfer::is_glossy(compressed.source.kind);
-  discs.shadows = compressed.source.kind != transfer::Kind::unshadowed;
-  discs.interreflected = compressed.source.kind == transfer::Kind::interreflected && !compressed.bounce;
+  discs.shadows = kind != transfer::Kind::unshadowed;
+  discs.interreflected = (kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected) && !compressed.bounce;
   brdf_buffers_.push_back(0);
   brdf_bands_.push_back(0);
   return static_cast<int>(transfers_.size()) - 1;
@@ -229,20 +231,25 @@ void Renderer::draw_cpca(const FrameSettings& settings, int bands, bool sun) {
   glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-  // Draw with the per-vertex radiance, interpolated as the diffuse pass's; with discs (diffuse only,
-  // Renderer::sun_active), prt_sun.frag adds their direct light per pixel as for uncompressed transfer.
-  const std::pair<int, int> key(-1, sun ? 1 : 0);
+  // Draw with the per-vertex radiance, interpolated as the diffuse pass's; with discs, prt_sun.frag
+  // (diffuse) or prt_cpca_sun.frag (glossy) adds their direct light per pixel as for uncompressed transfer.
+  const std::pair<int, int> key(-1, sun ? (glossy ? 2 : 1) : 0);
   found = cpca_programs_.find(key);
   if (found == cpca_programs_.end())
-    found = cpca_programs_.emplace(key, sun ? Program({"prt_cpca.vert", "prt_sun.frag"}, "#define SUN 1\n")
-                                            : Program({"prt_cpca.vert", "surface.frag"})).first;
+    found = cpca_programs_.emplace(key, !sun     ? Program({"prt_cpca.vert", "surface.frag"})
+                                        : glossy ? Program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
+                                                 : Program({"prt_cpca.vert", "prt_sun.frag"}, "#define SUN 1\n#define SUN_ALBEDO 1\n"))
+                .first;
   const Program& draw = found->second;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(mesh_vao_);
   glUseProgram(draw.id());
   glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
-  if (sun) bind_sun(draw, settings, false);
+  if (sun) bind_sun(draw, settings, glossy);
+  if (sun && glossy)
+    glUniform3f(draw.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
+                static_cast<float>(eye_object.z));
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
 }
 

@@ -158,9 +158,7 @@ void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix, const brdf
 }
 
 bool Renderer::sun_active(const FrameSettings& settings) const {
-  // Compressed glossy transfer (renderer_cpca.cpp) is drawn without the discs' pass for now.
-  return settings.sun && settings.shading == Shading::prt && !sun_->discs.empty() &&
-         !(is_compressed(settings.transfer) && transfer::is_glossy(transfer_header(settings.transfer).kind));
+  return settings.sun && settings.shading == Shading::prt && !sun_->discs.empty();
 }
 
 void Renderer::update_sun(const FrameSettings& settings, int bands) {

@@ -262,6 +262,58 @@ TEST_CASE("glossy render with a sun equals the split glossy shading with the BRD
   }
 }
 
+TEST_CASE("glossy CPCA render with a sun: per-vertex PRT of the model plus the disc's direct light per pixel", "[render][gl][sun][glossy][compress]") {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  const mesh::Mesh mesh = box_on_floor();
+  renderer.set_mesh(mesh);
+  const light::Disc sun = test_sun();
+  const trace::Scene scene(mesh);
+  const std::vector<float> rays = shade::disc_visibility(mesh, sun, scene);
+  const char* spec = "phong:exponent=20,ks=0.5,kd=0.4";
+  const transfer::TransferData baked = bake_transfer(mesh, transfer::Kind::glossy_interreflected, 3, spec);
+  const compress::CompressedTransfer model = compress::compress_transfer(baked, {24, 4}, transfer::Scalar::float32, "test");
+  REQUIRE(model.bounce);
+  const int index = renderer.add_compressed(model, "test");
+  const brdf::Brdf surface = brdf::parse_brdf(spec);
+  const brdf::BrdfMatrix b = brdf::project(surface, 3);
+  renderer.set_brdf(index, b, surface);
+  const sh::RgbCoefficients sky = test_lighting(3);
+  renderer.set_lighting(sky, nullptr);
+  renderer.set_discs({sun});
+  const render::FrameSettings settings = frame(index, render::Camera{-120.0, 40.0, 0.0});
+  renderer.render(settings, kWidth, kHeight);
+  const image::Image gpu = renderer.read_radiance();
+  const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
+  const std::vector<float> map = renderer.shadow_visibility(settings, 0);
+
+  // CPU: the decompressed model's PRT toward the eye AT THE VERTICES (the CPCA pass is per vertex: sky
+  // through the transfer plus the disc's SH through the bounce-only part), interpolated, plus the
+  // disc's direct light at the pixel as in the uncompressed case above; clamped at 0.
+  const transfer::TransferData approximate = compress::decompress(model);
+  transfer::TransferData bounce = approximate;
+  bounce.values = approximate.bounce_only;
+  const glm::vec3 eye(renderer.last_view().eye);
+  std::vector<glm::vec3> vertex = shade::shade_glossy_eye(approximate, b, sky, mesh.positions, mesh.normals, eye);
+  const std::vector<glm::vec3> vertex_bounce =
+      shade::shade_glossy_eye(bounce, b, light::disc_coefficients(3, sun), mesh.positions, mesh.normals, eye);
+  for (std::size_t v = 0; v < vertex.size(); ++v) vertex[v] += vertex_bounce[v];
+  const image::Image cpu = per_pixel_on_cpu(mesh, renderer.last_model_view_projection(), ids, kWidth, kHeight, [&](const PixelPoint& p) {
+    glm::dvec3 prt(0.0);
+    for (int k = 0; k < 3; ++k) prt += p.weight[k] * glm::dvec3(vertex[p.corner[k]]);
+    const glm::dvec3 v = glm::normalize(glm::dvec3(eye) - p.position);
+    const glm::dmat3 to_local = glm::transpose(brdf::shading_frame(glm::dvec3(mesh.normals[p.corner[0]])));
+    return glm::max(prt + sun.irradiance * brdf::eval_cosine(surface, to_local * sun.direction, to_local * v) * double(rays[p.corner[0]]),
+                    glm::dvec3(0.0));
+  });
+  std::size_t counted = 0;
+  const double worst = uniform_error(gpu, cpu, ids, uniform_triangles(mesh, rays, map), counted);
+  INFO("pixels on uniformly lit or shadowed triangles " << counted << ", max relative error " << worst);
+  CHECK(counted > static_cast<std::size_t>(kWidth * kHeight / 10));
+  CHECK(worst <= 2e-3);
+  CHECK(smallest_channel(gpu) >= 0.0);
+}
+
 TEST_CASE("shadow-map visibility at the vertices agrees with Embree's disc rays", "[render][gl][sun]") {
   render::HeadlessContext context;
   struct Case {
