@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/lighting_input.h"
 #include "compress/cprt_file.h"
+#include "light/disc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 
@@ -21,6 +22,7 @@ struct CompressCommandOptions {
   std::string transfer_path, output, env, light;
   int clusters = 0, pca = 0, iterations = 20, threads = 0;
   unsigned seed = 1;
+  std::string metric = "shaded";
   bool float16 = false, per_cluster = false, quiet = false;
 };
 
@@ -52,6 +54,7 @@ void run_compress(const CompressCommandOptions& o) {
   request.scalar = o.float16 ? transfer::Scalar::float16 : transfer::Scalar::float32;
   request.lighting = o.env.empty() ? o.light : o.env;
   request.threads = o.threads;
+  request.shaded_metric = o.metric == "shaded";
   const auto start = std::chrono::steady_clock::now();
   const compress::CompressedTransfer c = compress_for_cli(transfer, o.transfer_path, request);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -65,12 +68,25 @@ void run_compress(const CompressCommandOptions& o) {
 
 compress::CompressedTransfer compress_for_cli(const transfer::TransferData& transfer, const std::string& what,
                                               const CompressionRequest& request) {
-  compress::validate_cpca_options(static_cast<std::size_t>(transfer.header.vertex_count),
-                                  static_cast<std::size_t>(transfer.header.values_per_vertex()), request.options, what);
-  sh::RgbCoefficients lighting(1);
-  if (!request.lighting.empty()) lighting = load_lighting(request.lighting, static_cast<int>(transfer.header.bands), glm::dvec3(0.0), request.threads);
-  compress::CompressedTransfer c = compress::compress_transfer(transfer, request.options, request.scalar, what);
-  if (!request.lighting.empty()) compress::add_radiance_error(c, transfer, lighting, what);
+  const transfer::Header& h = transfer.header;
+  compress::validate_cpca_options(static_cast<std::size_t>(h.vertex_count), static_cast<std::size_t>(h.values_per_vertex()),
+                                  request.options, what);
+  // The lighting as shading splits it (docs/conventions.md, "Sun and sky"): the transfer meets the sky's
+  // SH, its bounce-only part the discs' SH; the discs' direct light is exact and needs no transfer.
+  const bool lit = !request.lighting.empty(), glossy = transfer::is_glossy(h.kind);
+  light::SceneLighting lighting;
+  sh::RgbCoefficients discs;
+  if (lit) {
+    lighting = load_scene_lighting(request.lighting, static_cast<int>(h.bands), glm::dvec3(0.0), LightingArguments{}, request.threads, glossy);
+    discs = light::discs_coefficients(static_cast<int>(h.bands), lighting.discs);
+  }
+  compress::Metric metric;  // identity unless the shaded metric is asked for
+  compress::MetricLighting ml;
+  if (lit) ml = {&lighting.sky, lighting.discs.empty() ? nullptr : &discs};
+  if (request.shaded_metric) metric = compress::transfer_metric(transfer, ml, what);
+  compress::CompressedTransfer c = compress::compress_transfer(transfer, request.options, request.scalar, what,
+                                                               request.shaded_metric ? &metric : nullptr);
+  if (lit) compress::add_radiance_error(c, transfer, lighting.sky, what, &discs);
   return c;
 }
 
@@ -82,7 +98,9 @@ void report_compression(const compress::CompressedTransfer& c, double seconds, c
   std::fprintf(stderr, "  size: %llu -> %llu bytes (%.2f%% of float32)\n", static_cast<unsigned long long>(before),
                static_cast<unsigned long long>(after), 100.0 * static_cast<double>(after) / static_cast<double>(before));
   std::fprintf(stderr, "  transfer rel. error (rms): %.6g\n", c.total.transfer_relative());
-  if (c.has_radiance_error) std::fprintf(stderr, "  shaded radiance rel. error (rms): %.6g\n", c.total.radiance_relative());
+  if (c.has_radiance_error)
+    std::fprintf(stderr, "  shaded radiance rel. error (rms): %.6g (what the transfer shades: the sky's SH%s)\n",
+                 c.total.radiance_relative(), c.bounce ? " and the discs' bounce light" : "");
   std::fprintf(stderr, "  -> %s\n", output.c_str());
 }
 
@@ -109,8 +127,15 @@ void add_compress_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", options->seed, "Seed of the initial clusters")->capture_default_str();
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")->capture_default_str();
-  cmd->add_option("--env", options->env, "Also report the shaded-radiance error under this environment image");
-  cmd->add_option("--light", options->light, "Also report the shaded-radiance error under this SH lighting JSON");
+  cmd->add_option("--env", options->env,
+                  "Fit to and report the shaded-radiance error under this environment image (split as prt shade does: "
+                  "the sun as a disc, the sky as SH)");
+  cmd->add_option("--light", options->light, "As --env, for an SH lighting JSON");
+  cmd->add_option("--metric", options->metric,
+                  "Error CPCA minimises: shaded = outgoing radiance (glossy: through the baked BRDF; with --env/--light: "
+                  "averaged over rotations of that lighting), transfer = plain L2 of the values")
+      ->check(CLI::IsMember({"shaded", "transfer"}))
+      ->capture_default_str();
   cmd->add_flag("--float16", options->float16, "Store means, directions and weights as IEEE float16");
   cmd->add_flag("--per-cluster", options->per_cluster, "Print every cluster's size and error, worst first");
   cmd->add_flag("-q,--quiet", options->quiet, "No summary");

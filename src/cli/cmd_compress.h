@@ -12,10 +12,13 @@ struct CompressionRequest {
   transfer::Scalar scalar = transfer::Scalar::float32;
   std::string lighting;  ///< environment image or SH lighting JSON for the radiance error; empty = none
   int threads = 0;
+  /// Fit in the shaded-radiance metric (compress/metric.h: the lighting's rotation-averaged spectrum
+  /// if `lighting` is given, and for glossy the baked BRDF); false: plain L2 of the transfer values.
+  bool shaded_metric = true;
 };
 
-/// Validates K and N against the transfer (one-line errors naming `what`), compresses, adds the
-/// radiance error under request.lighting if given.
+/// Validates K and N against the transfer (one-line errors naming `what`), compresses (in the metric
+/// the request names), adds the radiance error under request.lighting if given.
 compress::CompressedTransfer compress_for_cli(const transfer::TransferData& transfer, const std::string& what,
                                               const CompressionRequest& request);
 

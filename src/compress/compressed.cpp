@@ -1,5 +1,6 @@
 #include "compress/compressed.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "brdf/projection.h"
@@ -17,9 +18,9 @@ void round_to(std::vector<float>& values, transfer::Scalar scalar) {
   for (float& v : values) v = transfer::half_to_float(transfer::float_to_half(v));
 }
 
-// Reconstruction of vertex p into out[0, D), accumulated in double in a fixed order.
+// Reconstruction of vertex p into out[0, point_dimension()), accumulated in double in a fixed order.
 void reconstruct(const CompressedTransfer& c, std::size_t p, float* out) {
-  const std::size_t D = c.dimension(), N = static_cast<std::size_t>(c.pca), k = c.cluster[p];
+  const std::size_t D = c.point_dimension(), N = static_cast<std::size_t>(c.pca), k = c.cluster[p];
   const float* mean = &c.means[k * D];
   const float* w = &c.weights[p * N];
   for (std::size_t i = 0; i < D; ++i) {
@@ -50,12 +51,32 @@ double ErrorSums::transfer_relative() const { return transfer_norm2 > 0.0 ? std:
 double ErrorSums::radiance_relative() const { return radiance_norm2 > 0.0 ? std::sqrt(radiance_error2 / radiance_norm2) : 0.0; }
 
 CompressedTransfer compress_transfer(const transfer::TransferData& transfer, const CpcaOptions& options, transfer::Scalar scalar,
-                                     const std::string& what) {
+                                     const std::string& what, const Metric* metric) {
   const std::size_t P = static_cast<std::size_t>(transfer.header.vertex_count);
   const std::size_t D = static_cast<std::size_t>(transfer.header.values_per_vertex());
   if (transfer.values.size() != P * D) fail_file(what, "internal: value count does not match the header");
-  CpcaResult r = cpca(transfer.values.data(), P, D, options, what);
+  const bool bounce = !transfer.bounce_only.empty();
+  if (bounce && transfer.bounce_only.size() != P * D) fail_file(what, "internal: bounce-only value count does not match the header");
+  const std::size_t E = bounce ? 2 * D : D;  // values per point
+  const bool weighted = metric && !metric->identity;
+  if (metric && metric->dimension != E) fail_file(what, "internal: the compression metric does not match the transfer");
+  validate_cpca_options(P, D, options, what);  // N is bounded by the transfer's D, before the work
+  std::vector<float> points;
+  if (bounce || weighted) {
+    points.resize(P * E);
+    for (std::size_t p = 0; p < P; ++p) {
+      std::copy_n(&transfer.values[p * D], D, &points[p * E]);
+      if (bounce) std::copy_n(&transfer.bounce_only[p * D], D, &points[p * E + D]);
+    }
+    if (weighted) apply_metric(*metric, points.data(), points.data(), P, false);
+  }
+  CpcaResult r = cpca(points.empty() ? transfer.values.data() : points.data(), P, E, options, what);
+  if (weighted) {
+    apply_metric(*metric, r.means.data(), r.means.data(), static_cast<std::size_t>(r.clusters), true);
+    apply_metric(*metric, r.bases.data(), r.bases.data(), static_cast<std::size_t>(r.clusters) * r.pca, true);
+  }
   CompressedTransfer c;
+  c.bounce = bounce;
   c.source = transfer.header;
   c.source.scalar = scalar;
   c.clusters = r.clusters;
@@ -69,40 +90,58 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
   round_to(c.bases, scalar);
   round_to(c.weights, scalar);
   c.per_cluster.assign(static_cast<std::size_t>(c.clusters), ErrorSums{});
-  std::vector<float> block(D);
-  for (std::size_t p = 0; p < P; ++p) {
+  std::vector<float> block(E);
+  for (std::size_t p = 0; p < P; ++p) {  // the transfer's values (the bounce-only part is a part of them)
     reconstruct(c, p, block.data());
     add_squares(block.data(), &transfer.values[p * D], D, c.cluster[p], &ErrorSums::transfer_error2, &ErrorSums::transfer_norm2, c);
   }
   return c;
 }
 
+Metric transfer_metric(const transfer::TransferData& transfer, const MetricLighting& lighting, const std::string& what) {
+  const transfer::Header& h = transfer.header;
+  brdf::BrdfMatrix b;
+  if (transfer::is_glossy(h.kind)) b = brdf::project(shade::baked_brdf(h, what), static_cast<int>(h.bands_out));
+  return shaded_metric(h, transfer.bounce_only.empty() ? 1 : 2, lighting, &b);
+}
+
 transfer::TransferData decompress(const CompressedTransfer& c) {
   transfer::TransferData t;
   t.header = c.source;
   t.header.scalar = transfer::Scalar::float32;
-  const std::size_t P = c.cluster.size(), D = c.dimension();
+  const std::size_t P = c.cluster.size(), D = c.dimension(), E = c.point_dimension();
   t.values.resize(P * D);
-  for (std::size_t p = 0; p < P; ++p) reconstruct(c, p, &t.values[p * D]);
+  if (c.bounce) t.bounce_only.resize(P * D);
+  std::vector<float> block(E);
+  for (std::size_t p = 0; p < P; ++p) {
+    reconstruct(c, p, block.data());
+    std::copy_n(block.data(), D, &t.values[p * D]);
+    if (c.bounce) std::copy_n(block.data() + D, D, &t.bounce_only[p * D]);
+  }
   return t;
 }
 
-void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& original, const sh::RgbCoefficients& lighting,
-                        const std::string& what) {
+void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& original, const sh::RgbCoefficients& sky,
+                        const std::string& what, const sh::RgbCoefficients* discs) {
   const transfer::TransferData approximate = decompress(c);
   for (ErrorSums& s : c.per_cluster) s.radiance_error2 = s.radiance_norm2 = 0.0;
   c.total.radiance_error2 = c.total.radiance_norm2 = 0.0;
-  std::vector<glm::vec3> test, reference;
-  std::size_t stride = 1;
-  if (transfer::is_glossy(original.header.kind)) {
-    const brdf::BrdfMatrix b = brdf::project(shade::baked_brdf(original.header, what), static_cast<int>(original.header.bands_out));
-    test = shade::glossy_outgoing_coefficients(approximate, b, lighting);
-    reference = shade::glossy_outgoing_coefficients(original, b, lighting);
-    stride = static_cast<std::size_t>(original.header.bands_out) * original.header.bands_out;
-  } else {
-    test = shade::shade_diffuse(approximate, lighting);
-    reference = shade::shade_diffuse(original, lighting);
+  const bool glossy = transfer::is_glossy(original.header.kind);
+  brdf::BrdfMatrix b;
+  if (glossy) b = brdf::project(shade::baked_brdf(original.header, what), static_cast<int>(original.header.bands_out));
+  // What the transfer (or, `bounce`, its bounce-only part) shades under `lighting`.
+  const auto shaded = [&](const transfer::TransferData& t, bool bounce, const sh::RgbCoefficients& lighting) {
+    transfer::TransferData part;
+    if (bounce) part.header = t.header, part.values = t.bounce_only;
+    const transfer::TransferData& used = bounce ? part : t;
+    return glossy ? shade::glossy_outgoing_coefficients(used, b, lighting) : shade::shade_diffuse(used, lighting);
+  };
+  std::vector<glm::vec3> test = shaded(approximate, false, sky), reference = shaded(original, false, sky);
+  if (discs && !original.bounce_only.empty() && c.bounce) {
+    const std::vector<glm::vec3> test_bounce = shaded(approximate, true, *discs), reference_bounce = shaded(original, true, *discs);
+    for (std::size_t i = 0; i < test.size(); ++i) test[i] += test_bounce[i], reference[i] += reference_bounce[i];
   }
+  const std::size_t stride = glossy ? static_cast<std::size_t>(original.header.bands_out) * original.header.bands_out : 1;
   for (std::size_t p = 0; p < c.cluster.size(); ++p)
     add_squares(&test[p * stride].x, &reference[p * stride].x, 3 * stride, c.cluster[p], &ErrorSums::radiance_error2, &ErrorSums::radiance_norm2, c);
   c.has_radiance_error = true;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "compress/cpca.h"
+#include "compress/metric.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
@@ -36,31 +37,46 @@ struct CompressedTransfer {
   int clusters = 0;                     ///< K
   int pca = 0;                          ///< N
   int iterations = 0;                   ///< CPCA rounds run
-  std::vector<float> means;             ///< K x D (already rounded to source.scalar)
-  std::vector<float> bases;             ///< K x N x D
+  /// The model also holds the transfer's bounce-only part (TransferData::bounce_only): each point is
+  /// [T_p, T_b,p], 2D values, fitted together (one cluster and one set of weights per vertex).
+  bool bounce = false;
+  std::vector<float> means;             ///< K x point_dimension() (already rounded to source.scalar)
+  std::vector<float> bases;             ///< K x N x point_dimension()
   std::vector<std::uint32_t> cluster;   ///< per vertex, < K
   std::vector<float> weights;           ///< per vertex, N
   bool has_radiance_error = false;
   ErrorSums total;
   std::vector<ErrorSums> per_cluster;   ///< K entries
+  /// D: the transfer's values per vertex.
   std::size_t dimension() const { return static_cast<std::size_t>(source.values_per_vertex()); }
+  /// Values per mean or direction: D, or 2D with the bounce-only section.
+  std::size_t point_dimension() const { return dimension() * (bounce ? 2 : 1); }
 };
 
-/// Compresses `transfer` (any kind, 1 or 3 channels) with CPCA, stores the model as `scalar` (float16
+/// Compresses `transfer` (any kind, 1 or 3 channels; with its bounce-only part if it has one) with CPCA, stores the model as `scalar` (float16
 /// rounds means, directions and weights to nearest even) and fills the transfer-space error sums of
 /// the stored model. `what` names the input in errors (bad K, N, iterations).
+/// With a `metric` (metric.h; null or identity: plain L2 of the values), CPCA runs on G T_p and the
+/// fitted means and directions are mapped back by G^-1 (its dimension: the points', 1 or 2 sections): the stored model is still of T_p (directions
+/// then orthonormal in the metric, not in plain L2) and minimises the metric's error.
 CompressedTransfer compress_transfer(const transfer::TransferData& transfer, const CpcaOptions& options, transfer::Scalar scalar,
-                                     const std::string& what);
+                                     const std::string& what, const Metric* metric = nullptr);
+
+/// The shaded-radiance metric (metric.h) for `transfer` as compress_transfer sees it: one section, or
+/// two with its bounce-only part; for glossy through the BRDF it was baked with. Throws prt::Error
+/// naming `what` if a glossy transfer records no BRDF.
+Metric transfer_metric(const transfer::TransferData& transfer, const MetricLighting& lighting, const std::string& what);
 
 /// The reconstruction mu_k + sum_n w_pn b_kn of every vertex, as a float32 TransferData with the
-/// source header.
+/// source header (and bounce_only from the model's second section, if it has one).
 transfer::TransferData decompress(const CompressedTransfer& compressed);
 
-/// Adds the shaded-radiance error sums under `lighting` (world-frame radiance coefficients) against the
-/// uncompressed `original` (see the header comment). Throws prt::Error naming `what` if a glossy
-/// transfer records no BRDF.
-void add_radiance_error(CompressedTransfer& compressed, const transfer::TransferData& original,
-                        const sh::RgbCoefficients& lighting, const std::string& what);
+/// Adds the shaded-radiance error sums against the uncompressed `original` (see the header comment)
+/// of what the transfer shades: T . sky (+ T_b . discs, the discs' SH, when the transfer has a
+/// bounce-only part and `discs` is given; the discs' direct light is exact and not counted). World-frame
+/// radiance coefficients. Throws prt::Error naming `what` if a glossy transfer records no BRDF.
+void add_radiance_error(CompressedTransfer& compressed, const transfer::TransferData& original, const sh::RgbCoefficients& sky,
+                        const std::string& what, const sh::RgbCoefficients* discs = nullptr);
 
 /// Payload bytes of the uncompressed transfer stored as `scalar` (cprt_file.h gives the compressed).
 std::uint64_t uncompressed_bytes(const transfer::Header& header, transfer::Scalar scalar);

@@ -20,6 +20,9 @@ constexpr std::size_t kFixedHeaderBytes = 124;  // up to and including the param
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
 constexpr std::uint32_t kMaxBands = 32;
 constexpr std::uint32_t kRadianceFlag = 1;
+constexpr std::uint32_t kBounceFlag = 2;  // means and directions hold 2D values: the transfer, then its bounce-only part
+
+std::uint32_t flags_of(const CompressedTransfer& c) { return (c.has_radiance_error ? kRadianceFlag : 0u) | (c.bounce ? kBounceFlag : 0u); }
 
 using le::get_f64;
 using le::get_u32;
@@ -30,7 +33,7 @@ std::uint64_t scalar_bytes(transfer::Scalar s) { return s == transfer::Scalar::f
 // Payload bytes for the header's fields; 0 if they overflow 64 bits.
 std::uint64_t payload_size(const CompressedTransfer& c) {
   const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca);
-  const std::uint64_t D = c.dimension(), P = c.source.vertex_count;
+  const std::uint64_t D = c.point_dimension(), P = c.source.vertex_count;
   std::uint64_t kd = 0, kdn = 0, pn = 0, values = 0, bytes = 0, ids = 0, total = 0;
   const bool overflow = __builtin_mul_overflow(K, D, &kd) || __builtin_mul_overflow(kd, N, &kdn) ||
                         __builtin_mul_overflow(P, N, &pn) || __builtin_add_overflow(kd, kdn, &values) ||
@@ -65,7 +68,9 @@ void validate(const std::string& path, const CompressedTransfer& c, std::uint32_
     fail_file(path, "PCA count " + std::to_string(c.pca) + " out of range 1..values per vertex (" +
                         std::to_string(h.values_per_vertex()) + ")");
   if (c.iterations < 1) fail_file(path, "iteration count 0");
-  if (flags > kRadianceFlag) fail_file(path, "unknown flags " + std::to_string(flags));
+  if (flags > (kRadianceFlag | kBounceFlag)) fail_file(path, "unknown flags " + std::to_string(flags));
+  if ((flags & kBounceFlag) && h.kind != transfer::Kind::interreflected && h.kind != transfer::Kind::glossy_interreflected)
+    fail_file(path, std::string("flags: a bounce-only section in a ") + transfer::kind_name(h.kind) + " transfer");
   if (!finite_sums(c.total)) fail_file(path, "error statistics are negative or not finite");
   if (h.parameters_json.size() > kMaxParametersBytes) fail_file(path, "parameters block larger than 1 MiB");
   if (payload_size(c) == 0) fail_file(path, "sizes overflow");
@@ -76,8 +81,7 @@ std::string encode_header(const CompressedTransfer& c, std::uint64_t payload_byt
   std::string out(kCprtMagic, kCprtMagic + 8);
   for (std::uint32_t v : {kVersion, static_cast<std::uint32_t>(h.kind), h.bands, h.bands_out, h.channels,
                           static_cast<std::uint32_t>(h.scalar), static_cast<std::uint32_t>(c.clusters),
-                          static_cast<std::uint32_t>(c.pca), static_cast<std::uint32_t>(c.iterations),
-                          c.has_radiance_error ? kRadianceFlag : 0u})
+                          static_cast<std::uint32_t>(c.pca), static_cast<std::uint32_t>(c.iterations), flags_of(c)})
     le::put_u32(out, v);
   for (std::uint64_t v : {h.vertex_count, h.triangle_count, h.mesh_fingerprint}) le::put_u64(out, v);
   for (double v : {c.total.transfer_error2, c.total.transfer_norm2, c.total.radiance_error2, c.total.radiance_norm2})
@@ -148,7 +152,8 @@ Decoded decode_header(const std::string& path, std::ifstream& in, std::uint64_t 
   c.pca = static_cast<int>(std::min<std::uint32_t>(get_u32(p + 36), 1u << 30));
   c.iterations = static_cast<int>(std::min<std::uint32_t>(get_u32(p + 40), 1u << 30));
   const std::uint32_t flags = get_u32(p + 44);
-  c.has_radiance_error = flags == kRadianceFlag;
+  c.has_radiance_error = (flags & kRadianceFlag) != 0;
+  c.bounce = (flags & kBounceFlag) != 0;
   h.vertex_count = get_u64(p + 48);
   h.triangle_count = get_u64(p + 56);
   h.mesh_fingerprint = get_u64(p + 64);
@@ -193,8 +198,8 @@ std::ifstream open_sized(const std::string& path, std::uint64_t& size) {
 std::uint64_t payload_bytes(const CompressedTransfer& c) { return payload_size(c); }
 
 void write_cprt(const std::string& path, const CompressedTransfer& c) {
-  validate(path, c, c.has_radiance_error ? kRadianceFlag : 0u);
-  const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca), D = c.dimension();
+  validate(path, c, flags_of(c));
+  const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca), D = c.point_dimension();
   const std::uint64_t P = c.source.vertex_count;
   if (c.means.size() != K * D || c.bases.size() != K * N * D || c.weights.size() != P * N || c.cluster.size() != P ||
       c.per_cluster.size() != K)
@@ -228,7 +233,7 @@ CompressedTransfer read_cprt(const std::string& path) {
   if (!in) fail_file(path, "truncated payload");
   if (fnv1a64(payload.data(), payload.size()) != d.payload_checksum) fail_file(path, "payload checksum mismatch (file is corrupt)");
   CompressedTransfer& c = d.c;
-  const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca), D = c.dimension();
+  const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca), D = c.point_dimension();
   const std::uint64_t P = c.source.vertex_count;
   const auto* at = reinterpret_cast<const unsigned char*>(payload.data());
   c.means = get_values(path, at, K * D, c.source.scalar, "cluster means");
@@ -252,7 +257,8 @@ CompressedTransfer read_cprt(const std::string& path) {
 std::string describe(const CompressedTransfer& c) {
   std::ostringstream s;
   s << transfer::describe(c.source);
-  s << "compression: CPCA, " << c.clusters << " clusters, " << c.pca << " PCA vectors, " << c.iterations << " iterations\n";
+  s << "compression: CPCA, " << c.clusters << " clusters, " << c.pca << " PCA vectors, " << c.iterations << " iterations"
+    << (c.bounce ? ", with the bounce-only part" : "") << "\n";
   s << "compressed payload: " << payload_size(c) << " bytes (uncompressed float32: "
     << uncompressed_bytes(c.source, transfer::Scalar::float32) << " bytes)\n";
   s << "transfer rel. error (rms): " << c.total.transfer_relative() << "\n";

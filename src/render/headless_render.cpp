@@ -63,7 +63,7 @@ void render_to_file(const RenderOptions& options) {
   renderer.set_mesh(scene.mesh);
   const int index = add_scene_transfer(renderer, scene, 0);
   if (glossy) renderer.set_brdf(index, *glossy, surface);
-  if (!lighting.discs.empty() && !glossy && !renderer.is_compressed(index))
+  if (!lighting.discs.empty() && !glossy)
     renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[0].header, scene.transfer_paths[0]));
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
   renderer.set_discs(lighting.discs);

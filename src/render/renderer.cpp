@@ -333,7 +333,7 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
 
   draw_background(settings, bands);
   if (prt && is_compressed(settings.transfer))
-    draw_cpca(settings, bands);
+    draw_cpca(settings, bands, sun);
   else if (prt && is_lightmap(settings.transfer))
     draw_lightmap(settings, bands, sun, false);
   else if (prt && transfer::is_glossy(transfer_header(settings.transfer).kind))

@@ -277,7 +277,7 @@ class Renderer {
   void bind_sun_bounce();
   std::unique_ptr<SunPass> sun_;
   /// The CPCA pass (renderer_cpca.cpp).
-  void draw_cpca(const FrameSettings& settings, int bands);
+  void draw_cpca(const FrameSettings& settings, int bands, bool sun);
   /// set_brdf for a compressed transfer (kept on the CPU for the products); false if `transfer` is not one.
   bool set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix);
   /// The lightmap pass (renderer_lightmap.cpp).

@@ -11,6 +11,7 @@
 #include "compress/cprt_file.h"
 #include "core/error.h"
 #include "render/renderer.h"
+#include "sh/rotation.h"
 
 namespace prt::render {
 
@@ -68,31 +69,40 @@ GLuint storage(const void* data, std::size_t bytes, GLbitfield flags) {
 
 }  // namespace
 
-void cpca_products(const compress::CompressedTransfer& c, const glm::vec3* lighting, int bands, const brdf::BrdfMatrix* b,
-                   std::vector<glm::vec4>& out) {
+void cpca_products(const compress::CompressedTransfer& c, const glm::vec3* lighting, const glm::vec3* discs, int bands,
+                   const brdf::BrdfMatrix* b, std::vector<glm::vec4>& out) {
   const transfer::Header& h = c.source;
   const bool glossy = transfer::is_glossy(h.kind);
   if (glossy && (b == nullptr || b->bands != static_cast<int>(h.bands_out)))
     fail("renderer: compressed glossy transfer needs a BRDF matrix of its output bands");
   const int channels = static_cast<int>(h.channels), in_count = static_cast<int>(h.bands * h.bands), used = bands * bands;
   const int out_count = glossy ? static_cast<int>(h.bands_out * h.bands_out) : 1;
-  const std::size_t D = c.dimension(), vectors = static_cast<std::size_t>(c.clusters) * (c.pca + 1);
+  // Each vector: the transfer's D values (times the sky), then, with the bounce-only part, D more
+  // (times the discs' SH): the product is the sum, as shade_diffuse_split adds them.
+  const std::size_t D = c.dimension(), E = c.point_dimension(), vectors = static_cast<std::size_t>(c.clusters) * (c.pca + 1);
+  const bool bounce = c.bounce && discs != nullptr;
   out.resize(vectors * out_count);
   std::vector<glm::vec3> t(static_cast<std::size_t>(out_count));
+  std::vector<glm::vec4> extra(static_cast<std::size_t>(out_count));
   for (std::size_t v = 0; v < vectors; ++v) {
     const std::size_t k = v / (c.pca + 1), j = v % (c.pca + 1);
-    const float* a = j == 0 ? &c.means[k * D] : &c.bases[(k * c.pca + j - 1) * D];
-    if (glossy)
+    const float* a = j == 0 ? &c.means[k * E] : &c.bases[(k * c.pca + j - 1) * E];
+    if (glossy) {
       glossy_product(a, channels, in_count, used, out_count, lighting, *b, t, &out[v * out_count]);
-    else
+      if (!bounce) continue;
+      glossy_product(a + D, channels, in_count, used, out_count, discs, *b, t, extra.data());
+      for (int o = 0; o < out_count; ++o) out[v * out_count + o] += extra[static_cast<std::size_t>(o)];
+    } else {
       out[v] = diffuse_product(a, channels, in_count, used, lighting);
+      if (bounce) out[v] += diffuse_product(a + D, channels, in_count, used, discs);
+    }
   }
 }
 
 CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::string& origin) : header_(c.source) {
   header_.scalar = transfer::Scalar::float32;
   const std::size_t P = static_cast<std::size_t>(c.source.vertex_count), N = static_cast<std::size_t>(c.pca);
-  if (c.cluster.size() != P || c.weights.size() != P * N || c.means.size() != static_cast<std::size_t>(c.clusters) * c.dimension() ||
+  if (c.cluster.size() != P || c.weights.size() != P * N || c.means.size() != static_cast<std::size_t>(c.clusters) * c.point_dimension() ||
       c.bases.size() != c.means.size() * N)
     fail_file(origin, "compressed transfer arrays do not match its header");
   clusters_ = storage(c.cluster.data(), c.cluster.size() * sizeof(std::uint32_t), 0);
@@ -102,6 +112,7 @@ CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::str
   model_.source = c.source;
   model_.clusters = c.clusters;
   model_.pca = c.pca;
+  model_.bounce = c.bounce;
   model_.means = c.means;
   model_.bases = c.bases;
   check_gl("uploading a compressed transfer");
@@ -113,8 +124,8 @@ CpcaTransfer::~CpcaTransfer() {
   if (products_view_ != 0) glDeleteTextures(1, &products_view_);
 }
 
-void CpcaTransfer::prepare(const glm::vec3* lighting, int bands) {
-  cpca_products(model_, lighting, bands, has_brdf_ ? &brdf_ : nullptr, scratch_);
+void CpcaTransfer::prepare(const glm::vec3* lighting, const glm::vec3* discs, int bands) {
+  cpca_products(model_, lighting, discs, bands, has_brdf_ ? &brdf_ : nullptr, scratch_);
   const std::size_t bytes = scratch_.size() * sizeof(glm::vec4);
   if (products_ == 0 || products_bytes_ != bytes) {
     if (products_ != 0) glDeleteBuffers(1, &products_);
@@ -143,7 +154,16 @@ int Renderer::add_compressed(const compress::CompressedTransfer& compressed, con
   compressed_.resize(transfers_.size());
   compressed_.push_back(std::make_unique<CpcaTransfer>(compressed, origin));
   transfers_.push_back(nullptr);
-  sun_->transfers.emplace_back();  // no discs' pass for compressed transfer (Renderer::sun_active)
+  // The discs' pass: direct light with shadows unless unshadowed (glossy: through the BRDF terms that
+  // set_brdf(..., surface) records); the bounce light comes from the model's bounce-only part in the
+  // products (draw_cpca), so the sun pass's own per-vertex bounce stays 0 -- which is why `glossy` stays
+  // false here (its glossy bounce pass reads an uncompressed buffer) -- and it warns, as for a version 1
+  // .prt, only if an interreflected model has no such part.
+  SunPass::PerTransfer& discs = sun_->transfers.emplace_back();
+  const transfer::Kind kind = compressed.source.kind;
+  discs.origin = origin;
+  discs.shadows = kind != transfer::Kind::unshadowed;
+  discs.interreflected = (kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected) && !compressed.bounce;
   brdf_buffers_.push_back(0);
   brdf_bands_.push_back(0);
   return static_cast<int>(transfers_.size()) - 1;
@@ -183,12 +203,19 @@ bool Renderer::set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix)
   return true;
 }
 
-void Renderer::draw_cpca(const FrameSettings& settings, int bands) {
+void Renderer::draw_cpca(const FrameSettings& settings, int bands, bool sun) {
   CpcaTransfer& t = *compressed_[static_cast<std::size_t>(settings.transfer)];
   const bool glossy = transfer::is_glossy(t.header().kind);
   if (glossy && !t.has_brdf()) fail("renderer: glossy transfer " + std::to_string(settings.transfer) + " has no BRDF matrix (set_brdf)");
+  // With discs: their SH in the object frame (as the sun pass turns them) for the bounce-only part.
+  std::vector<glm::vec3> discs;
+  if (sun && t.has_bounce()) {
+    discs.resize(static_cast<std::size_t>(bands * bands));
+    const glm::mat3 rotation(glm::transpose(settings.object_rotation) * settings.environment_rotation);
+    sh::rotate_rgb(bands, rotation, sun_->disc_lighting.data(), discs.data());
+  }
   // Per vertex: blend the products (and, glossy, evaluate toward the eye) into the radiance buffer.
-  t.prepare(rotated_.data(), bands);
+  t.prepare(rotated_.data(), discs.empty() ? nullptr : discs.data(), bands);
   const int out_bands = glossy ? static_cast<int>(t.header().bands_out) : 0;
   auto found = cpca_programs_.find({t.pca(), out_bands});
   if (found == cpca_programs_.end()) {
@@ -207,15 +234,25 @@ void Renderer::draw_cpca(const FrameSettings& settings, int bands) {
   glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-  // Draw with the per-vertex radiance, interpolated as the diffuse pass's.
-  found = cpca_programs_.find({-1, 0});
-  if (found == cpca_programs_.end()) found = cpca_programs_.emplace(std::make_pair(-1, 0), Program({"prt_cpca.vert", "surface.frag"})).first;
+  // Draw with the per-vertex radiance, interpolated as the diffuse pass's; with discs, prt_sun.frag
+  // (diffuse) or prt_cpca_sun.frag (glossy) adds their direct light per pixel as for uncompressed transfer.
+  const std::pair<int, int> key(-1, sun ? (glossy ? 2 : 1) : 0);
+  found = cpca_programs_.find(key);
+  if (found == cpca_programs_.end())
+    found = cpca_programs_.emplace(key, !sun     ? Program({"prt_cpca.vert", "surface.frag"})
+                                        : glossy ? Program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
+                                                 : Program({"prt_cpca.vert", "prt_sun.frag"}, "#define SUN 1\n#define SUN_ALBEDO 1\n"))
+                .first;
   const Program& draw = found->second;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(mesh_vao_);
   glUseProgram(draw.id());
   glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
+  if (sun) bind_sun(draw, settings, glossy);
+  if (sun && glossy)
+    glUniform3f(draw.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
+                static_cast<float>(eye_object.z));
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
 }
 

@@ -24,8 +24,10 @@ namespace prt::render {
 /// mean, 1..N the directions) and output o < C, C = 1 (diffuse: radiance, sum_i A[c'][i] L_i.c over the
 /// first bands^2 coefficients, c' as shade_diffuse) or bands_out^2 (glossy: sum_q B_c[o][q] sum_i
 /// A[c'][q][i] L_i.c). `lighting` holds at least bands^2 object-frame coefficients; `brdf` is required
-/// for glossy transfer (bands == its bands_out), ignored otherwise.
-void cpca_products(const compress::CompressedTransfer& compressed, const glm::vec3* lighting, int bands,
+/// for glossy transfer (bands == its bands_out), ignored otherwise. With `discs` (the discs' SH, object
+/// frame, bands^2; null: none) and a model holding the bounce-only part, each product also adds that
+/// part's product with `discs` (the discs' bounce light, as prt::shade::shade_*_split).
+void cpca_products(const compress::CompressedTransfer& compressed, const glm::vec3* lighting, const glm::vec3* discs, int bands,
                    const brdf::BrdfMatrix* brdf, std::vector<glm::vec4>& out);
 
 /// One compressed transfer on the GPU: cluster ids and weights uploaded once (storage buffers), the
@@ -43,9 +45,12 @@ class CpcaTransfer {
   int pca() const { return model_.pca; }
   void set_brdf(const brdf::BrdfMatrix& matrix) { brdf_ = matrix, has_brdf_ = true; }
   bool has_brdf() const { return has_brdf_; }
-  /// This frame's products (first `bands` bands of the object-frame lighting), uploaded; then binds
-  /// them (texture unit 0), the cluster ids, weights and the per-vertex radiance buffer of prt_cpca.comp.
-  void prepare(const glm::vec3* lighting, int bands);
+  /// This frame's products (first `bands` bands of the object-frame lighting; `discs`, null or the
+  /// discs' object-frame SH for the bounce-only part), uploaded; then binds them (texture unit 0), the
+  /// cluster ids, weights and the per-vertex radiance buffer of prt_cpca.comp.
+  void prepare(const glm::vec3* lighting, const glm::vec3* discs, int bands);
+  /// The model holds the bounce-only part (compress::CompressedTransfer::bounce).
+  bool has_bounce() const { return model_.bounce; }
   /// Bytes on the GPU: ids, weights and one frame's products.
   std::size_t gpu_bytes() const;
 

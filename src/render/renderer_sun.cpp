@@ -158,8 +158,7 @@ void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix, const brdf
 }
 
 bool Renderer::sun_active(const FrameSettings& settings) const {
-  // Compressed transfer (renderer_cpca.cpp) is drawn without the discs' pass for now.
-  return settings.sun && settings.shading == Shading::prt && !sun_->discs.empty() && !is_compressed(settings.transfer);
+  return settings.sun && settings.shading == Shading::prt && !sun_->discs.empty();
 }
 
 void Renderer::update_sun(const FrameSettings& settings, int bands) {

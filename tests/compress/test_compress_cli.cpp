@@ -3,11 +3,15 @@
 // one-line errors that leave no file.
 #include <catch2/catch.hpp>
 
+#include <glm/geometric.hpp>
+
 #include "compress/cprt_file.h"
 #include "core/atomic_file.h"
 #include "light/light_file.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
+#include "light/scene_lighting.h"
+#include "shade/scene_shading.h"
 #include "shade/shade.h"
 #include "support/run_prt.h"
 #include "support/shapes.h"
@@ -42,7 +46,7 @@ Fixture make_fixture(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("prt compress: same bytes for 1 and 2 threads and from bake --compress; info; shade of .cprt", "[compress][cli]") {
+TEST_CASE("prt compress: same bytes for 1 and 2 threads and from bake --compress, info, shade of .cprt", "[compress][cli]") {
   const Fixture f = make_fixture("compress_cli");
   const std::string common = "compress " + f.transfer_path + " --clusters 12 --pca 3 --light " + f.light_path;
   const test::RunResult one = test::run_prt(common + " --threads 1 -o " + f.dir + "/one.cprt");
@@ -105,4 +109,47 @@ TEST_CASE("prt compress: bad K, N and damaged inputs are one-line errors and lea
   CHECK(contains(shade.output, "bad.cprt: "));
   CHECK(std::count(shade.output.begin(), shade.output.end(), '\n') == 1);
   CHECK(test::entries_in(f.dir) == before + 1);  // only bad.cprt was added
+}
+
+TEST_CASE("prt shade of an interreflected .cprt under a sun: the split shading with the compressed bounce-only part", "[compress][cli]") {
+  const Fixture f = make_fixture("compress_cli_sun");
+  const std::string prt_path = f.dir + "/inter.prt", cprt_path = f.dir + "/inter.cprt";
+  REQUIRE(test::run_prt("bake " + f.mesh_path + " --transfer interreflected --bounces 1 --bands 3 --samples 64 -q -o " + prt_path).exit_code == 0);
+  // A lighting file with a disc beside its SH sky: shading applies the bounce-only part to the disc's SH.
+  light::LightFileInfo info;
+  light::Disc sun;
+  sun.direction = glm::normalize(glm::dvec3(0.3, 1.0, 0.2));
+  sun.irradiance = glm::dvec3(4.0, 3.5, 3.0);
+  sun.angular_radius = 0.02;
+  info.discs = {sun};
+  const std::string sun_light = f.dir + "/sun.json";
+  light::write_light_file(sun_light, light::read_light_file(f.light_path), info);
+  const test::RunResult c = test::run_prt("compress " + prt_path + " --clusters 12 --pca 3 --light " + sun_light + " -o " + cprt_path);
+  INFO(c.output);
+  REQUIRE(c.exit_code == 0);
+  CHECK(contains(c.output, "(what the transfer shades: the sky's SH and the discs' bounce light)"));
+  const compress::CompressedTransfer model = compress::read_cprt(cprt_path);
+  REQUIRE(model.bounce);
+  CHECK(contains(test::run_prt("info " + cprt_path).output, "with the bounce-only part"));
+
+  const test::RunResult s = test::run_prt("shade " + f.mesh_path + " " + cprt_path + " --light " + sun_light + " -o " + f.dir + "/out.ply");
+  INFO(s.output);
+  REQUIRE(s.exit_code == 0);
+  CHECK(!contains(s.output, "warning"));  // the discs' bounce light is there
+  const mesh::Mesh mesh = mesh::load_mesh(f.mesh_path, nullptr, true);
+  const light::SceneLighting lighting = light::load_scene_lighting(sun_light, 3, glm::dvec3(0.0), {}, {});
+  REQUIRE(lighting.discs.size() == 1);
+  transfer::TransferData approximate = compress::decompress(model);
+  const std::vector<glm::vec3> expected = shade::shade_diffuse_split(mesh, approximate, lighting, "test");
+  approximate.bounce_only.assign(approximate.bounce_only.size(), 0.0f);
+  const std::vector<glm::vec3> without_bounce = shade::shade_diffuse_split(mesh, approximate, lighting, "test");
+  const mesh::ColourPly shaded = mesh::read_ply_colours(f.dir + "/out.ply");
+  REQUIRE(shaded.colours.size() == expected.size());
+  double bounce = 0;
+  for (std::size_t v = 0; v < expected.size(); ++v)
+    for (int ch = 0; ch < 3; ++ch) {
+      CHECK(shaded.colours[v][ch] == Approx(expected[v][ch]).margin(1e-5));
+      bounce = std::max(bounce, static_cast<double>(std::abs(expected[v][ch] - without_bounce[v][ch])));
+    }
+  CHECK(bounce > 1e-3);  // the disc's bounce light is a visible part of the result
 }

@@ -116,6 +116,41 @@ TEST_CASE(".cprt round trip: every field and array, sizes as documented, float16
   CHECK(r.total.transfer_relative() < 0.5);
 }
 
+TEST_CASE(".cprt with the bounce-only part: 2D values per mean and direction, both parts come back", "[compress]") {
+  const std::string dir = test::fresh_temp_dir("cprt_bounce");
+  transfer::TransferData t = small_transfer(50);
+  t.header.kind = transfer::Kind::glossy_interreflected;
+  for (std::size_t i = 0; i < t.values.size(); ++i) t.bounce_only.push_back(0.25f * t.values[i] + 0.01f * static_cast<float>(i % 16));
+  const compress::CompressedTransfer c = compress::compress_transfer(t, {3, 2}, transfer::Scalar::float32, "small");
+  REQUIRE(c.bounce);
+  CHECK(c.point_dimension() == 32);
+  compress::write_cprt(dir + "/b.cprt", c);
+  const std::string bytes = read_file(dir + "/b.cprt");
+  const std::size_t json = t.header.parameters_json.size();
+  CHECK(bytes.size() == (124 + json + 7) / 8 * 8 + 8 + (3 * 32 + 3 * 2 * 32 + 50 * 2) * 4 + 4 * 50 + 32 * 3);
+  CHECK(get32(bytes, 44) == 2);  // flags: bit 1, the bounce-only section
+  const compress::CompressedTransfer r = compress::read_cprt(dir + "/b.cprt");
+  CHECK(r.bounce);
+  CHECK(r.means == c.means);
+  CHECK(r.bases == c.bases);
+  // Both parts reconstruct (mean + 2 directions of 32 values fitted to data that vary smoothly).
+  const transfer::TransferData back = compress::decompress(r);
+  REQUIRE(back.bounce_only.size() == t.bounce_only.size());
+  double e = 0, n = 0;
+  for (std::size_t i = 0; i < t.bounce_only.size(); ++i) {
+    e += (double(back.bounce_only[i]) - t.bounce_only[i]) * (double(back.bounce_only[i]) - t.bounce_only[i]);
+    n += double(t.bounce_only[i]) * t.bounce_only[i];
+  }
+  CHECK(std::sqrt(e / n) < 0.05);
+  // The reconstruction of each part is the model's: mean + sum_n w_n b_n over that part's values.
+  const std::size_t p = 17, k = r.cluster[p];
+  for (std::size_t i = 0; i < 16; ++i) {
+    double x = r.means[k * 32 + 16 + i];
+    for (std::size_t j = 0; j < 2; ++j) x += double(r.weights[p * 2 + j]) * r.bases[(k * 2 + j) * 32 + 16 + i];
+    CHECK(back.bounce_only[p * 16 + i] == Approx(x).margin(1e-6));
+  }
+}
+
 TEST_CASE(".cprt readers name each kind of damage in one line", "[compress]") {
   const std::string dir = test::fresh_temp_dir("cprt_damage");
   const compress::CpcaOptions o{2, 2};
@@ -142,9 +177,10 @@ TEST_CASE(".cprt readers name each kind of damage in one line", "[compress]") {
   put32(s, 32, 3);  // K changed without resealing
   check(s, "header checksum mismatch");
   const std::pair<std::size_t, std::uint32_t> fields[] = {{12, 9}, {16, 0}, {20, 0}, {24, 2}, {28, 5}, {32, 0}, {32, 41},
-                                                          {36, 0}, {36, 17}, {40, 0}, {44, 4}};
+                                                          {36, 0}, {36, 17}, {40, 0}, {44, 4}, {44, 2}};
   const char* names[] = {"unknown transfer kind 9", "bands 0", "output bands 0", "channels 2", "unknown scalar type 5",
-                         "cluster count 0", "cluster count 41", "PCA count 0", "PCA count 17", "iteration count 0", "unknown flags 4"};
+                         "cluster count 0", "cluster count 41", "PCA count 0", "PCA count 17", "iteration count 0", "unknown flags 4",
+                         "flags: a bounce-only section in a glossy-shadowed transfer"};
   for (std::size_t i = 0; i < std::size(fields); ++i) {
     s = good;
     put32(s, fields[i].first, fields[i].second);

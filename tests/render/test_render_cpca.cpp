@@ -107,7 +107,7 @@ TEST_CASE("headless render of a .cprt model equals prt shade of the decompressed
   }
 }
 
-TEST_CASE("prt render of a .cprt file equals the library's render of the model; glossy without a BRDF is refused", "[render][gl][compress]") {
+TEST_CASE("prt render of a .cprt file equals the library's render of the model, and glossy without a BRDF is refused", "[render][gl][compress]") {
   const std::string dir = test::fresh_temp_dir("render_cpca_cli");
   write_fixture_files(dir);
   const mesh::Mesh loaded = mesh::load_mesh(dir + "/mesh.ply", nullptr, true);

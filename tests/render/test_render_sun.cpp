@@ -24,6 +24,7 @@
 #include "brdf/brdf.h"
 #include "brdf/frame.h"
 #include "brdf/projection.h"
+#include "compress/compressed.h"
 #include "cpu_raster.h"
 #include "light/disc.h"
 #include "mesh/mesh.h"
@@ -157,6 +158,55 @@ render::FrameSettings frame(int transfer, const render::Camera& camera) {
   return s;
 }
 
+// The box on the floor in a headless renderer, the test sun and Embree's visibility of it per vertex.
+struct SunScene {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  mesh::Mesh mesh = box_on_floor();
+  light::Disc sun = test_sun();
+  std::vector<float> rays;
+  SunScene() {
+    renderer.set_mesh(mesh);
+    const trace::Scene scene(mesh);
+    rays = shade::disc_visibility(mesh, sun, scene);
+  }
+};
+
+struct GlossyFrame {
+  image::Image gpu;
+  std::vector<std::uint32_t> ids;
+  std::vector<float> map;  ///< the shadow map's visibility at the vertices
+};
+
+// Renders glossy transfer `index` with `surface` (matrix `b`) under `sky` and `sun`, looking down the
+// sun's mirror direction off the floor (azimuth -120, elevation 44 degrees): the highlight is in view.
+GlossyFrame render_glossy_with_sun(render::Renderer& renderer, int index, const brdf::Brdf& surface, const brdf::BrdfMatrix& b,
+                                   const sh::RgbCoefficients& sky, const light::Disc& sun) {
+  renderer.set_brdf(index, b, surface);
+  renderer.set_lighting(sky, nullptr);
+  renderer.set_discs({sun});
+  const render::FrameSettings settings = frame(index, render::Camera{-120.0, 40.0, 0.0});
+  renderer.render(settings, kWidth, kHeight);
+  return {renderer.read_radiance(), renderer.read_triangle_ids(), renderer.shadow_visibility(settings, 0)};
+}
+
+// The disc's direct light toward v at a point of a face with normal n, visibility `visible`:
+// E fbar(F^T d, F^T v) cos V with brdf::eval_cosine in the face's frame.
+glm::dvec3 glossy_direct(const brdf::Brdf& surface, const light::Disc& sun, const glm::dvec3& n, const glm::dvec3& v, double visible) {
+  const glm::dmat3 to_local = glm::transpose(brdf::shading_frame(n));
+  return sun.irradiance * brdf::eval_cosine(surface, to_local * sun.direction, to_local * v) * visible;
+}
+
+// The GPU frame against the CPU image on uniformly lit or shadowed triangles: max relative error <= bound.
+void check_uniform(const GlossyFrame& f, const image::Image& cpu, const mesh::Mesh& mesh, const std::vector<float>& rays, double bound) {
+  std::size_t counted = 0;
+  const double worst = uniform_error(f.gpu, cpu, f.ids, uniform_triangles(mesh, rays, f.map), counted);
+  INFO("pixels on uniformly lit or shadowed triangles " << counted << ", max relative error " << worst);
+  CHECK(counted > static_cast<std::size_t>(kWidth * kHeight / 10));
+  CHECK(worst <= bound);
+  CHECK(smallest_channel(f.gpu) >= 0.0);
+}
+
 }  // namespace
 
 TEST_CASE("diffuse render with a sun equals shade_diffuse_split on the box and floor", "[render][gl][sun]") {
@@ -168,11 +218,15 @@ TEST_CASE("diffuse render with a sun equals shade_diffuse_split on the box and f
   const trace::Scene scene(mesh);
   const std::vector<float> rays = shade::disc_visibility(mesh, sun, scene);
 
+  // Also CPCA-compressed (renderer_cpca.cpp): its bounce-only part in the products, the direct light as here.
+  for (const bool compressed : {false, true})
   for (const transfer::Kind kind : {transfer::Kind::shadowed, transfer::Kind::interreflected}) {
-    SECTION(transfer::kind_name(kind)) {
-      const transfer::TransferData transfer = bake_transfer(mesh, kind, 3);
-      if (kind == transfer::Kind::interreflected) REQUIRE(!transfer.bounce_only.empty());
-      const int index = renderer.add_transfer(transfer, "test");
+    SECTION(std::string(transfer::kind_name(kind)) + (compressed ? ", CPCA K 24 N 4" : "")) {
+      const transfer::TransferData baked = bake_transfer(mesh, kind, 3);
+      if (kind == transfer::Kind::interreflected) REQUIRE(!baked.bounce_only.empty());
+      const compress::CompressedTransfer model = compress::compress_transfer(baked, {24, 4}, transfer::Scalar::float32, "test");
+      const transfer::TransferData transfer = compressed ? compress::decompress(model) : baked;  // what the GPU should shade
+      const int index = compressed ? renderer.add_compressed(model, "test") : renderer.add_transfer(transfer, "test");
       renderer.set_surface_albedo(index, shade::surface_albedo(mesh, transfer.header, "test"));
       light::SceneLighting lighting;
       lighting.sky = test_lighting(3);
@@ -211,20 +265,11 @@ TEST_CASE("glossy render with a sun equals the split glossy shading with the BRD
     SECTION(spec) {
       const transfer::TransferData transfer = bake_transfer(mesh, transfer::Kind::glossy_interreflected, 3, spec);
       REQUIRE(!transfer.bounce_only.empty());
-      const int index = renderer.add_transfer(transfer, "test");
       const brdf::Brdf surface = brdf::parse_brdf(spec);
       const brdf::BrdfMatrix b = brdf::project(surface, 3);
-      renderer.set_brdf(index, b, surface);
       const sh::RgbCoefficients sky = test_lighting(3);
-      renderer.set_lighting(sky, nullptr);
-      renderer.set_discs({sun});
-      // Looking down the sun's mirror direction off the floor (azimuth -120, elevation 44 degrees): the
-      // specular highlight is in view.
-      const render::FrameSettings settings = frame(index, render::Camera{-120.0, 40.0, 0.0});
-      renderer.render(settings, kWidth, kHeight);
-      const image::Image gpu = renderer.read_radiance();
-      const std::vector<std::uint32_t> ids = renderer.read_triangle_ids();
-      const std::vector<float> map = renderer.shadow_visibility(settings, 0);
+      const GlossyFrame f = render_glossy_with_sun(renderer, renderer.add_transfer(transfer, "test"), surface, b, sky, sun);
+      const std::vector<std::uint32_t>& ids = f.ids;
 
       // CPU: O of the sky through the full transfer plus O of the disc's SH through the bounce-only
       // part (as shade_glossy_split), evaluated toward the eye per pixel, plus the disc's direct light
@@ -238,23 +283,51 @@ TEST_CASE("glossy render with a sun equals the split glossy shading with the BRD
       const glm::dvec3 eye = view.eye;  // no object rotation: mesh coordinates are world coordinates
       const image::Image cpu = per_pixel_on_cpu(mesh, renderer.last_model_view_projection(), ids, kWidth, kHeight, [&](const PixelPoint& p) {
         const glm::dvec3 v = glm::normalize(eye - p.position);
-        const glm::dvec3 n(mesh.normals[p.corner[0]]);
-        const glm::dmat3 to_local = glm::transpose(brdf::shading_frame(n));
-        const double visible = rays[p.corner[0]];
         // Split shading clamps each channel at 0 (the disc's bounce light through the glossy bounce-only
         // matrices, 3 bands of a small cap, rings below zero).
         return glm::max(glossy_prt_at(mesh, outgoing, 3, p, v) +
-                            sun.irradiance * brdf::eval_cosine(surface, to_local * sun.direction, to_local * v) * visible,
+                            glossy_direct(surface, sun, glm::dvec3(mesh.normals[p.corner[0]]), v, rays[p.corner[0]]),
                         glm::dvec3(0.0));
       });
-      std::size_t counted = 0;
-      const double worst = uniform_error(gpu, cpu, ids, uniform_triangles(mesh, rays, map), counted);
-      INFO("pixels on uniformly lit or shadowed triangles " << counted << ", max relative error " << worst);
-      CHECK(counted > static_cast<std::size_t>(kWidth * kHeight / 10));
-      CHECK(worst <= 2e-3);
-      CHECK(smallest_channel(gpu) >= 0.0);
+      check_uniform(f, cpu, mesh, rays, 2e-3);
     }
   }
+}
+
+TEST_CASE("glossy CPCA render with a sun: per-vertex PRT of the model plus the disc's direct light per pixel", "[render][gl][sun][glossy][compress]") {
+  SunScene box;
+  render::Renderer& renderer = box.renderer;
+  const mesh::Mesh& mesh = box.mesh;
+  const light::Disc& sun = box.sun;
+  const std::vector<float>& rays = box.rays;
+  const char* spec = "phong:exponent=20,ks=0.5,kd=0.4";
+  const transfer::TransferData baked = bake_transfer(mesh, transfer::Kind::glossy_interreflected, 3, spec);
+  const compress::CompressedTransfer model = compress::compress_transfer(baked, {24, 4}, transfer::Scalar::float32, "test");
+  REQUIRE(model.bounce);
+  const brdf::Brdf surface = brdf::parse_brdf(spec);
+  const brdf::BrdfMatrix b = brdf::project(surface, 3);
+  const sh::RgbCoefficients sky = test_lighting(3);
+  const GlossyFrame f = render_glossy_with_sun(renderer, renderer.add_compressed(model, "test"), surface, b, sky, sun);
+  const std::vector<std::uint32_t>& ids = f.ids;
+
+  // CPU: the decompressed model's PRT toward the eye AT THE VERTICES (the CPCA pass is per vertex: sky
+  // through the transfer plus the disc's SH through the bounce-only part), interpolated, plus the
+  // disc's direct light at the pixel as in the uncompressed case above; clamped at 0.
+  const transfer::TransferData approximate = compress::decompress(model);
+  transfer::TransferData bounce = approximate;
+  bounce.values = approximate.bounce_only;
+  const glm::vec3 eye(renderer.last_view().eye);
+  std::vector<glm::vec3> vertex = shade::shade_glossy_eye(approximate, b, sky, mesh.positions, mesh.normals, eye);
+  const std::vector<glm::vec3> vertex_bounce =
+      shade::shade_glossy_eye(bounce, b, light::disc_coefficients(3, sun), mesh.positions, mesh.normals, eye);
+  for (std::size_t v = 0; v < vertex.size(); ++v) vertex[v] += vertex_bounce[v];
+  const image::Image cpu = per_pixel_on_cpu(mesh, renderer.last_model_view_projection(), ids, kWidth, kHeight, [&](const PixelPoint& p) {
+    glm::dvec3 prt(0.0);
+    for (int k = 0; k < 3; ++k) prt += p.weight[k] * glm::dvec3(vertex[p.corner[k]]);
+    const glm::dvec3 v = glm::normalize(glm::dvec3(eye) - p.position);
+    return glm::max(prt + glossy_direct(surface, sun, glm::dvec3(mesh.normals[p.corner[0]]), v, rays[p.corner[0]]), glm::dvec3(0.0));
+  });
+  check_uniform(f, cpu, mesh, rays, 2e-3);
 }
 
 TEST_CASE("shadow-map visibility at the vertices agrees with Embree's disc rays", "[render][gl][sun]") {
