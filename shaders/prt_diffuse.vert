@@ -46,6 +46,9 @@ uniform int vertices_per_chunk;
 layout(std140, binding = 0) uniform Lighting { vec4 lighting[1024]; };
 
 uniform mat4 model_view_projection;
+#ifdef SUN
+invariant gl_Position;  // the same depth as the prepass (shadow.vert)
+#endif
 
 out vec3 radiance;
 #ifdef SUN

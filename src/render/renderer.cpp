@@ -369,6 +369,7 @@ void Renderer::draw_background(const FrameSettings& settings, int bands) {
 void Renderer::draw_mesh(const FrameSettings& settings, int bands, bool sun) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  if (sun) draw_sun_prepass();
   glBindVertexArray(mesh_vao_);
   const bool prt = settings.shading == Shading::prt;
   const TransferBuffer* transfer = prt ? transfers_[static_cast<std::size_t>(settings.transfer)].get() : nullptr;

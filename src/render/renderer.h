@@ -257,6 +257,8 @@ class Renderer {
   void bind_sun(const Program& program, const FrameSettings& settings, bool glossy);
   /// Binds the glossy bounce coefficients for prt_glossy.comp with SUN.
   void bind_sun_bounce();
+  /// Depth-only draw of the mesh before the SUN draws (each pixel then runs the discs' lookups once).
+  void draw_sun_prepass();
   std::unique_ptr<SunPass> sun_;
   /// The CPCA pass (renderer_cpca.cpp).
   void draw_cpca(const FrameSettings& settings, int bands);

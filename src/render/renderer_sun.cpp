@@ -32,6 +32,7 @@ constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr GLuint kWorkgroupSize = 64;
 constexpr int kMaxTerms = 8;                  // sun_light.glsl: max_terms
 constexpr GLuint kTileUnit = 9;               // sun_light.glsl: shadow_tiles
+constexpr GLuint kCompareUnit = 10;           // sun_light.glsl: shadow_compare (the maps, compared, bilinear)
 constexpr int kShadowTile = 32;               // texels per tile side; > 2 x sun_light.glsl's max_filter
 constexpr int kTiles = kShadowMapSize / kShadowTile;
 
@@ -73,6 +74,16 @@ Renderer::SunPass::SunPass()
   glTextureParameteri(shadow_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
   const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // outside the map: nothing between it and the light
   glTextureParameterfv(shadow_texture, GL_TEXTURE_BORDER_COLOR, far);
+  // The same maps read through a depth-comparing sampler: each lookup returns the bilinearly weighted
+  // fraction of its 2 x 2 texels at or beyond the reference depth (hardware PCF).
+  glCreateSamplers(1, &compare_sampler);
+  glSamplerParameteri(compare_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glSamplerParameteri(compare_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(compare_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glSamplerParameteri(compare_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  glSamplerParameterfv(compare_sampler, GL_TEXTURE_BORDER_COLOR, far);
+  glSamplerParameteri(compare_sampler, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glSamplerParameteri(compare_sampler, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);  // 1 where reference <= stored
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tile_texture);
   glTextureStorage3D(tile_texture, 1, GL_RG32F, kTiles, kTiles, kMaxDiscs);
   glTextureParameteri(tile_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -89,6 +100,7 @@ Renderer::SunPass::~SunPass() {
   if (shadow_texture != 0) glDeleteTextures(1, &shadow_texture);
   if (tile_texture != 0) glDeleteTextures(1, &tile_texture);
   if (shadow_framebuffer != 0) glDeleteFramebuffers(1, &shadow_framebuffer);
+  if (compare_sampler != 0) glDeleteSamplers(1, &compare_sampler);
   release(disc_lighting_buffer);
 }
 
@@ -249,6 +261,24 @@ void Renderer::draw_shadow_maps() {
   check_gl("drawing shadow maps");
 }
 
+// Depth-only draw of the mesh with the frame's model-view-projection, then depth test LEQUAL (rewriting
+// the same depth): the SUN fragment stage that follows (the shadow-map lookups) runs once per covered
+// pixel, on the nearest surface only, instead of once per rasterised fragment (overdraw). shadow.vert and the
+// SUN vertex stages declare gl_Position invariant, so both draws give each pixel the same depth.
+void Renderer::draw_sun_prepass() {
+  SunPass& s = *sun_;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glUseProgram(s.shadow_program.id());
+  glUniformMatrix4fv(s.shadow_program.uniform("light_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
+  glBindVertexArray(mesh_vao_);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_LEQUAL);
+}
+
 // The discs' bounce light for the current transfer: T_bounce . L_discs per vertex (diffuse, on the CPU)
 // or B (M_bounce L_discs) per vertex (glossy, prt_glossy.comp), L_discs in the object frame.
 void Renderer::update_bounce(const FrameSettings& settings, int bands) {
@@ -327,6 +357,8 @@ void Renderer::bind_sun(const Program& program, const FrameSettings& settings, b
   glUniform1i(program.uniform("disc_shadows"), t.shadows ? 1 : 0);
   glBindTextureUnit(kShadowUnit, s.shadow_texture);
   glBindTextureUnit(kTileUnit, s.tile_texture);
+  glBindTextureUnit(kCompareUnit, s.shadow_texture);
+  glBindSampler(kCompareUnit, s.compare_sampler);
   glUniform1i(program.uniform("shadow_tile"), kShadowTile);
   if (glossy) {
     const int terms = static_cast<int>(t.terms.size());

@@ -48,6 +48,7 @@ struct Renderer::SunPass {
 
   Program shadow_program, visibility_program, minmax_program;
   GLuint shadow_texture = 0, shadow_framebuffer = 0;
+  GLuint compare_sampler = 0;                      ///< depth comparison, bilinear, border 1 (sun_light.glsl)
   GLuint tile_texture = 0;                         ///< per tile of kShadowTile^2 texels: least, greatest depth
   GLuint disc_lighting_buffer = 0;                 ///< object-frame disc SH (uniform Lighting layout)
   GLuint bounce_vertex = 0;                        ///< diffuse: x y z floats per vertex
