@@ -5,18 +5,6 @@
 #ifndef SEARCH_COUNT
 #define SEARCH_COUNT 8
 #endif
-#ifndef SEARCH_MODE
-#define SEARCH_MODE 0
-#endif
-#ifndef FILTER_MODE
-#define FILTER_MODE 0
-#endif
-#ifndef PCF_COUNT
-#define PCF_COUNT 6
-#endif
-#ifndef GATHER_COUNT
-#define GATHER_COUNT 3
-#endif
 const int max_discs = 4;
 const float inv_pi = 0.31830988618379067;
 uniform int disc_count;
@@ -31,7 +19,6 @@ uniform bool disc_shadows;                // false for unshadowed transfer: V = 
 // texels its least and greatest depth (shadow_minmax.comp).
 layout(binding = 8) uniform sampler2DArray shadow_maps;
 layout(binding = 9) uniform sampler2DArray shadow_tiles;
-layout(binding = 10) uniform sampler2DArrayShadow shadow_compare;
 uniform int shadow_tile;
 
 // Bias (docs/conventions.md, "Sun shadow maps"): the receiver moves along its normal by
@@ -57,41 +44,6 @@ const vec2 filter_spiral[12] = vec2[12](
     vec2(0.2041, 0.0000), vec2(-0.2607, 0.2388), vec2(0.0399, -0.4547), vec2(0.3286, 0.4286),
     vec2(-0.6030, -0.1067), vec2(0.5712, -0.3634), vec2(-0.1911, 0.7107), vec2(-0.3644, -0.7016),
     vec2(0.7906, 0.2887), vec2(-0.8224, 0.3395), vec2(0.3965, -0.8472), vec2(0.2930, 0.9341));
-
-const int pcf_count = PCF_COUNT, gather_count = GATHER_COUNT;
-#if PCF_COUNT == 3
-const vec2 pcf_spiral[3] = vec2[3](vec2(0.4082, 0.0000), vec2(-0.5214, 0.4776), vec2(0.0798, -0.9094));
-#endif
-#if PCF_COUNT == 4
-const vec2 pcf_spiral[4] = vec2[4](vec2(0.3536, 0.0000), vec2(-0.4515, 0.4137), vec2(0.0691, -0.7875), vec2(0.5691, 0.7423));
-#endif
-#if PCF_COUNT == 5
-const vec2 pcf_spiral[5] = vec2[5](vec2(0.3162, 0.0000), vec2(-0.4039, 0.3700), vec2(0.0618, -0.7044), vec2(0.5091, 0.6640), vec2(-0.9342, -0.1652));
-#endif
-#if PCF_COUNT == 6
-const vec2 pcf_spiral[6] = vec2[6](vec2(0.2887, 0.0000), vec2(-0.3687, 0.3377), vec2(0.0564, -0.6430), vec2(0.4647, 0.6061), vec2(-0.8528, -0.1508), vec2(0.8078, -0.5139));
-#endif
-#if PCF_COUNT == 8
-const vec2 pcf_spiral[8] = vec2[8](vec2(0.2500, 0.0000), vec2(-0.3193, 0.2925), vec2(0.0489, -0.5569), vec2(0.4024, 0.5249), vec2(-0.7385, -0.1306), vec2(0.6996, -0.4450), vec2(-0.2340, 0.8705), vec2(-0.4463, -0.8593));
-#endif
-#if PCF_COUNT == 12
-const vec2 pcf_spiral[12] = vec2[12](vec2(0.2041, 0.0000), vec2(-0.2607, 0.2388), vec2(0.0399, -0.4547), vec2(0.3286, 0.4286), vec2(-0.6030, -0.1067), vec2(0.5712, -0.3634), vec2(-0.1911, 0.7107), vec2(-0.3644, -0.7016), vec2(0.7906, 0.2887), vec2(-0.8224, 0.3395), vec2(0.3965, -0.8472), vec2(0.2930, 0.9341));
-#endif
-#if GATHER_COUNT == 2
-const vec2 gather_spiral[2] = vec2[2](vec2(0.5000, 0.0000), vec2(-0.6386, 0.5850));
-#endif
-#if GATHER_COUNT == 3
-const vec2 gather_spiral[3] = vec2[3](vec2(0.4082, 0.0000), vec2(-0.5214, 0.4776), vec2(0.0798, -0.9094));
-#endif
-#if GATHER_COUNT == 4
-const vec2 gather_spiral[4] = vec2[4](vec2(0.3536, 0.0000), vec2(-0.4515, 0.4137), vec2(0.0691, -0.7875), vec2(0.5691, 0.7423));
-#endif
-#if GATHER_COUNT == 6
-const vec2 gather_spiral[6] = vec2[6](vec2(0.2887, 0.0000), vec2(-0.3687, 0.3377), vec2(0.0564, -0.6430), vec2(0.4647, 0.6061), vec2(-0.8528, -0.1508), vec2(0.8078, -0.5139));
-#endif
-#if GATHER_COUNT == 8
-const vec2 gather_spiral[8] = vec2[8](vec2(0.2500, 0.0000), vec2(-0.3193, 0.2925), vec2(0.0489, -0.5569), vec2(0.4024, 0.5249), vec2(-0.7385, -0.1306), vec2(0.6996, -0.4450), vec2(-0.2340, 0.8705), vec2(-0.4463, -0.8593));
-#endif
 
 // Stored depth of map k at uv (nearest texel; 1, nothing in the way, outside the map). texelFetch: no
 // filtering or level-of-detail work, the cheapest read on llvmpipe.
@@ -135,15 +87,6 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   if (least >= receiver - bias) return 1.0;
   if (inside && greatest < receiver - bias - bias_per_texel * search) return 0.0;
   float blocker_sum = 0.0, blockers = 0.0;
-#if SEARCH_MODE == 1
-  for (int i = 0; i < gather_count; ++i) {
-    vec2 o = gather_spiral[i] * search;
-    vec4 d = textureGather(shadow_maps, vec3(s.xy + o * texel_uv, float(k))) * depth_scale;
-    vec4 blocked = vec4(lessThan(d, vec4(receiver - bias - bias_per_texel * (length(o) + 0.71))));
-    blocker_sum += dot(blocked, d);
-    blockers += dot(blocked, vec4(1.0));
-  }
-#else
   for (int i = 0; i < search_count; ++i) {
     float d = map_depth(k, s.xy + search_spiral[i] * (search * texel_uv), size) * depth_scale;
     if (d < receiver - bias - bias_per_texel * length(search_spiral[i]) * search) {
@@ -151,26 +94,14 @@ float disc_visibility(int k, vec3 p, vec3 n) {
       blockers += 1.0;
     }
   }
-#endif
   if (blockers == 0.0) return 1.0;
   float penumbra = clamp((receiver - blocker_sum / blockers) * disc_tan_radius[k] * texels_per_unit, min_filter, max_filter);
-#if FILTER_MODE == 1
-  float lit = 0.0;
-  float inv_scale = 1.0 / depth_scale;
-  for (int i = 0; i < pcf_count; ++i) {
-    vec2 o = pcf_spiral[i] * penumbra;
-    float reference = (receiver - bias - bias_per_texel * (length(o) + 0.71)) * inv_scale;
-    lit += texture(shadow_compare, vec4(s.xy + o * texel_uv, float(k), reference));
-  }
-  return lit / float(pcf_count);
-#else
   float lit = 0.0;
   for (int i = 0; i < filter_count; ++i) {
     float d = map_depth(k, s.xy + filter_spiral[i] * (penumbra * texel_uv), size) * depth_scale;
     lit += d < receiver - bias - bias_per_texel * length(filter_spiral[i]) * penumbra ? 0.0 : 1.0;
   }
   return lit / float(filter_count);
-#endif
 }
 
 // The BRDF as prt::brdf::terms: up to max_terms (shape, parameter, rgb weight); shapes as brdf::Shape

@@ -259,6 +259,9 @@ class Renderer {
   void bind_sun_bounce();
   /// Depth-only draw of the mesh before the SUN draws (each pixel then runs the discs' lookups once).
   void draw_sun_prepass();
+  /// The discs' direct light over the pixels the diffuse mesh draw covered (renderer_sun.cpp).
+  void draw_sun_deferred(const FrameSettings& settings);
+  void bind_sun_surface(int transfer);
   std::unique_ptr<SunPass> sun_;
   /// The CPCA pass (renderer_cpca.cpp).
   void draw_cpca(const FrameSettings& settings, int bands);

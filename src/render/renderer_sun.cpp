@@ -32,7 +32,10 @@ constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr GLuint kWorkgroupSize = 64;
 constexpr int kMaxTerms = 8;                  // sun_light.glsl: max_terms
 constexpr GLuint kTileUnit = 9;               // sun_light.glsl: shadow_tiles
-constexpr GLuint kCompareUnit = 10;           // sun_light.glsl: shadow_compare (the maps, compared, bilinear)
+constexpr GLuint kFrameRadianceUnit = 11;     // prt_sun.frag: frame_radiance
+constexpr GLuint kFrameTriangleUnit = 12;     // prt_sun.frag: frame_triangles
+constexpr GLuint kTriangleCornersUnit = 13;   // prt_sun.frag: triangle_corners
+constexpr GLuint kSurfaceUnit = 14;           // prt_sun.frag: surface
 constexpr int kShadowTile = 32;               // texels per tile side; > 2 x sun_light.glsl's max_filter
 constexpr int kTiles = kShadowMapSize / kShadowTile;
 
@@ -46,6 +49,26 @@ GLuint dynamic_buffer(std::size_t bytes) {
 void release(GLuint& buffer) {
   if (buffer != 0) glDeleteBuffers(1, &buffer);
   buffer = 0;
+}
+
+void release_texture(GLuint& texture) {
+  if (texture != 0) glDeleteTextures(1, &texture);
+  texture = 0;
+}
+
+// A buffer texture over `bytes` of `data` (immutable) with texel format `format`.
+void buffer_texture(const void* data, std::size_t bytes, GLenum format, GLuint& buffer, GLuint& texture) {
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 16)), data, 0);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture);
+  glTextureBuffer(texture, format, buffer);
+}
+
+template <typename T>
+std::vector<T> read_buffer(GLuint buffer, std::size_t count) {
+  std::vector<T> out(count);
+  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(count * sizeof(T)), out.data());
+  return out;
 }
 
 bool interreflects(transfer::Kind kind) {
@@ -65,7 +88,8 @@ Renderer::SunPass::SunPass()
     : disc_lighting(kMaxCoefficients, glm::vec3(0.0f)),
       shadow_program({"shadow.vert"}),
       visibility_program({"sun_visibility.comp"}),
-      minmax_program({"shadow_minmax.comp"}) {
+      minmax_program({"shadow_minmax.comp"}),
+      deferred_program({"sun_fullscreen.vert", "prt_sun.frag"}) {
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_texture);
   glTextureStorage3D(shadow_texture, 1, GL_DEPTH_COMPONENT32F, kShadowMapSize, kShadowMapSize, kMaxDiscs);
   glTextureParameteri(shadow_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -74,16 +98,6 @@ Renderer::SunPass::SunPass()
   glTextureParameteri(shadow_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
   const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // outside the map: nothing between it and the light
   glTextureParameterfv(shadow_texture, GL_TEXTURE_BORDER_COLOR, far);
-  // The same maps read through a depth-comparing sampler: each lookup returns the bilinearly weighted
-  // fraction of its 2 x 2 texels at or beyond the reference depth (hardware PCF).
-  glCreateSamplers(1, &compare_sampler);
-  glSamplerParameteri(compare_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glSamplerParameteri(compare_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glSamplerParameteri(compare_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glSamplerParameteri(compare_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glSamplerParameterfv(compare_sampler, GL_TEXTURE_BORDER_COLOR, far);
-  glSamplerParameteri(compare_sampler, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glSamplerParameteri(compare_sampler, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);  // 1 where reference <= stored
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tile_texture);
   glTextureStorage3D(tile_texture, 1, GL_RG32F, kTiles, kTiles, kMaxDiscs);
   glTextureParameteri(tile_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -100,12 +114,17 @@ Renderer::SunPass::~SunPass() {
   if (shadow_texture != 0) glDeleteTextures(1, &shadow_texture);
   if (tile_texture != 0) glDeleteTextures(1, &tile_texture);
   if (shadow_framebuffer != 0) glDeleteFramebuffers(1, &shadow_framebuffer);
-  if (compare_sampler != 0) glDeleteSamplers(1, &compare_sampler);
   release(disc_lighting_buffer);
 }
 
 void Renderer::SunPass::clear_mesh() {
-  for (PerTransfer& t : transfers) release(t.albedo);
+  for (PerTransfer& t : transfers) {
+    release(t.albedo);
+    release(t.surface_buffer);
+    release_texture(t.surface_texture);
+  }
+  release(triangle_buffer);
+  release_texture(triangle_texture);
   transfers.clear();
   release(bounce_vertex);
   release(bounce_outgoing);
@@ -151,7 +170,10 @@ void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& al
   if (albedo.size() != vertex_count_)
     fail("renderer: surface albedo has " + std::to_string(albedo.size()) + " entries for " + std::to_string(vertex_count_) +
          " vertices");
-  GLuint& buffer = sun_->transfers[static_cast<std::size_t>(transfer)].albedo;
+  SunPass::PerTransfer& t = sun_->transfers[static_cast<std::size_t>(transfer)];
+  release(t.surface_buffer);  // rebuilt with this albedo on the next deferred pass
+  release_texture(t.surface_texture);
+  GLuint& buffer = t.albedo;
   release(buffer);
   glCreateBuffers(1, &buffer);
   glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(albedo.size() * sizeof(glm::vec3)), albedo.data(), 0);
@@ -279,6 +301,73 @@ void Renderer::draw_sun_prepass() {
   glDepthFunc(GL_LEQUAL);
 }
 
+// The deferred pass's mesh data as buffer textures (cheaper per-pixel reads than storage buffers on
+// llvmpipe): per triangle its corner indices (RGBA32UI), per vertex of transfer `transfer` three texels
+// (RGBA32F) position, normal, albedo; made on first use from the GL buffers.
+void Renderer::bind_sun_surface(int transfer) {
+  SunPass& s = *sun_;
+  SunPass::PerTransfer& t = s.transfers[static_cast<std::size_t>(transfer)];
+  if (s.triangle_texture == 0) {
+    const std::vector<std::uint32_t> indices = read_buffer<std::uint32_t>(indices_, static_cast<std::size_t>(index_count_));
+    std::vector<glm::uvec4> packed(indices.size() / 3);
+    for (std::size_t i = 0; i < packed.size(); ++i) packed[i] = glm::uvec4(indices[3 * i], indices[3 * i + 1], indices[3 * i + 2], 0u);
+    buffer_texture(packed.data(), packed.size() * sizeof(glm::uvec4), GL_RGBA32UI, s.triangle_buffer, s.triangle_texture);
+  }
+  if (t.surface_texture == 0) {
+    const std::vector<glm::vec3> positions = read_buffer<glm::vec3>(positions_, vertex_count_);
+    const std::vector<glm::vec3> normals = read_buffer<glm::vec3>(normals_, vertex_count_);
+    const std::vector<glm::vec3> albedo = read_buffer<glm::vec3>(t.albedo != 0 ? t.albedo : albedo_, vertex_count_);
+    std::vector<glm::vec4> packed(3 * vertex_count_);
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      packed[3 * v] = glm::vec4(positions[v], 0.0f);
+      packed[3 * v + 1] = glm::vec4(normals[v], 0.0f);
+      packed[3 * v + 2] = glm::vec4(albedo[v], 0.0f);
+    }
+    buffer_texture(packed.data(), packed.size() * sizeof(glm::vec4), GL_RGBA32F, t.surface_buffer, t.surface_texture);
+  }
+  glBindTextureUnit(kTriangleCornersUnit, s.triangle_texture);
+  glBindTextureUnit(kSurfaceUnit, t.surface_texture);
+}
+
+// The discs' direct light for diffuse transfer, deferred: after the mesh draw (prt_diffuse.vert with
+// SUN: sky and bounce light, unclamped, and the triangle index per pixel), one full-viewport draw at
+// the far plane with the depth test GREATER reaches each covered pixel exactly once (prt_sun.frag),
+// reads that pixel's radiance and triangle, and writes the clamped sum. Attachment 1 is not written
+// in it; each pixel of attachment 0 is read and written by its own fragment only (the texture barrier
+// makes the mesh draw's writes visible to it).
+void Renderer::draw_sun_deferred(const FrameSettings& settings) {
+  SunPass& s = *sun_;
+  const Program& program = s.deferred_program;
+  glTextureBarrier();
+  const GLenum radiance_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+  glNamedFramebufferDrawBuffers(framebuffer_, 2, radiance_only);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glUseProgram(program.id());
+  bind_sun(program, settings, false);
+  glBindTextureUnit(kFrameRadianceUnit, radiance_texture_);
+  glBindTextureUnit(kFrameTriangleUnit, triangle_texture_);
+  bind_sun_surface(settings.transfer);
+  // Mesh coordinates: p = c + R^T (world - c) (renderer.h); ray direction R^T C (ndc.x tan_x, ndc.y tan_y, -1).
+  const glm::dmat3 to_object = glm::transpose(settings.object_rotation);
+  const glm::dvec3 eye = view_.centre + to_object * (view_.eye - view_.centre);
+  glm::dmat3 basis = to_object * view_.camera_to_world;
+  basis[0] *= view_.tan_half_fov_x;
+  basis[1] *= view_.tan_half_fov_y;
+  basis[2] *= -1.0;
+  const glm::mat3 ray_basis(basis);
+  glUniform2f(program.uniform("frame_size"), static_cast<float>(width_), static_cast<float>(height_));
+  glUniform3f(program.uniform("eye_object"), static_cast<float>(eye.x), static_cast<float>(eye.y), static_cast<float>(eye.z));
+  glUniformMatrix3fv(program.uniform("ray_basis"), 1, GL_FALSE, glm::value_ptr(ray_basis));
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer_, 2, both);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+}
+
 // The discs' bounce light for the current transfer: T_bounce . L_discs per vertex (diffuse, on the CPU)
 // or B (M_bounce L_discs) per vertex (glossy, prt_glossy.comp), L_discs in the object frame.
 void Renderer::update_bounce(const FrameSettings& settings, int bands) {
@@ -357,8 +446,6 @@ void Renderer::bind_sun(const Program& program, const FrameSettings& settings, b
   glUniform1i(program.uniform("disc_shadows"), t.shadows ? 1 : 0);
   glBindTextureUnit(kShadowUnit, s.shadow_texture);
   glBindTextureUnit(kTileUnit, s.tile_texture);
-  glBindTextureUnit(kCompareUnit, s.shadow_texture);
-  glBindSampler(kCompareUnit, s.compare_sampler);
   glUniform1i(program.uniform("shadow_tile"), kShadowTile);
   if (glossy) {
     const int terms = static_cast<int>(t.terms.size());
