@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -82,14 +83,23 @@ glm::dvec3 perpendicular(const glm::dvec3& n) {
   return glm::dvec3(1.0 + sign * n.x * n.x * a, sign * n.x * n.y * a, -sign * n.x);
 }
 
+// The lookups' variant for this context (sun_light.glsl): without the tile early-outs on a software
+// rasteriser (Mesa's llvmpipe or softpipe), where branches skip no work.
+std::string lookup_defines() {
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string renderer = name != nullptr ? name : "";
+  const bool software = renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
+  return software ? "#define SUN_TILE_EARLY_OUTS 0\n" : "";
+}
+
 }  // namespace
 
 Renderer::SunPass::SunPass()
     : disc_lighting(kMaxCoefficients, glm::vec3(0.0f)),
       shadow_program({"shadow.vert"}),
-      visibility_program({"sun_visibility.comp"}),
+      visibility_program({"sun_visibility.comp"}, lookup_defines()),
       minmax_program({"shadow_minmax.comp"}),
-      deferred_program({"sun_fullscreen.vert", "prt_sun.frag"}) {
+      deferred_program({"sun_fullscreen.vert", "prt_sun.frag"}, lookup_defines()) {
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_texture);
   glTextureStorage3D(shadow_texture, 1, GL_DEPTH_COMPONENT32F, kShadowMapSize, kShadowMapSize, kMaxDiscs);
   glTextureParameteri(shadow_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
