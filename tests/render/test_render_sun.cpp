@@ -149,6 +149,16 @@ double smallest_channel(const image::Image& image) {
   return smallest;
 }
 
+// test_lighting(3) as the sky plus `sun`, set on `renderer`.
+light::SceneLighting light_with_sun(render::Renderer& renderer, const light::Disc& sun) {
+  light::SceneLighting lighting;
+  lighting.sky = test_lighting(3);
+  lighting.discs = {sun};
+  renderer.set_lighting(lighting.sky, nullptr);
+  renderer.set_discs(lighting.discs);
+  return lighting;
+}
+
 render::FrameSettings frame(int transfer, const render::Camera& camera) {
   render::FrameSettings s;
   s.camera = camera;
@@ -174,11 +184,7 @@ TEST_CASE("diffuse render with a sun equals shade_diffuse_split on the box and f
       if (kind == transfer::Kind::interreflected) REQUIRE(!transfer.bounce_only.empty());
       const int index = renderer.add_transfer(transfer, "test");
       renderer.set_surface_albedo(index, shade::surface_albedo(mesh, transfer.header, "test"));
-      light::SceneLighting lighting;
-      lighting.sky = test_lighting(3);
-      lighting.discs = {sun};
-      renderer.set_lighting(lighting.sky, nullptr);
-      renderer.set_discs(lighting.discs);
+      const light::SceneLighting lighting = light_with_sun(renderer, sun);
       const render::FrameSettings settings = frame(index, render::Camera{30.0, 35.0, 0.0});
       renderer.render(settings, kWidth, kHeight);
       const image::Image gpu = renderer.read_radiance();
@@ -216,11 +222,7 @@ TEST_CASE("deferred disc pass on the lion equals the direct light evaluated per 
   const int index = renderer.add_transfer(transfer, "test");
   const std::vector<glm::vec3> albedo = shade::surface_albedo(mesh, transfer.header, "test");
   renderer.set_surface_albedo(index, albedo);
-  light::SceneLighting lighting;
-  lighting.sky = test_lighting(3);
-  lighting.discs = {sun};
-  renderer.set_lighting(lighting.sky, nullptr);
-  renderer.set_discs(lighting.discs);
+  const light::SceneLighting lighting = light_with_sun(renderer, sun);
   const render::FrameSettings settings = frame(index, render::Camera{40.0, 30.0, 0.0});
   renderer.render(settings, kWidth, kHeight);
   const image::Image gpu = renderer.read_radiance();
