@@ -7,8 +7,8 @@
 //   COEFFICIENT_COUNT  bands^2 of the transfer (its per-channel stride)
 //   USED_COUNT         k^2: only the first k bands are used (truncation), k <= bands
 //   CHUNKS             1..8 buffer-texture views the transfer is split into (see TransferBuffer)
-//   SUN                (defined only with discs) pass the point, normal and albedo on to prt_sun.frag and
-//                      add the discs' bounce light (per-vertex, computed when the lighting changes)
+//   SUN                (defined only with discs) add the discs' bounce light (per-vertex, computed when the
+//                      lighting changes); their direct light is prt_sun.frag's deferred pass
 const int channels = CHANNELS;
 const int coefficient_count = COEFFICIENT_COUNT;
 const int used_count = USED_COUNT;
@@ -49,13 +49,8 @@ uniform mat4 model_view_projection;
 
 out vec3 radiance;
 #ifdef SUN
-layout(location = 1) in vec3 normal;
-// Per vertex, x y z packed: the albedo the transfer was baked with, and the discs' bounce light.
-layout(std430, binding = 6) readonly buffer SunAlbedo { float sun_albedo[]; };
+// Per vertex, x y z packed: the discs' bounce light.
 layout(std430, binding = 7) readonly buffer SunBounce { float sun_bounce[]; };
-out vec3 object_position;
-out vec3 object_normal;
-out vec3 surface_albedo;
 #endif
 
 // sum += per channel, the dot product of the vertex's first used_count transfer coefficients with the
@@ -114,9 +109,6 @@ void main() {
 #ifdef SUN
   int i3 = 3 * gl_VertexID;
   sum += vec3(sun_bounce[i3], sun_bounce[i3 + 1], sun_bounce[i3 + 2]);
-  object_position = position;
-  object_normal = normal;
-  surface_albedo = vec3(sun_albedo[i3], sun_albedo[i3 + 1], sun_albedo[i3 + 2]);
 #endif
   radiance = sum;
   gl_Position = model_view_projection * vec4(position, 1.0);

@@ -5,6 +5,9 @@
 layout(location = 0) in vec3 position;
 
 uniform mat4 model_view_projection;
+#ifdef SUN
+invariant gl_Position;  // the same depth as the prepass (shadow.vert)
+#endif
 
 out vec3 object_position;  // mesh coordinates, interpolated perspective-correctly
 

@@ -2,6 +2,12 @@
 // The discs' uniforms, their shadow maps filtered PCSS-style (docs/conventions.md, "Sun shadow maps";
 // set by Renderer::bind_sun, renderer_sun.cpp), and the BRDF evaluated exactly.
 
+// SUN_TILE_EARLY_OUTS 0 (Renderer on a software rasteriser, renderer_sun.cpp): no tile early-outs. They
+// are exact (the same visibility either way) and save the lookups on a GPU, but a SIMD software
+// rasteriser (llvmpipe) executes every instruction whatever a branch decides, so there they only cost.
+#ifndef SUN_TILE_EARLY_OUTS
+#define SUN_TILE_EARLY_OUTS 1
+#endif
 #ifndef SEARCH_COUNT
 #define SEARCH_COUNT 8
 #endif
@@ -72,6 +78,7 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   float bias = texel * (constant_bias + slope_bias * slope), bias_per_texel = texel * slope;
   float size = float(textureSize(shadow_maps, 0).x), texels_per_unit = 1.0 / texel, texel_uv = 1.0 / size;
   float search = clamp(receiver * disc_tan_radius[k] * texels_per_unit, min_filter, max_filter);
+#if SUN_TILE_EARLY_OUTS
   // Exact early-outs from the tiles under the search square (at most 2 x 2 tiles: search <= max_filter
   // < shadow_tile / 2): no texel there nearer than the least threshold -> no blocker -> lit; every texel
   // nearer than the greatest threshold -> every search and filter sample a blocker -> 0.
@@ -86,6 +93,7 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   bool inside = all(greaterThanEqual(s.xy - reach, vec2(0.0))) && all(lessThan(s.xy + reach, vec2(1.0)));
   if (least >= receiver - bias) return 1.0;
   if (inside && greatest < receiver - bias - bias_per_texel * search) return 0.0;
+#endif
   float blocker_sum = 0.0, blockers = 0.0;
   for (int i = 0; i < search_count; ++i) {
     float d = map_depth(k, s.xy + search_spiral[i] * (search * texel_uv), size) * depth_scale;

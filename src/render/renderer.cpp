@@ -390,6 +390,7 @@ void Renderer::draw_mesh(const FrameSettings& settings, int bands, bool sun) {
     glUniform3fv(program.uniform("light_radiance"), 1, glm::value_ptr(light_radiance));
   }
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  if (sun) draw_sun_deferred(settings);
 }
 
 const Program& Renderer::prt_program(int channels, int coefficient_count, int used_count, int chunks, bool sun) {
@@ -400,7 +401,7 @@ const Program& Renderer::prt_program(int channels, int coefficient_count, int us
                                 std::to_string(coefficient_count) + "\n#define USED_COUNT " +
                                 std::to_string(used_count) + "\n#define CHUNKS " + std::to_string(chunks) + "\n" +
                                 (sun ? "#define SUN 1\n" : "");
-    found = prt_programs_.emplace(key, Program({"prt_diffuse.vert", sun ? "prt_sun.frag" : "surface.frag"}, defines)).first;
+    found = prt_programs_.emplace(key, Program({"prt_diffuse.vert", "surface.frag"}, defines)).first;
   }
   return found->second;
 }

@@ -40,12 +40,14 @@
 //               kMaxDiscs, kShadowMapSize^2, fitted to the mesh bounds in the object's frame), and the
 //               discs' bounce light T_bounce . SH(discs) is recomputed per vertex (diffuse: on the CPU,
 //               prt::shade::shade_diffuse; glossy: prt_glossy.comp on the bounce matrices into a buffer
-//               that the per-frame pass adds to O). The PRT passes, compiled with SUN, then add each
-//               disc's direct light per fragment (prt_sun.frag; prt_glossy.frag with the BRDF evaluated
-//               exactly), its visibility filtered PCSS-style from the map (shaders/sun_light.glsl,
-//               docs/conventions.md "Sun shadow maps"), and clamp each channel at 0 as
-//               prt::shade's split shading does. Without discs (or FrameSettings::sun false) the
-//               passes are exactly those above.
+//               that the per-frame pass adds to O). Each disc's direct light is then added per pixel,
+//               its visibility filtered PCSS-style from the map (shaders/sun_light.glsl,
+//               docs/conventions.md "Sun shadow maps"), and each channel clamped at 0 as prt::shade's
+//               split shading does: diffuse, deferred (prt_diffuse.vert with SUN + surface.frag draw
+//               the sky and bounce light, then sun_fullscreen.vert + prt_sun.frag shade each covered
+//               pixel once from its triangle id); glossy, in prt_glossy.frag (SUN, the BRDF evaluated
+//               exactly) after a depth-only prepass (shadow.vert). Without discs (or
+//               FrameSettings::sun false) the passes are exactly those above.
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
 //               prt::image::to_display.
 // The frame is drawn into a float framebuffer: attachment 0 RGBA32F linear radiance (alpha 1 on the
@@ -275,6 +277,11 @@ class Renderer {
   void bind_sun(const Program& program, const FrameSettings& settings, bool glossy);
   /// Binds the glossy bounce coefficients for prt_glossy.comp with SUN.
   void bind_sun_bounce();
+  /// Depth-only draw of the mesh before the SUN draws (each pixel then runs the discs' lookups once).
+  void draw_sun_prepass();
+  /// The discs' direct light over the pixels the diffuse mesh draw covered (renderer_sun.cpp).
+  void draw_sun_deferred(const FrameSettings& settings);
+  void bind_sun_surface(int transfer);
   std::unique_ptr<SunPass> sun_;
   /// The CPCA pass (renderer_cpca.cpp).
   void draw_cpca(const FrameSettings& settings, int bands, bool sun);

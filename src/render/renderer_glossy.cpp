@@ -81,6 +81,7 @@ void Renderer::draw_glossy(const FrameSettings& settings, int bands, bool sun) {
   // Draw: each fragment evaluates its triangle's corners toward the eye.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  if (sun) draw_sun_prepass();
   glBindVertexArray(mesh_vao_);
   const Program& draw = glossy_draw_program(out_bands, sun);
   glUseProgram(draw.id());

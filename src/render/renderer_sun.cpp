@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -32,6 +33,10 @@ constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr GLuint kWorkgroupSize = 64;
 constexpr int kMaxTerms = 8;                  // sun_light.glsl: max_terms
 constexpr GLuint kTileUnit = 9;               // sun_light.glsl: shadow_tiles
+constexpr GLuint kFrameRadianceUnit = 11;     // prt_sun.frag: frame_radiance
+constexpr GLuint kFrameTriangleUnit = 12;     // prt_sun.frag: frame_triangles
+constexpr GLuint kTriangleCornersUnit = 13;   // prt_sun.frag: triangle_corners
+constexpr GLuint kSurfaceUnit = 14;           // prt_sun.frag: surface
 constexpr int kShadowTile = 32;               // texels per tile side; > 2 x sun_light.glsl's max_filter
 constexpr int kTiles = kShadowMapSize / kShadowTile;
 
@@ -47,6 +52,26 @@ void release(GLuint& buffer) {
   buffer = 0;
 }
 
+void release_texture(GLuint& texture) {
+  if (texture != 0) glDeleteTextures(1, &texture);
+  texture = 0;
+}
+
+// A buffer texture over `bytes` of `data` (immutable) with texel format `format`.
+void buffer_texture(const void* data, std::size_t bytes, GLenum format, GLuint& buffer, GLuint& texture) {
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 16)), data, 0);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture);
+  glTextureBuffer(texture, format, buffer);
+}
+
+template <typename T>
+std::vector<T> read_buffer(GLuint buffer, std::size_t count) {
+  std::vector<T> out(count);
+  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(count * sizeof(T)), out.data());
+  return out;
+}
+
 bool interreflects(transfer::Kind kind) {
   return kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected;
 }
@@ -58,13 +83,23 @@ glm::dvec3 perpendicular(const glm::dvec3& n) {
   return glm::dvec3(1.0 + sign * n.x * n.x * a, sign * n.x * n.y * a, -sign * n.x);
 }
 
+// The lookups' variant for this context (sun_light.glsl): without the tile early-outs on a software
+// rasteriser (Mesa's llvmpipe or softpipe), where branches skip no work.
+std::string lookup_defines() {
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string renderer = name != nullptr ? name : "";
+  const bool software = renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
+  return software ? "#define SUN_TILE_EARLY_OUTS 0\n" : "";
+}
+
 }  // namespace
 
 Renderer::SunPass::SunPass()
     : disc_lighting(kMaxCoefficients, glm::vec3(0.0f)),
       shadow_program({"shadow.vert"}),
-      visibility_program({"sun_visibility.comp"}),
-      minmax_program({"shadow_minmax.comp"}) {
+      visibility_program({"sun_visibility.comp"}, lookup_defines()),
+      minmax_program({"shadow_minmax.comp"}),
+      deferred_program({"sun_fullscreen.vert", "prt_sun.frag"}, lookup_defines()) {
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_texture);
   glTextureStorage3D(shadow_texture, 1, GL_DEPTH_COMPONENT32F, kShadowMapSize, kShadowMapSize, kMaxDiscs);
   glTextureParameteri(shadow_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -93,7 +128,13 @@ Renderer::SunPass::~SunPass() {
 }
 
 void Renderer::SunPass::clear_mesh() {
-  for (PerTransfer& t : transfers) release(t.albedo);
+  for (PerTransfer& t : transfers) {
+    release(t.albedo);
+    release(t.surface_buffer);
+    release_texture(t.surface_texture);
+  }
+  release(triangle_buffer);
+  release_texture(triangle_texture);
   transfers.clear();
   release(bounce_vertex);
   release(bounce_outgoing);
@@ -139,7 +180,10 @@ void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& al
   if (albedo.size() != vertex_count_)
     fail("renderer: surface albedo has " + std::to_string(albedo.size()) + " entries for " + std::to_string(vertex_count_) +
          " vertices");
-  GLuint& buffer = sun_->transfers[static_cast<std::size_t>(transfer)].albedo;
+  SunPass::PerTransfer& t = sun_->transfers[static_cast<std::size_t>(transfer)];
+  release(t.surface_buffer);  // rebuilt with this albedo on the next deferred pass
+  release_texture(t.surface_texture);
+  GLuint& buffer = t.albedo;
   release(buffer);
   glCreateBuffers(1, &buffer);
   glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(albedo.size() * sizeof(glm::vec3)), albedo.data(), 0);
@@ -246,6 +290,91 @@ void Renderer::draw_shadow_maps() {
   glDispatchCompute(kTiles / 8, kTiles / 8, static_cast<GLuint>(s.discs.size()));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   check_gl("drawing shadow maps");
+}
+
+// Depth-only draw of the mesh with the frame's model-view-projection, then depth test LEQUAL (rewriting
+// the same depth): the SUN fragment stage that follows (the shadow-map lookups) runs once per covered
+// pixel, on the nearest surface only, instead of once per rasterised fragment (overdraw). shadow.vert and the
+// SUN vertex stages declare gl_Position invariant, so both draws give each pixel the same depth.
+void Renderer::draw_sun_prepass() {
+  SunPass& s = *sun_;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glUseProgram(s.shadow_program.id());
+  glUniformMatrix4fv(s.shadow_program.uniform("light_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
+  glBindVertexArray(mesh_vao_);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_LEQUAL);
+}
+
+// The deferred pass's mesh data as buffer textures (cheaper per-pixel reads than storage buffers on
+// llvmpipe): per triangle its corner indices (RGBA32UI), per vertex of transfer `transfer` three texels
+// (RGBA32F) position, normal, albedo; made on first use from the GL buffers.
+void Renderer::bind_sun_surface(int transfer) {
+  SunPass& s = *sun_;
+  SunPass::PerTransfer& t = s.transfers[static_cast<std::size_t>(transfer)];
+  if (s.triangle_texture == 0) {
+    const std::vector<std::uint32_t> indices = read_buffer<std::uint32_t>(indices_, static_cast<std::size_t>(index_count_));
+    std::vector<glm::uvec4> packed(indices.size() / 3);
+    for (std::size_t i = 0; i < packed.size(); ++i) packed[i] = glm::uvec4(indices[3 * i], indices[3 * i + 1], indices[3 * i + 2], 0u);
+    buffer_texture(packed.data(), packed.size() * sizeof(glm::uvec4), GL_RGBA32UI, s.triangle_buffer, s.triangle_texture);
+  }
+  if (t.surface_texture == 0) {
+    const std::vector<glm::vec3> positions = read_buffer<glm::vec3>(positions_, vertex_count_);
+    const std::vector<glm::vec3> normals = read_buffer<glm::vec3>(normals_, vertex_count_);
+    const std::vector<glm::vec3> albedo = read_buffer<glm::vec3>(t.albedo != 0 ? t.albedo : albedo_, vertex_count_);
+    std::vector<glm::vec4> packed(3 * vertex_count_);
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      packed[3 * v] = glm::vec4(positions[v], 0.0f);
+      packed[3 * v + 1] = glm::vec4(normals[v], 0.0f);
+      packed[3 * v + 2] = glm::vec4(albedo[v], 0.0f);
+    }
+    buffer_texture(packed.data(), packed.size() * sizeof(glm::vec4), GL_RGBA32F, t.surface_buffer, t.surface_texture);
+  }
+  glBindTextureUnit(kTriangleCornersUnit, s.triangle_texture);
+  glBindTextureUnit(kSurfaceUnit, t.surface_texture);
+}
+
+// The discs' direct light for diffuse transfer, deferred: after the mesh draw (prt_diffuse.vert with
+// SUN: sky and bounce light, unclamped, and the triangle index per pixel), one full-viewport draw at
+// the far plane with the depth test GREATER reaches each covered pixel exactly once (prt_sun.frag),
+// reads that pixel's radiance and triangle, and writes the clamped sum. Attachment 1 is not written
+// in it; each pixel of attachment 0 is read and written by its own fragment only (the texture barrier
+// makes the mesh draw's writes visible to it).
+void Renderer::draw_sun_deferred(const FrameSettings& settings) {
+  SunPass& s = *sun_;
+  const Program& program = s.deferred_program;
+  glTextureBarrier();
+  const GLenum radiance_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+  glNamedFramebufferDrawBuffers(framebuffer_, 2, radiance_only);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glUseProgram(program.id());
+  bind_sun(program, settings, false);
+  glBindTextureUnit(kFrameRadianceUnit, radiance_texture_);
+  glBindTextureUnit(kFrameTriangleUnit, triangle_texture_);
+  bind_sun_surface(settings.transfer);
+  // Mesh coordinates: p = c + R^T (world - c) (renderer.h); ray direction R^T C (ndc.x tan_x, ndc.y tan_y, -1).
+  const glm::dmat3 to_object = glm::transpose(settings.object_rotation);
+  const glm::dvec3 eye = view_.centre + to_object * (view_.eye - view_.centre);
+  glm::dmat3 basis = to_object * view_.camera_to_world;
+  basis[0] *= view_.tan_half_fov_x;
+  basis[1] *= view_.tan_half_fov_y;
+  basis[2] *= -1.0;
+  const glm::mat3 ray_basis(basis);
+  glUniform2f(program.uniform("frame_size"), static_cast<float>(width_), static_cast<float>(height_));
+  glUniform3f(program.uniform("eye_object"), static_cast<float>(eye.x), static_cast<float>(eye.y), static_cast<float>(eye.z));
+  glUniformMatrix3fv(program.uniform("ray_basis"), 1, GL_FALSE, glm::value_ptr(ray_basis));
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer_, 2, both);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
 }
 
 // The discs' bounce light for the current transfer: T_bounce . L_discs per vertex (diffuse, on the CPU)

@@ -2,6 +2,7 @@
 // Internal to the renderer (renderer.cpp, renderer_glossy.cpp, renderer_sun.cpp): the sun pass's state
 // (renderer.h, PASSES: sun).
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@ struct Renderer::SunPass {
     transfer::TransferData bounce_cpu;             ///< diffuse: the bounce-only part (values empty if none)
     std::unique_ptr<TransferBuffer> bounce_gpu;    ///< glossy: the bounce-only part (nullptr if none)
     GLuint albedo = 0;                             ///< x y z floats per vertex (0: the mesh's albedo)
+    GLuint surface_buffer = 0, surface_texture = 0;  ///< deferred pass: position, normal, albedo per vertex
     std::vector<brdf::Term> terms;                 ///< glossy: the BRDF for the direct light
     bool has_terms = false;
   };
@@ -46,8 +48,9 @@ struct Renderer::SunPass {
   int version = 0;                                 ///< bumped by set_discs and BRDF changes (the bounce light)
   int updates = 0;                                 ///< shadow-map redraws
 
-  Program shadow_program, visibility_program, minmax_program;
+  Program shadow_program, visibility_program, minmax_program, deferred_program;
   GLuint shadow_texture = 0, shadow_framebuffer = 0;
+  GLuint triangle_buffer = 0, triangle_texture = 0;  ///< deferred pass: corner indices per triangle
   GLuint tile_texture = 0;                         ///< per tile of kShadowTile^2 texels: least, greatest depth
   GLuint disc_lighting_buffer = 0;                 ///< object-frame disc SH (uniform Lighting layout)
   GLuint bounce_vertex = 0;                        ///< diffuse: x y z floats per vertex
