@@ -8,15 +8,11 @@ uniform mat4 model_view_projection;
 
 out vec3 radiance;
 #ifdef SUN
-// For the discs' direct light in prt_sun.frag (SUN_ALBEDO: diffuse) or prt_cpca_sun.frag (glossy);
-// their bounce light is in the radiance already.
+// For the discs' direct light in prt_cpca_sun.frag (glossy; diffuse transfer gets it in the deferred
+// prt_sun.frag pass); their bounce light is in the radiance already.
 layout(location = 1) in vec3 normal;
 out vec3 object_position;
 out vec3 object_normal;
-#endif
-#ifdef SUN_ALBEDO
-layout(std430, binding = 6) readonly buffer SunAlbedo { float sun_albedo[]; };
-out vec3 surface_albedo;
 #endif
 
 void main() {
@@ -24,10 +20,6 @@ void main() {
 #ifdef SUN
   object_position = position;
   object_normal = normal;
-#endif
-#ifdef SUN_ALBEDO
-  int i3 = 3 * gl_VertexID;
-  surface_albedo = vec3(sun_albedo[i3], sun_albedo[i3 + 1], sun_albedo[i3 + 2]);
 #endif
   gl_Position = model_view_projection * vec4(position, 1.0);
 }

@@ -234,14 +234,15 @@ void Renderer::draw_cpca(const FrameSettings& settings, int bands, bool sun) {
   glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-  // Draw with the per-vertex radiance, interpolated as the diffuse pass's; with discs, prt_sun.frag
-  // (diffuse) or prt_cpca_sun.frag (glossy) adds their direct light per pixel as for uncompressed transfer.
-  const std::pair<int, int> key(-1, sun ? (glossy ? 2 : 1) : 0);
+  // Draw with the per-vertex radiance, interpolated as the diffuse pass's. With discs, diffuse: the
+  // deferred pass (draw_sun_deferred) adds their direct light per pixel as for uncompressed transfer;
+  // glossy: prt_cpca_sun.frag evaluates the BRDF toward the eye in the draw itself.
+  const bool forward_sun = sun && glossy;
+  const std::pair<int, int> key(-1, forward_sun ? 2 : 0);
   found = cpca_programs_.find(key);
   if (found == cpca_programs_.end())
-    found = cpca_programs_.emplace(key, !sun     ? Program({"prt_cpca.vert", "surface.frag"})
-                                        : glossy ? Program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
-                                                 : Program({"prt_cpca.vert", "prt_sun.frag"}, "#define SUN 1\n#define SUN_ALBEDO 1\n"))
+    found = cpca_programs_.emplace(key, forward_sun ? Program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
+                                                    : Program({"prt_cpca.vert", "surface.frag"}))
                 .first;
   const Program& draw = found->second;
   glEnable(GL_DEPTH_TEST);
@@ -249,11 +250,13 @@ void Renderer::draw_cpca(const FrameSettings& settings, int bands, bool sun) {
   glBindVertexArray(mesh_vao_);
   glUseProgram(draw.id());
   glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
-  if (sun) bind_sun(draw, settings, glossy);
-  if (sun && glossy)
+  if (forward_sun) {
+    bind_sun(draw, settings, true);
     glUniform3f(draw.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
                 static_cast<float>(eye_object.z));
+  }
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  if (sun && !glossy) draw_sun_deferred(settings);
 }
 
 }  // namespace prt::render
