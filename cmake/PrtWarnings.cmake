@@ -16,3 +16,8 @@ if(PRT_BUILD_FUZZ)
   # Coverage feedback for libFuzzer in every prt library; the fuzz targets add libFuzzer's main.
   target_compile_options(prt_options INTERFACE -fsanitize=fuzzer-no-link)
 endif()
+if(PRT_COVERAGE)
+  # clang source-based coverage: each run writes a .profraw (LLVM_PROFILE_FILE) for llvm-profdata/llvm-cov.
+  target_compile_options(prt_options INTERFACE -fprofile-instr-generate -fcoverage-mapping)
+  target_link_options(prt_options INTERFACE -fprofile-instr-generate)
+endif()

@@ -9,6 +9,9 @@
 #   --build-only  build the targets and stop
 #   --coverage    no fuzzing: replay build-fuzz/corpus/<target> once with -print_coverage=1 and print,
 #                 per prt source file the target reaches, the instrumented edges its corpus covers
+#   --line-coverage  no fuzzing: build the targets with clang's source-based coverage (no sanitizers) in
+#                 build-fuzz-cov/, replay build-fuzz/corpus/<target> (else the seed corpus) once and print
+#                 llvm-cov's line, function and region coverage of each prt source file the target runs
 #   TARGET        ply obj gltf image prt brdf light probes points (default: all)
 # The committed seed corpus tests/fuzz/corpus/<target> is copied to build-fuzz/corpus/<target>, which
 # collects the new inputs; crashes go to build-fuzz/artifacts/. Exits non-zero on any crash, sanitizer
@@ -29,7 +32,8 @@ while (($#)); do
     --time) mode=time; seconds="$2"; shift ;;
     --build-only) build_only=1 ;;
     --coverage) mode=coverage ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    --line-coverage) mode=line-coverage ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
     *) targets+=("$1") ;;
   esac
   shift
@@ -40,6 +44,33 @@ build_dir="${PRT_FUZZ_BUILD_DIR:-build-fuzz}"
 command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 is missing (scripts/setup.sh --fuzz installs it)" >&2; exit 1; }
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+if [ "$mode" = line-coverage ]; then
+  cov_dir="${build_dir}-cov"
+  command -v llvm-cov-14 >/dev/null || { echo "fuzz: llvm-cov-14 is missing (scripts/setup.sh --tests installs llvm-14)" >&2; exit 1; }
+  if [ ! -f "$cov_dir/build.ninja" ]; then
+    CC=clang-14 CXX=clang++-14 cmake -S . -B "$cov_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DPRT_BUILD_FUZZ=ON -DPRT_COVERAGE=ON -DPRT_BUILD_TESTS=OFF -DPRT_BUILD_BENCH=OFF -DPRT_BUILD_GL=OFF \
+      -DPRT_ARCH= "${launcher[@]}" 2>&1 | grep -v -e PyImath -e '^$' >&2 || true
+  fi
+  cmake --build "$cov_dir" --target $(printf 'fuzz_%s ' "${targets[@]}")
+  for t in "${targets[@]}"; do
+    corpus="$build_dir/corpus/$t"
+    [ -d "$corpus" ] && [ -n "$(ls -A "$corpus")" ] || corpus="tests/fuzz/corpus/$t"
+    rm -f "$cov_dir/$t"-*.profraw
+    LLVM_PROFILE_FILE="$cov_dir/$t-%p.profraw" "$cov_dir/tests/fuzz/fuzz_$t" -runs=0 -artifact_prefix="$cov_dir/$t-" "$corpus" \
+      > "$cov_dir/replay_$t.log" 2>&1 || { echo "fuzz: $t: replay failed ($cov_dir/replay_$t.log)" >&2; exit 1; }
+    llvm-profdata-14 merge -sparse "$cov_dir/$t"-*.profraw -o "$cov_dir/$t.profdata"
+    echo "fuzz: $t: $(ls "$corpus" | wc -l) inputs from $corpus; line coverage per prt source file it runs:"
+    # llvm-cov's columns (paths under src/): regions, missed, cover, functions, missed, executed, lines,
+    # missed, cover, ...; files the target never enters are left out.
+    llvm-cov-14 report "$cov_dir/tests/fuzz/fuzz_$t" -instr-profile="$cov_dir/$t.profdata" \
+      -ignore-filename-regex='^/usr/|tests/fuzz/' |
+      awk '$1 != "Filename" && $1 !~ /^-/ && NF >= 10 {
+        if ($7 == "0.00%" && $1 != "TOTAL") next
+        printf "  %-34s lines %7s of %5d  functions %7s  regions %7s\n", $1, $10, $8, $7, $4 }'
+  done
+  exit 0
+fi
 if [ ! -f "$build_dir/build.ninja" ]; then
   CC=clang-14 CXX=clang++-14 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DPRT_SANITIZE=address,undefined -DPRT_BUILD_FUZZ=ON -DPRT_BUILD_TESTS=OFF -DPRT_BUILD_BENCH=OFF \
