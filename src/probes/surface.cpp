@@ -41,6 +41,7 @@ struct Context {
 };
 
 // One traversal of every vertex's S rays (trace/vertex_rays.h); `visit(v, batch)` consumes each batch.
+// Distributed: this rank's share of the vertices only; returns the rays of all ranks.
 template <class Visit>
 std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit visit) {
   struct Worker {
@@ -53,7 +54,7 @@ std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit 
   const dist::Range share = dist::my_range(dist::or_single(ctx.dist), ctx.order.size());
   const trace::VertexRays rays{ctx.scene, ctx.mesh, &ctx.order, ctx.local_directions, ctx.seed, ctx.threads,
                                trace::Query::closest_hit, share.begin, share.end};
-  return trace::trace_vertex_rays(rays, progress, [&] { return Worker{&visit}; });
+  return dist::or_single(ctx.dist).sum(trace::trace_vertex_rays(rays, progress, [&] { return Worker{&visit}; }));
 }
 
 void check_surface_options(const SurfaceOptions& o) {
