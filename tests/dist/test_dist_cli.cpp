@@ -153,8 +153,9 @@ TEST_CASE("a rank that fails alone ends the job with its error and no output", "
   const std::string dir = test::fresh_temp_dir("dist_missing");
   const std::string bake = " bake --transfer shadowed --bands 3 --samples 16 -q -o " + dir + "/out.prt ";
   const auto start = std::chrono::steady_clock::now();
-  const test::RunResult run = test::run_shell(test::mpirun(2) + " " + test::prt_binary() + bake + in.grey + " : -np 1 " +
-                                              test::prt_binary() + bake + dir + "/missing.ply");
+  // `timeout`: a job that hangs (a rank waiting forever for the failed one) fails here instead of stalling ctest.
+  const test::RunResult run = test::run_shell("timeout 60 " + test::mpirun(2) + " " + test::prt_binary() + bake + in.grey +
+                                              " : -np 1 " + test::prt_binary() + bake + dir + "/missing.ply");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   INFO(run.output);
   CHECK(run.exit_code != 0);
