@@ -74,9 +74,13 @@ void Context::init_from_environment() {
   mpi_ = true;
 }
 
-void Context::allgather_rows(const void* mine, std::size_t count, std::size_t row_bytes, void* all,
-                             const std::vector<std::size_t>& counts) const {
-  if (size_ == 1) {
+namespace {
+
+// The rows exchange of allgather_rows (to_root false) and gather_rows (to_root true): a timed barrier
+// (the wait for the slowest rank), then the timed collective.
+void exchange_rows(const void* mine, std::size_t count, std::size_t row_bytes, void* all, const std::vector<std::size_t>& counts,
+                   bool to_root, int size, int rank, ExchangeStats& stats) {
+  if (size == 1) {  // a world of one rank (mpirun -np 1): a copy
     if (count > 0) std::memmove(all, mine, count * row_bytes);
     return;
   }
@@ -84,34 +88,29 @@ void Context::allgather_rows(const void* mine, std::size_t count, std::size_t ro
   const RowType row(row_bytes);
   auto start = std::chrono::steady_clock::now();
   MPI_Barrier(MPI_COMM_WORLD);
-  stats_.wait_seconds += seconds_since(start);
+  stats.wait_seconds += seconds_since(start);
   start = std::chrono::steady_clock::now();
-  MPI_Allgatherv(mine, to_int(count, "row count"), row.get(), all, l.counts.data(), l.displacements.data(), row.get(),
-                 MPI_COMM_WORLD);
-  stats_.exchange_seconds += seconds_since(start);
-  stats_.exchanges += 1;
-  stats_.bytes_sent += count * row_bytes;
-  stats_.bytes_received += (l.total - count) * row_bytes;
+  const int n = to_int(count, "row count");
+  if (to_root)
+    MPI_Gatherv(mine, n, row.get(), all, l.counts.data(), l.displacements.data(), row.get(), 0, MPI_COMM_WORLD);
+  else
+    MPI_Allgatherv(mine, n, row.get(), all, l.counts.data(), l.displacements.data(), row.get(), MPI_COMM_WORLD);
+  stats.exchange_seconds += seconds_since(start);
+  stats.exchanges += 1;
+  stats.bytes_sent += count * row_bytes;
+  if (!to_root || rank == 0) stats.bytes_received += (l.total - count) * row_bytes;
+}
+
+}  // namespace
+
+void Context::allgather_rows(const void* mine, std::size_t count, std::size_t row_bytes, void* all,
+                             const std::vector<std::size_t>& counts) const {
+  exchange_rows(mine, count, row_bytes, all, counts, false, size_, rank_, stats_);
 }
 
 void Context::gather_rows(const void* mine, std::size_t count, std::size_t row_bytes, void* all,
                           const std::vector<std::size_t>& counts) const {
-  if (size_ == 1) {
-    if (count > 0) std::memmove(all, mine, count * row_bytes);
-    return;
-  }
-  const Layout l = layout_of(counts);
-  const RowType row(row_bytes);
-  auto start = std::chrono::steady_clock::now();
-  MPI_Barrier(MPI_COMM_WORLD);
-  stats_.wait_seconds += seconds_since(start);
-  start = std::chrono::steady_clock::now();
-  MPI_Gatherv(mine, to_int(count, "row count"), row.get(), all, l.counts.data(), l.displacements.data(), row.get(), 0,
-              MPI_COMM_WORLD);
-  stats_.exchange_seconds += seconds_since(start);
-  stats_.exchanges += 1;
-  stats_.bytes_sent += count * row_bytes;
-  if (rank_ == 0) stats_.bytes_received += (l.total - count) * row_bytes;
+  exchange_rows(mine, count, row_bytes, all, counts, true, size_, rank_, stats_);
 }
 
 std::vector<std::uint64_t> Context::allgather_u64(const std::vector<std::uint64_t>& values) const {

@@ -16,18 +16,6 @@ namespace prt::test {
 
 std::string mpirun(int ranks) { return std::string(PRT_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks); }
 
-RunResult run_shell(const std::string& command) {
-  RunResult result;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  std::size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return result;
-}
-
 RunResult run_prt_ranks(int ranks, const std::string& arguments) {
   return run_shell(mpirun(ranks) + " " + prt_binary() + " " + arguments);
 }

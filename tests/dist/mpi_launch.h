@@ -11,9 +11,6 @@ namespace prt::test {
 /// "mpirun --oversubscribe -np <ranks>" (the launcher CMake found; more ranks than cores are fine).
 std::string mpirun(int ranks);
 
-/// Runs a shell command line, capturing stdout and stderr together.
-RunResult run_shell(const std::string& command);
-
 /// "mpirun ... -np <ranks> <prt> <arguments>", run through the shell.
 RunResult run_prt_ranks(int ranks, const std::string& arguments);
 
