@@ -31,11 +31,11 @@ struct Inputs {
 };
 
 // A bumpy icosphere (2,562 vertices: self-shadowing ridges) grey and with per-vertex colours, a larger one
-// (10,242 vertices) for the fault test, and a small sky; written once per process.
+// (10,242 vertices) for the fault test, and a small sky; written once per process, in its own folder.
 const Inputs& inputs() {
   static const Inputs in = [] {
     Inputs i;
-    i.dir = test::fresh_temp_dir("dist_inputs");
+    i.dir = test::fresh_temp_dir("dist_inputs_" + std::to_string(getpid()));  // ctest runs the tags in parallel
     const mesh::Mesh m = bench::bumpy_icosphere(4, 0.35f);
     i.grey = i.dir + "/grey.ply";
     mesh::write_ply(i.grey, m.positions, {}, m.indices);
