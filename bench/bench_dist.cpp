@@ -1,6 +1,6 @@
 // bench_dist: distributed baking (docs/distributed.md) through the real binaries, in one run.
 //
-// Mesh: bench::cornell_box(C) (default C = 295: 435,7xx vertices, the ~437k class; a closed room, so
+// Mesh: bench::cornell_box(C) (default C = 295: 435,824 vertices, the ~437k class; a closed room, so
 // most bounce rays hit), written as PLY. Bake: prt bake --transfer interreflected --bands 5 --samples S
 // --bounces B (defaults 16 and 2: three passes, each followed by an allgather of 25 floats per vertex).
 //   1. Overhead (issue 14): `mpirun -np 2 --bind-to none prt bake --threads 1` against
