@@ -35,7 +35,7 @@ struct Inputs {
 const Inputs& inputs() {
   static const Inputs in = [] {
     Inputs i;
-    i.dir = test::fresh_temp_dir("dist_inputs_" + std::to_string(getpid()));  // ctest runs the tags in parallel
+    i.dir = test::fresh_temp_dir("dist_inputs");  // per process: ctest runs the tags in parallel
     const mesh::Mesh m = bench::bumpy_icosphere(4, 0.35f);
     i.grey = i.dir + "/grey.ply";
     mesh::write_ply(i.grey, m.positions, {}, m.indices);
