@@ -37,7 +37,7 @@ struct GlossyContext {
   /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
-    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, share.begin, share.end};
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, nullptr, nullptr, share.begin, share.end};
   }
 };
 

@@ -72,6 +72,7 @@ void run_bake(const BakeCommandOptions& o) {
   bake::validate_options(options);
   if (!o.lightmap.empty()) {
     if (!o.compress.empty()) fail("--compress applies to per-vertex transfer only (not with --lightmap)");
+    if (job().size() > 1) fail("--lightmap: texel bakes do not run distributed yet (docs/distributed.md); run prt bake without mpirun");
     run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16, o.quiet});
     return;
   }

@@ -53,7 +53,7 @@ std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit 
   Progress progress(label, "vertices", std::max<std::size_t>(1, ctx.mesh->positions.size()), ctx.progress);
   const dist::Range share = dist::my_range(dist::or_single(ctx.dist), ctx.order.size());
   const trace::VertexRays rays{ctx.scene, ctx.mesh, &ctx.order, ctx.local_directions, ctx.seed, ctx.threads,
-                               trace::Query::closest_hit, share.begin, share.end};
+                               trace::Query::closest_hit, nullptr, nullptr, share.begin, share.end};
   return dist::or_single(ctx.dist).sum(trace::trace_vertex_rays(rays, progress, [&] { return Worker{&visit}; }));
 }
 
