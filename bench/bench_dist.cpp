@@ -2,7 +2,7 @@
 //
 // Mesh: bench::cornell_box(C) (default C = 295: 435,824 vertices, the ~437k class; a closed room, so
 // most bounce rays hit), written as PLY. Bake: prt bake --transfer interreflected --bands 5 --samples S
-// --bounces B (defaults 16 and 2: three passes, each followed by an allgather of 25 floats per vertex).
+// --bounces B (defaults 64 and 2: three passes, each followed by an allgather of 25 floats per vertex).
 //   1. Overhead (issue 14): `mpirun -np 2 --bind-to none prt bake --threads 1` against
 //      `prt bake --threads 2` (one process); runs alternate A B A B, each pair gives a ratio
 //      t(1 process x 2 threads) / t(2 ranks x 1 thread) (target >= 0.9), of wall time and of CPU time;
@@ -34,7 +34,7 @@
 namespace {
 
 struct Args {
-  int cells = 295, samples = 16, bounces = 2, repeat = 3, scaling = 1;
+  int cells = 295, samples = 64, bounces = 2, repeat = 3, scaling = 1;
 };
 
 Args parse(int argc, char** argv) {
