@@ -9,6 +9,13 @@ find_package(tinyobjloader CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(Eigen3 3.3 CONFIG REQUIRED)
 
+# MPI (Open MPI from Debian) for distributed baking, src/dist: optional, on by default when found.
+find_package(MPI COMPONENTS C QUIET)
+option(PRT_WITH_MPI "Distributed baking over MPI (src/dist; mpirun -np N prt bake ...)" ${MPI_C_FOUND})
+if(PRT_WITH_MPI AND NOT MPI_C_FOUND)
+  message(FATAL_ERROR "PRT_WITH_MPI is ON but no MPI C library was found (apt-get install libopenmpi-dev openmpi-bin)")
+endif()
+
 # Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist; generation fails as
 # soon as anything links it. Drop that entry.
 get_target_property(_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)

@@ -79,6 +79,8 @@ void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, 
   for (int b = 1; b <= max_passes; ++b) {
     const std::string label = "bake bounce " + std::to_string(b);
     rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
+    // Distributed: the next pass and the stopping rule need every point's result.
+    dist::allgather_items(dist::or_single(ctx.dist), next, stride, ctx.order);
     for (std::size_t i = 0; i < next.size(); ++i) {
       values[i] += next[i];
       bounce_only[i] += next[i];
@@ -130,6 +132,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   const std::size_t n = static_cast<std::size_t>(options.bands) * options.bands;
   const std::size_t vertices = mesh.positions.size();
   const std::size_t stride = n * static_cast<std::size_t>(channels);
+  const dist::Context& dist = dist::or_single(options.dist);
 
   transfer::TransferData data;
   transfer::Header& h = data.header;
@@ -161,8 +164,12 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     samples = make_local_sample_set(options.samples, options.bands, options.seed);
     order = trace::morton_order(mesh.positions);
     ctx = PassContext{&mesh, scene.get(), &samples, &order, options.seed, options.threads, options.progress};
+    ctx.dist = options.dist;
     start = std::chrono::steady_clock::now();
     rep.rays_traced += shadowed_geometric(ctx, geometric);
+    // Distributed: every rank needs the direct pass for the bounces, rank 0 alone for the file.
+    if (options.kind == transfer::Kind::interreflected) dist::allgather_items(dist, geometric, n, &order);
+    else dist::gather_items(dist, geometric, n, &order);
     rep.seconds_visibility = seconds_since(start);
   }
 
@@ -179,6 +186,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     rep.seconds_bounces = seconds_since(start);
   }
 
+  rep.rays_traced = dist.sum(rep.rays_traced);
   h.parameters_json = parameters_json(options, mesh, rep.bounces_done, ray_offset);
   return data;
 }

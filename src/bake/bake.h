@@ -25,7 +25,8 @@
 // folded in; otherwise three (RGB), so interreflection carries colour bleeding.
 //
 // DETERMINISM. Each vertex's result depends only on the mesh, the options and its index; the traced
-// rays and every sum run in a fixed order. Output is byte-identical for any thread count.
+// rays and every sum run in a fixed order. Output is byte-identical for any thread count, and for any
+// number of ranks of a distributed bake (BakeOptions::dist; docs/distributed.md).
 //
 // GLOSSY (kinds glossy-shadowed, glossy-interreflected; Sloan, Kautz and Snyder 2002, section 6). Per
 // vertex p a transfer MATRIX M_p (bands_out^2 x bands^2, row-major [out][in]) maps world lighting
@@ -64,6 +65,7 @@
 #include <glm/vec3.hpp>
 
 #include "brdf/brdf.h"
+#include "dist/context.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
 #include "transfer/transfer_file.h"
@@ -81,13 +83,18 @@ struct BakeOptions {
   bool progress = false;  ///< progress bar on stderr (only drawn when stderr is a terminal)
   brdf::Brdf brdf;        ///< glossy kinds: the BRDF of the whole mesh (required); unused otherwise
   int bands_out = 0;      ///< glossy kinds: transferred-radiance bands 1..bands; 0 = bands
+  /// The ranks of a distributed bake (dist/context.h); null: this process alone. Every rank traces its
+  /// share of the vertices and the passes' results are exchanged. Rank 0's result is complete
+  /// (byte-identical to a single process's); so is every rank's for the interreflected kinds (every
+  /// pass is allgathered); otherwise the other ranks' values are undefined.
+  const dist::Context* dist = nullptr;
 };
 
 /// What the bake did and measured (not stored in the file, which must not depend on timing).
 struct BakeReport {
   int bounces_done = 0;
   std::vector<double> pass_energy;   ///< per pass (0 = direct): sum over vertices and channels of T[0]
-  std::uint64_t rays_traced = 0;
+  std::uint64_t rays_traced = 0;    ///< by all ranks together
   double seconds_build = 0, seconds_visibility = 0, seconds_bounces = 0;
 };
 

@@ -74,11 +74,15 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   std::vector<glm::mat3> frames(vertices);
   for (std::size_t v = 0; v < vertices; ++v) frames[v] = brdf::shading_frame(mesh.normals[v]);
   const GlossyContext ctx{&mesh, &scene, &samples, &order, &frames, options.bands, bands_out,
-                          options.seed, options.threads, options.progress};
+                          options.seed, options.threads, options.progress, options.dist};
+  const dist::Context& dist = dist::or_single(options.dist);
 
   start = std::chrono::steady_clock::now();
   std::vector<float> direct;
   rep.rays_traced += glossy_direct_pass(ctx, direct);
+  // Distributed: every rank needs the direct pass for the bounces, rank 0 alone for the file.
+  if (interreflected) dist::allgather_items(dist, direct, matrix_size, &order);
+  else dist::gather_items(dist, direct, matrix_size, &order);
   rep.seconds_visibility = seconds_since(start);
   if (channels == 1) {
     data.values = std::move(direct);
@@ -103,6 +107,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     for (int b = 1; b <= max_passes; ++b) {
       const std::string label = "bake glossy bounce " + std::to_string(b);
       rep.rays_traced += glossy_bounce_pass(ctx, brdf_matrix, channels, prev, next, label.c_str());
+      dist::allgather_items(dist, next, matrix_size * channels, &order);  // the next pass and the stopping rule need it
       for (std::size_t i = 0; i < next.size(); ++i) {
         data.values[i] += next[i];
         data.bounce_only[i] += next[i];
@@ -115,6 +120,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     }
     rep.seconds_bounces = seconds_since(start);
   }
+  rep.rays_traced = dist.sum(rep.rays_traced);
   h.parameters_json = parameters_json(options, bands_out, rep.bounces_done, scene.ray_offset());
   return data;
 }

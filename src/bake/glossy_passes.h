@@ -11,6 +11,7 @@
 #include "bake/bake.h"
 #include "bake/vertex_samples.h"
 #include "brdf/projection.h"
+#include "dist/exchange.h"
 #include "mesh/mesh.h"
 #include "sh/rotation.h"
 #include "trace/scene.h"
@@ -30,10 +31,13 @@ struct GlossyContext {
   std::uint32_t seed = 0;
   int threads = 0;
   bool progress = false;
+  const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
 
-  /// The per-vertex ray loop of this context (trace/vertex_rays.h) with query `query`.
+  /// The per-vertex ray loop of this context (trace/vertex_rays.h) with query `query`, over this
+  /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
-    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query};
+    const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, nullptr, nullptr, share.begin, share.end};
   }
 };
 

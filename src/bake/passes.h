@@ -13,6 +13,7 @@
 #include "bake/bake.h"
 #include "bake/vertex_samples.h"
 #include "core/progress.h"
+#include "dist/exchange.h"
 #include "mesh/mesh.h"
 #include "trace/scene.h"
 #include "trace/vertex_rays.h"
@@ -45,10 +46,14 @@ struct PassContext {
   bool progress = false;
   SamplePoints points{};         ///< null members: the mesh's vertices
   const TexelGrid* grid = nullptr;  ///< null: bounce passes gather per vertex (barycentric)
+  const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
 
-  /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`.
+  /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`, over this
+  /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
-    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals};
+    const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
+                             share.begin, share.end};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
   std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }

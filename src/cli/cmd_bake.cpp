@@ -10,6 +10,7 @@
 #include "cli/cmd_compress.h"
 #include "cli/output_paths.h"
 #include "cli/commands.h"
+#include "cli/distributed.h"
 #include "compress/cprt_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -42,6 +43,15 @@ struct BakeCommandOptions {
   bool no_repair = false;
 };
 
+// Everything of the command line that changes the output (dist: every rank must bake the same job).
+std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptions& b) {
+  return std::string("bake ") + transfer::kind_name(b.kind) + " bands " + std::to_string(b.bands) + " out " +
+         std::to_string(b.bands_out) + " samples " + std::to_string(b.samples) + " bounces " + std::to_string(b.bounces) +
+         " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," + exact(b.albedo.b) + " seed " +
+         std::to_string(b.seed) + " brdf " + (b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
+         std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty());
+}
+
 void run_bake(const BakeCommandOptions& o) {
   bake::BakeOptions options;
   options.kind = transfer::parse_kind(o.kind);
@@ -50,7 +60,8 @@ void run_bake(const BakeCommandOptions& o) {
   options.bounces = o.bounces;
   options.seed = o.seed;
   options.threads = o.threads;
-  options.progress = want_progress(o.quiet);
+  options.progress = want_progress(o.quiet) && job().is_root();
+  options.dist = &job();
   if (!o.albedo.empty()) options.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
   if (!o.brdf.empty()) {
     if (!transfer::is_glossy(options.kind))
@@ -61,6 +72,7 @@ void run_bake(const BakeCommandOptions& o) {
   bake::validate_options(options);
   if (!o.lightmap.empty()) {
     if (!o.compress.empty()) fail("--compress applies to per-vertex transfer only (not with --lightmap)");
+    if (job().size() > 1) fail("--lightmap: texel bakes do not run distributed yet (docs/distributed.md); run prt bake without mpirun");
     run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16, o.quiet});
     return;
   }
@@ -69,14 +81,16 @@ void run_bake(const BakeCommandOptions& o) {
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
   if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
     fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
-  // Check the outputs before spending minutes baking.
-  check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
+  // Check the outputs before spending minutes baking (rank 0 alone writes them).
+  if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
 
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet);
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
+  check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   bake::BakeReport report;
   transfer::TransferData data = bake::bake(mesh, options, &report);
+  if (!job().is_root()) return;  // only rank 0 holds the whole result
   if (o.float16) data.header.scalar = transfer::Scalar::float16;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Both outputs are written to temporaries and committed together: a failing .glb leaves no .prt.
@@ -111,7 +125,7 @@ void run_bake(const BakeCommandOptions& o) {
       std::fprintf(stderr, ", %u x %u matrices", data.header.bands_out * data.header.bands_out, data.header.bands * data.header.bands);
     if (options.kind == transfer::Kind::interreflected || options.kind == transfer::Kind::glossy_interreflected)
       std::fprintf(stderr, ", %d bounce(s)", report.bounces_done);
-    std::fprintf(stderr, ", %.2f s -> %s\n", seconds, o.output.c_str());
+    std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, o.output.c_str());
   }
 }
 

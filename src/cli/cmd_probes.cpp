@@ -3,11 +3,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 #include "cli/arguments.h"
 #include "cli/output_paths.h"
 #include "cli/commands.h"
+#include "cli/distributed.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "light/environment.h"
@@ -117,10 +119,29 @@ void print_summary(const ProbesCommandOptions& o, const probes::ProbeSet& baked,
     std::fprintf(stderr, "prt probes: %zu of %zu probes are inside geometry (more than %.0f%% back-face hits), marked invalid: %s\n",
                  report.invalid, baked.count(), 100.0 * o.bake.max_backface_fraction, list.c_str());
   }
-  std::fprintf(stderr, "prt probes: %zu probes, %d bands, %d rays each, %d bounce(s)%s, %.2f Mrays in %.2f s -> %s (%s)\n",
+  std::fprintf(stderr, "prt probes: %zu probes, %d bands, %d rays each, %d bounce(s)%s, %.2f Mrays in %.2f s%s -> %s (%s)\n",
                baked.count(), baked.bands, o.bake.rays, o.bake.bounces, o.bake.transfer_bands ? ", with transfer" : "",
-               (report.surface_rays + report.probe_rays + report.transfer_rays) / 1e6, seconds, o.output.c_str(),
+               (report.surface_rays + report.probe_rays + report.transfer_rays) / 1e6, seconds, job_summary().c_str(),
+               o.output.c_str(),
                probes::format_name(format));
+}
+
+// Everything of the command line that changes the output (dist: every rank must bake the same job).
+std::string canonical_options(const ProbesCommandOptions& o) {
+  const probes::ProbeBakeOptions& b = o.bake;
+  return "probes bands " + std::to_string(b.bands) + " rays " + std::to_string(b.rays) + " bounces " +
+         std::to_string(b.bounces) + " surface " + std::to_string(b.surface_samples) + " sun-samples " +
+         std::to_string(b.sun_samples) + " backface " + exact(b.max_backface_fraction) + " transfer " +
+         std::to_string(b.transfer_bands) + " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," +
+         exact(b.albedo.b) + " seed " + std::to_string(b.seed) + " sun " + o.sun + " grid " + o.grid + " bounds " +
+         o.bounds + " format " + o.format + " probe " + o.probe + " specular " + std::to_string(o.specular_size);
+}
+
+// Fingerprint of the probe positions (named by the points file, or the grid).
+dist::Fingerprint positions_input(const ProbesCommandOptions& o, const std::vector<glm::dvec3>& positions) {
+  std::string bytes(positions.size() * sizeof(glm::dvec3), '\0');
+  if (!positions.empty()) std::memcpy(&bytes[0], positions.data(), bytes.size());
+  return {o.points.empty() ? "the probe grid" : o.points, dist::fingerprint_of(bytes)};
 }
 
 void run_probes(ProbesCommandOptions o) {
@@ -131,26 +152,29 @@ void run_probes(ProbesCommandOptions o) {
   if (!o.albedo.empty()) o.bake.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
   if (o.transfer && o.bake.transfer_bands == 0) o.bake.transfer_bands = o.bake.bands;
   if (!o.transfer) o.bake.transfer_bands = 0;
-  o.bake.progress = want_progress(o.quiet);
+  o.bake.progress = want_progress(o.quiet) && job().is_root();
+  o.bake.dist = &job();
   probes::check_options(o.bake);
   probes::SceneLight light;
   const light::SunRequest sun = light::parse_sun_request(o.sun);
   if (sun.mode == light::SunRequest::Mode::given) light.sun = sun.disc;
   std::vector<glm::dvec3> points;
   if (!o.points.empty()) points = probes::read_points_file(o.points);
-  check_outputs({o.output}, {o.scene_path, o.environment, o.points});
+  if (job().is_root()) check_outputs({o.output}, {o.scene_path, o.environment, o.points});  // rank 0 alone writes
 
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(o.scene_path, &load_report, o.quiet);
+  const mesh::Mesh mesh = mesh::load_mesh(o.scene_path, &load_report, o.quiet || !job().is_root());
   const std::vector<glm::dvec3> positions = place_probes(o, mesh, layout, std::move(points));
   light::Environment environment = light::load_environment(o.environment);
+  check_job_inputs({mesh_input(o.scene_path, mesh), environment_input(o.environment, environment),
+                    positions_input(o, positions), options_input(canonical_options(o))});
   if (sun.mode == light::SunRequest::Mode::automatic) {
     // The brightest compact source becomes the probes' sun (traced with visibility); the rest stays sky.
     light::ExtractionResult extracted = light::extract_discs(environment, o.bake.threads, 1);
     if (!extracted.discs.empty()) {
       light.sun = extracted.discs.front();
       environment = std::move(extracted.residual);
-      if (!o.quiet)
+      if (!o.quiet && job().is_root())
         std::fprintf(stderr, "prt probes: sun found in %s: --sun %s\n", o.environment.c_str(), light::format_disc(*light.sun).c_str());
     }
   }
@@ -161,6 +185,7 @@ void run_probes(ProbesCommandOptions o) {
   probes::ProbeBakeReport report;
   const probes::ProbeSet baked = probes::bake_probes(mesh, light, positions, layout, o.bake, &report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!job().is_root()) return;  // only rank 0 holds the whole result
   probes::ExportOptions export_options;
   export_options.probe = o.probe;
   export_options.scene_path = o.scene_path;

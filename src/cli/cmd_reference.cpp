@@ -14,6 +14,7 @@
 #include "cli/cmd_reference_texels.h"
 #include "cli/output_paths.h"
 #include "cli/commands.h"
+#include "cli/distributed.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
@@ -59,10 +60,10 @@ void print_summary(const char* what, std::size_t count, int samples, int bounces
   const double seconds = std::max(1e-9, report.seconds_trace);
   std::fprintf(stderr,
                "prt reference: %zu %s, %d paths each, %d bounce(s), %llu rays in %.2f s (%.3g Mpaths/s, %.3g Mrays/s), "
-               "mean relative standard error %.2g -> %s\n",
+               "mean relative standard error %.2g%s -> %s\n",
                count, what, samples, bounces, static_cast<unsigned long long>(report.rays), seconds,
                report.paths / 1e6 / seconds, report.rays / 1e6 / seconds, report.mean_relative_standard_error,
-               output.c_str());
+               job_summary().c_str(), output.c_str());
 }
 
 reference::ReferenceOptions diffuse_options(const ReferenceCommandOptions& o, const GivenOptions& given) {
@@ -71,7 +72,8 @@ reference::ReferenceOptions diffuse_options(const ReferenceCommandOptions& o, co
   options.samples = given.samples ? o.samples : (o.image ? reference::kDefaultImageSamples : reference::kDefaultSamples);
   options.seed = o.seed;
   options.threads = o.threads;
-  options.progress = want_progress(o.quiet);
+  options.progress = want_progress(o.quiet) && job().is_root();
+  options.dist = &job();
   if (!o.albedo.empty()) options.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
   reference::check_options(options);
   if (given.band_limit && (o.band_limit < 1 || o.band_limit > sh::kMaxBands))
@@ -98,6 +100,7 @@ reference::GlossyReferenceOptions glossy_options(const ReferenceCommandOptions& 
   glossy.seed = options.seed;
   glossy.threads = options.threads;
   glossy.progress = options.progress;
+  glossy.dist = options.dist;
   return glossy;
 }
 
@@ -138,6 +141,19 @@ void write_reference_image(const ReferenceCommandOptions& o, const reference::Re
   print_summary(what.c_str(), covered, image.reference.samples, image.reference.bounces, result.report, o.output);
 }
 
+// Everything of the command line that changes the output (dist: every rank must trace the same job).
+std::string canonical_options(const ReferenceCommandOptions& o, const reference::ReferenceOptions& r) {
+  std::string text = "reference bounces " + std::to_string(r.bounces) + " samples " + std::to_string(r.samples) +
+                     " seed " + std::to_string(r.seed) + " albedo " + exact(r.albedo.r) + "," + exact(r.albedo.g) + "," +
+                     exact(r.albedo.b) + " band-limit " + std::to_string(o.band_limit) + " brdf " +
+                     (o.brdf.empty() ? "" : brdf::to_spec(brdf::parse_brdf(o.brdf))) + " brdf-bands " +
+                     std::to_string(o.brdf_bands) + " eye " + o.eye + " image " + std::to_string(o.image);
+  if (o.image)
+    text += " camera " + o.camera + " size " + o.size + " rotate " + o.rotate + " object-rotate " + o.object_rotate +
+            " background " + o.background + " exposure " + exact(o.exposure) + " tone-map " + o.tone_map;
+  return text;
+}
+
 void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) {
   // Everything the arguments can get wrong is checked before loading and tracing for minutes.
   const reference::ReferenceOptions options = diffuse_options(o, given);
@@ -157,10 +173,12 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
       fail_file(o.output, extension == ".exr" || extension == ".png" ? "an image output needs --image"
                                                                      : "output must be .ply (or .exr/.png with --image)");
   }
-  check_outputs({o.output}, {o.mesh_path, o.env, o.brdf, o.texels});
+  if (job().is_root()) check_outputs({o.output}, {o.mesh_path, o.env, o.brdf, o.texels});  // rank 0 alone writes
 
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, o.quiet);
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, o.quiet || !job().is_root());
   light::Environment environment = light::load_environment(o.env);
+  check_job_inputs({mesh_input(o.mesh_path, mesh), environment_input(o.env, environment),
+                    options_input(canonical_options(o, options))});
   std::optional<light::Environment> loaded;  // shown behind the mesh when the lighting is band-limited
   if (given.band_limit) {
     light::Environment limited = reference::band_limited_environment(environment, o.band_limit, o.threads);
@@ -177,12 +195,14 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
     reference::ReferenceReport report;
     const std::vector<glm::vec3> radiance = glossy ? reference::glossy_vertex_radiance(mesh, sampler, glossy_reference, &report)
                                                    : reference::vertex_radiance(mesh, sampler, options, &report);
+    if (!job().is_root()) return;  // only rank 0 holds the whole result
     mesh::write_ply(o.output, mesh.positions, radiance, mesh.indices);
     if (!o.quiet) print_summary("vertices", mesh.positions.size(), options.samples, options.bounces, report, o.output);
     return;
   }
   image.reference = options;
   const reference::ReferenceImage result = reference::render_image(mesh, sampler, image, loaded ? &*loaded : nullptr);
+  if (!job().is_root()) return;
   write_reference_image(o, result, image, extension);
 }
 

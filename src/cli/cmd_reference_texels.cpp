@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "bake/bake.h"
+#include "cli/distributed.h"
 #include "image/image.h"
 #include "lightmap/texel_bake.h"
 #include "trace/scene.h"
@@ -28,6 +29,7 @@ void run_reference_texels(const mesh::Mesh& mesh, const std::string& mesh_path, 
   for (const lightmap::TexelSample& s : samples.samples) points.push_back({s.position, s.normal, s.albedo});
   reference::ReferenceReport report;
   const std::vector<glm::vec3> radiance = reference::point_radiance(mesh, sampler, options, points, &report);
+  if (!job().is_root()) return;  // distributed: only rank 0 holds every point (docs/distributed.md)
   image::Image out(samples.width, samples.height, 3);
   for (std::size_t k = 0; k < points.size(); ++k)
     for (int c = 0; c < 3; ++c) out.pixels[std::size_t(samples.samples[k].texel) * 3 + std::size_t(c)] = radiance[k][c];

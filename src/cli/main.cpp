@@ -1,5 +1,6 @@
 // prt: command-line entry point. Parses arguments with CLI11 and runs one subcommand.
 // Every user-facing failure is a prt::Error: printed as one line "prt: <message>", exit status 1.
+// Under mpirun (docs/distributed.md) a rank that fails alone ends the whole job (dist::finish_after_error).
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "dist/context.h"
 
 int main(int argc, char** argv) {
   prt::install_cleanup_signal_handlers();
@@ -38,25 +40,25 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // CLI11 prints two lines and exits with its own codes (104-109); prt's rule is one line, status 1.
     std::fprintf(stderr, "prt: %s (see prt --help)\n", prt::Error(e.what()).what());
-    return 1;
+    return prt::dist::finish_after_error(1, false);
   } catch (const prt::Error& e) {
     std::fprintf(stderr, "prt: %s\n", e.what());
-    return 1;
+    return prt::dist::finish_after_error(1, dynamic_cast<const prt::dist::CollectiveError*>(&e) != nullptr);
   } catch (const std::filesystem::filesystem_error& e) {
     // A path the operating system refuses (a component longer than NAME_MAX, ...): a user error.
     std::fprintf(stderr, "prt: %s: %s\n", e.path1().c_str(), e.code().message().c_str());
-    return 1;
+    return prt::dist::finish_after_error(1, false);
   } catch (const nlohmann::json::exception& e) {
     // A JSON value of the wrong type that a reader did not check itself: still one line, status 1.
     const std::string what = e.what();  // "[json.exception.type_error.302] type must be ..."
     std::fprintf(stderr, "prt: malformed JSON input: %s\n", what.substr(what.find(']') + 2).c_str());
-    return 1;
+    return prt::dist::finish_after_error(1, false);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "prt: out of memory\n");
-    return 1;
+    return prt::dist::finish_after_error(1, false);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "prt: internal error: %s\n", e.what());
-    return 2;
+    return prt::dist::finish_after_error(2, false);
   }
-  return 0;
+  return prt::dist::finish(0);
 }

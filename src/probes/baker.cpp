@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "dist/exchange.h"
 #include "light/environment.h"
 #include "light/projection.h"
 #include "probes/surface.h"
@@ -322,6 +323,7 @@ void prepare_transfer(const trace::Scene& scene, const mesh::Mesh& mesh, const s
   bo.seed = o.seed;
   bo.threads = o.threads;
   bo.progress = o.progress;
+  bo.dist = o.dist;  // interreflected: every rank gets the whole transfer
   bake::BakeReport bake_report;
   in.vertex_transfer = bake::bake(mesh, bo, &bake_report);
   in.channels = static_cast<int>(in.vertex_transfer.header.channels);
@@ -340,6 +342,18 @@ void prepare_transfer(const trace::Scene& scene, const mesh::Mesh& mesh, const s
   out.transfer_bias.assign(count * static_cast<std::size_t>(o.bands * o.bands), glm::vec3(0.0f));
   out.transfer_environment = light.environment ? light::project(*light.environment, tb, o.threads) : sh::RgbCoefficients(tb);
   out.sky_bias = in.sun_sh;
+}
+
+// Rank 0 receives every rank's probes (the per-probe arrays bake() writes).
+void gather_probes(const dist::Context& ranks, ProbeSet& out) {
+  const std::size_t n = static_cast<std::size_t>(out.bands) * out.bands;
+  dist::gather_items(ranks, out.coefficients, n);
+  dist::gather_items(ranks, out.valid, 1);
+  dist::gather_items(ranks, out.backface_fraction, 1);
+  if (out.transfer_bands > 0) {
+    dist::gather_items(ranks, out.transfer, out.transfer_values_per_probe());
+    dist::gather_items(ranks, out.transfer_bias, n);
+  }
 }
 
 // The ray set, its basis table and the pilot directions.
@@ -372,7 +386,7 @@ ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std:
 
   // Surface radiance R_K (everything) and, for the transfer, its non-relightable part (sun, emission).
   start = std::chrono::steady_clock::now();
-  const SurfaceOptions surface{o.surface_samples, o.sun_samples, o.bounces, true, o.seed, o.threads, o.progress};
+  const SurfaceOptions surface{o.surface_samples, o.sun_samples, o.bounces, true, o.seed, o.threads, o.progress, o.dist};
   const std::vector<glm::vec3> radiance = surface_radiance(scene, mesh, albedo, light, surface, &rep.surface_rays);
   rep.seconds_surface = seconds_since(start);
 
@@ -395,16 +409,20 @@ ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std:
   const double cpu_start = process_cpu_seconds();
   Progress progress("probes", "probes", positions.size(), o.progress);
   std::atomic<std::uint64_t> rays_total{0};
-  parallel_for(positions.size(), 8, o.threads, [&](std::size_t begin, std::size_t end) {
+  // Distributed: each rank bakes its share of the probes (in file order), rank 0 gathers them.
+  const dist::Context& ranks = dist::or_single(o.dist);
+  const dist::Range share = dist::my_range(ranks, positions.size());
+  parallel_for(share.size(), 8, o.threads, [&](std::size_t chunk_begin, std::size_t chunk_end) {
     ProbeTracer tracer(in);
-    for (std::size_t p = begin; p < end; ++p) tracer.bake(p, glm::vec3(positions[p]), out);
+    for (std::size_t p = share.begin + chunk_begin; p < share.begin + chunk_end; ++p) tracer.bake(p, glm::vec3(positions[p]), out);
     rays_total += tracer.traced();
-    progress.advance(end - begin);
+    progress.advance((chunk_end - chunk_begin) * static_cast<std::size_t>(ranks.size()));  // equal shares
   });
   progress.finish();
+  gather_probes(ranks, out);
   rep.seconds_probes = seconds_since(start);
   rep.cpu_seconds_probes = process_cpu_seconds() - cpu_start;
-  rep.probe_rays = rays_total.load();
+  rep.probe_rays = ranks.sum(rays_total.load());
   rep.invalid = positions.size() - out.valid_count();
   return out;
 }

@@ -45,6 +45,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "dist/context.h"
 #include "mesh/mesh.h"
 #include "probes/lighting.h"
 #include "probes/probe_set.h"
@@ -63,6 +64,9 @@ struct ProbeBakeOptions {
   std::uint32_t seed = 1;
   int threads = 0;               ///< 0: all cores; does not change the output
   bool progress = false;
+  /// Ranks of a distributed bake (dist/context.h); null: this process alone. The surface passes and the
+  /// probes are split over the ranks; only rank 0's result is complete (the others' is undefined).
+  const dist::Context* dist = nullptr;
 };
 
 /// What the bake measured (timing is not part of the output).

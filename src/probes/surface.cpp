@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "dist/exchange.h"
 #include "light/environment.h"
 #include "light/projection.h"
 #include "sh/basis.h"
@@ -36,9 +37,11 @@ struct Context {
   std::uint32_t seed;
   int threads;
   bool progress;
+  const dist::Context* dist;  // each rank traces its share of `order`; results are allgathered
 };
 
 // One traversal of every vertex's S rays (trace/vertex_rays.h); `visit(v, batch)` consumes each batch.
+// Distributed: this rank's share of the vertices only; returns the rays of all ranks.
 template <class Visit>
 std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit visit) {
   struct Worker {
@@ -48,9 +51,10 @@ std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit 
     void finish(std::uint32_t, const glm::mat3&) {}
   };
   Progress progress(label, "vertices", std::max<std::size_t>(1, ctx.mesh->positions.size()), ctx.progress);
+  const dist::Range share = dist::my_range(dist::or_single(ctx.dist), ctx.order.size());
   const trace::VertexRays rays{ctx.scene, ctx.mesh, &ctx.order, ctx.local_directions, ctx.seed, ctx.threads,
-                               trace::Query::closest_hit};
-  return trace::trace_vertex_rays(rays, progress, [&] { return Worker{&visit}; });
+                               trace::Query::closest_hit, nullptr, nullptr, share.begin, share.end};
+  return dist::or_single(ctx.dist).sum(trace::trace_vertex_rays(rays, progress, [&] { return Worker{&visit}; }));
 }
 
 void check_surface_options(const SurfaceOptions& o) {
@@ -107,6 +111,7 @@ void add_direct_environment(const Context& ctx, const light::Environment& enviro
     }
     direct[v] += glm::vec3(sum * scale);
   });
+  dist::allgather_items(dist::or_single(ctx.dist), direct, 1, &ctx.order);
   parallel_for(mesh.positions.size(), 1024, ctx.threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       glm::dvec3 e(direct[v]);
@@ -164,6 +169,7 @@ std::vector<glm::vec3> gather(const Context& ctx, const std::vector<glm::vec3>& 
     }
     sums[v] += sum;
   });
+  dist::allgather_items(dist::or_single(ctx.dist), sums, 1, &ctx.order);
   return sums;
 }
 
@@ -177,7 +183,7 @@ std::vector<glm::vec3> surface_radiance(const trace::Scene& scene, const mesh::M
   std::vector<glm::vec3> local;
   for (const glm::dvec3& d : sh::hemisphere_directions_cosine(static_cast<std::size_t>(o.samples), o.seed))
     local.emplace_back(d);
-  const Context ctx{&scene, &mesh, &albedo, &local, trace::morton_order(mesh.positions), o.seed, o.threads, o.progress};
+  const Context ctx{&scene, &mesh, &albedo, &local, trace::morton_order(mesh.positions), o.seed, o.threads, o.progress, o.dist};
   std::uint64_t rays = 0;
 
   // Direct reflection D of the environment (with the SH control variate) and the sun.

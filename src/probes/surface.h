@@ -30,6 +30,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/hash.h"
+#include "dist/context.h"
 #include "mesh/mesh.h"
 #include "probes/lighting.h"
 
@@ -47,6 +48,7 @@ struct SurfaceOptions {
   std::uint32_t seed = 1;
   int threads = 0;
   bool progress = false;
+  const dist::Context* dist = nullptr;  ///< ranks of a distributed run (each traces a share); null: this process
 };
 
 /// R_K of every vertex (mesh order), linear RGB radiance. `albedo` has one entry per vertex;

@@ -99,6 +99,7 @@ struct GlossyReferenceOptions {
   int threads = 0;                   ///< worker threads; 0 = all cores. Does not change the output.
   bool progress = false;
   glm::dvec3 eye{0.0};               ///< the eye point (mesh units): view = normalize(eye - position)
+  const dist::Context* dist = nullptr;  ///< ranks of a distributed run (reference.h, ReferenceOptions::dist)
 };
 
 /// Outgoing radiance of every vertex toward the eye point (a vertex exactly at the eye uses its

@@ -24,8 +24,8 @@ std::vector<glm::vec3> glossy_vertex_radiance(const mesh::Mesh& mesh, const Envi
   rep.seconds_build = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const GlossyTracer tracer(mesh, scene, environment, options.estimator);
   return detail::trace_every_vertex<GlossyWorkspace>(
-      mesh.positions, "reference glossy", options.seed, options.samples, options.threads, options.progress, rep,
-      standard_error, [&](std::uint32_t v, SampleStream& stream, GlossyWorkspace& workspace) {
+      mesh.positions, "reference glossy", options.seed, options.samples, options.threads, options.progress, options.dist,
+      rep, standard_error, [&](std::uint32_t v, SampleStream& stream, GlossyWorkspace& workspace) {
         const glm::dvec3 to_eye = options.eye - glm::dvec3(mesh.positions[v]);
         const double distance = glm::length(to_eye);
         const glm::dvec3 view = distance > 0.0 ? to_eye / distance : glm::dvec3(mesh.normals[v]);

@@ -84,7 +84,7 @@ std::vector<glm::vec3> diffuse_radiance(const mesh::Mesh& mesh, const Environmen
   rep.seconds_build = seconds_since(start);
   const PathTracer tracer(mesh, albedo, scene, environment, EstimatorOptions{options.bounces});
   return detail::trace_every_vertex<PathWorkspace>(
-      positions, label, options.seed, options.samples, options.threads, options.progress, rep, standard_error,
+      positions, label, options.seed, options.samples, options.threads, options.progress, options.dist, rep, standard_error,
       [&](std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
         return tracer.outgoing_radiance(make_point(tracer, scene, v), options.samples, stream, workspace);
       });

@@ -22,6 +22,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "dist/context.h"
 #include "light/environment.h"
 #include "mesh/mesh.h"
 #include "reference/environment_sampler.h"
@@ -46,6 +47,7 @@ struct ReferenceOptions {
   std::uint32_t seed = 1;       ///< vertex v uses SampleStream(seed, v)
   int threads = 0;              ///< worker threads; 0 = all cores. Does not change the output.
   bool progress = false;        ///< progress bar on stderr (only drawn when stderr is a terminal)
+  const dist::Context* dist = nullptr;  ///< ranks of a distributed run (only rank 0's result is complete); null: this process
 };
 
 /// What a run did (timing is not part of the output).

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "dist/exchange.h"
 #include "reference/estimator.h"
 #include "trace/scene.h"
 
@@ -72,7 +73,11 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   std::atomic<std::uint64_t> rays{0}, paths{0};
   Progress progress("reference", "rows", static_cast<std::size_t>(height), options.reference.progress);
   start = std::chrono::steady_clock::now();
-  parallel_for(static_cast<std::size_t>(height), 1, options.reference.threads, [&](std::size_t begin, std::size_t end) {
+  // Distributed: each rank renders its share of the rows (top to bottom), rank 0 gathers them.
+  const dist::Context& ranks = dist::or_single(options.reference.dist);
+  const dist::Range share = dist::my_range(ranks, static_cast<std::size_t>(height));
+  parallel_for(share.size(), 1, options.reference.threads, [&](std::size_t chunk_begin, std::size_t chunk_end) {
+    const std::size_t begin = share.begin + chunk_begin, end = share.begin + chunk_end;
     PathWorkspace workspace;
     trace::RayBatch primary(static_cast<std::size_t>(width));
     std::vector<glm::dvec3> directions(static_cast<std::size_t>(width));
@@ -112,12 +117,15 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
     }
     rays += traced;
     paths += row_paths;
-    progress.advance(end - begin);
+    progress.advance((end - begin) * static_cast<std::size_t>(ranks.size()));  // equal shares
   });
   progress.finish();
+  dist::gather_items(ranks, out.radiance.pixels, static_cast<std::size_t>(width) * 3);
+  dist::gather_items(ranks, out.covered, static_cast<std::size_t>(width));
+  dist::gather_items(ranks, out.standard_error, static_cast<std::size_t>(width));
   rep.seconds_trace = seconds_since(start);
-  rep.rays = rays.load();
-  rep.paths = paths.load();
+  rep.rays = ranks.sum(rays.load());
+  rep.paths = ranks.sum(paths.load());
 
   // Noise figure over the covered pixels that are not black (as vertex_radiance's).
   double largest = 0.0;

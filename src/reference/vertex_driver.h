@@ -14,6 +14,7 @@
 
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "dist/exchange.h"
 #include "mesh/mesh.h"
 #include "reference/estimator.h"
 #include "reference/reference.h"
@@ -32,21 +33,28 @@ void summarise_noise(const std::vector<glm::vec3>& radiance, const std::vector<g
 /// Runs `estimate(v, stream, workspace) -> RadianceEstimate` for every point (a mesh's vertices, or
 /// other sample points) at `positions` in Morton order on `threads` threads, each point with
 /// SampleStream(seed, v). Fills rep.seconds_trace, rays, paths (= points * samples) and the noise
-/// figure; returns per-point radiance.
+/// figure; returns per-point radiance. Distributed (`dist` of more than one rank): each rank estimates
+/// its share of the order, rank 0 gathers the results and alone returns them complete (the others'
+/// are undefined); rays are summed over ranks.
 template <class Workspace, class Estimate>
 std::vector<glm::vec3> trace_every_vertex(const std::vector<glm::vec3>& positions, const char* label, std::uint32_t seed,
-                                          int samples, int threads, bool show_progress, ReferenceReport& rep,
-                                          std::vector<glm::vec3>* standard_error, const Estimate& estimate) {
+                                          int samples, int threads, bool show_progress, const dist::Context* dist,
+                                          ReferenceReport& rep, std::vector<glm::vec3>* standard_error,
+                                          const Estimate& estimate) {
   const std::size_t vertices = positions.size();
   const std::vector<std::uint32_t> order = trace::morton_order(positions);
   std::vector<glm::vec3> radiance(vertices);
   std::vector<glm::dvec3> error(vertices);
   std::atomic<std::uint64_t> rays{0};
   Progress progress(label, "vertices", std::max<std::size_t>(vertices, 1), show_progress);
+  const dist::Context& ranks = dist::or_single(dist);
+  const dist::Range share = dist::my_range(ranks, order.size());
+  const std::size_t progress_scale = ranks.size();  // equal shares: this rank's progress estimates the job's
   const auto start = std::chrono::steady_clock::now();
-  parallel_for(order.size(), kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+  parallel_for(share.size(), kVerticesPerChunk, threads, [&](std::size_t chunk_begin, std::size_t chunk_end) {
     Workspace workspace;
     std::uint64_t traced = 0;
+    const std::size_t begin = share.begin + chunk_begin, end = share.begin + chunk_end;
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = order[k];
       SampleStream stream(seed, v);
@@ -56,11 +64,13 @@ std::vector<glm::vec3> trace_every_vertex(const std::vector<glm::vec3>& position
       traced += e.rays;
     }
     rays += traced;
-    progress.advance(end - begin);
+    progress.advance((end - begin) * progress_scale);
   });
   progress.finish();
+  dist::gather_items(ranks, radiance, 1, &order);
+  dist::gather_items(ranks, error, 1, &order);
   rep.seconds_trace = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  rep.rays = rays.load();
+  rep.rays = ranks.sum(rays.load());
   rep.paths = static_cast<std::uint64_t>(vertices) * static_cast<std::uint64_t>(samples);
   summarise_noise(radiance, error, rep, standard_error);
   return radiance;

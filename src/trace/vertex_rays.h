@@ -39,6 +39,10 @@ struct VertexRays {
   /// the mesh's positions and normals.
   const std::vector<glm::vec3>* positions = nullptr;
   const std::vector<glm::vec3>* normals = nullptr;
+  /// The positions [order_begin, order_end) of `order` to visit (one rank's share of a distributed run,
+  /// dist/partition.h); clipped to order->size(). Default: all of them.
+  std::size_t order_begin = 0;
+  std::size_t order_end = static_cast<std::size_t>(-1);
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
@@ -47,8 +51,9 @@ struct VertexRays {
 ///   void batch(std::uint32_t v, const RayBatch& batch, std::size_t first);
 ///        after each batch's query: the batch holds rays first .. first + batch.size() - 1 of v
 ///   void finish(std::uint32_t v, const glm::mat3& frame);  after v's last batch
-/// `progress` advances by each chunk's vertices. Returns the rays traced. Deterministic: each vertex's
-/// rays and their order do not depend on the thread that runs them.
+/// `progress` (of order->size() items) advances by each chunk's vertices, scaled by the whole order over
+/// the visited share (so a rank's bar estimates the whole job; ranks get equal shares). Returns the rays
+/// traced. Deterministic: each vertex's rays and their order do not depend on the thread that runs them.
 template <class MakeWorker>
 std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWorker make_worker) {
   const std::vector<glm::vec3>& positions = r.positions ? *r.positions : r.mesh->positions;
@@ -56,9 +61,13 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
   const std::vector<glm::vec3>& local = *r.directions;
   const std::size_t samples = local.size();
   std::atomic<std::uint64_t> rays{0};
-  parallel_for(r.order->size(), 64, r.threads, [&](std::size_t begin, std::size_t end) {
+  const std::size_t share_end = std::min(r.order_end, r.order->size()), share_begin = std::min(r.order_begin, share_end);
+  const double progress_scale =
+      static_cast<double>(r.order->size()) / static_cast<double>(std::max<std::size_t>(1, share_end - share_begin));
+  parallel_for(share_end - share_begin, 64, r.threads, [&](std::size_t chunk_begin, std::size_t chunk_end) {
     RayBatch batch(std::max<std::size_t>(1, std::min<std::size_t>(samples, kDefaultBatchCapacity)));
     auto worker = make_worker();
+    const std::size_t begin = share_begin + chunk_begin, end = share_begin + chunk_end;
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
       const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
@@ -75,7 +84,7 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
       worker.finish(v, frame);
     }
     rays += static_cast<std::uint64_t>(end - begin) * samples;
-    progress.advance(end - begin);
+    progress.advance(static_cast<std::size_t>(static_cast<double>(end - begin) * progress_scale + 0.5));
   });
   progress.finish();
   return rays.load();

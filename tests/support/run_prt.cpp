@@ -12,10 +12,11 @@ namespace prt::test {
 
 std::string prt_binary() { return std::string(PRT_BINARY_DIR) + "/src/cli/prt"; }
 
-RunResult run_prt(const std::string& arguments) {
+RunResult run_prt(const std::string& arguments) { return run_shell(prt_binary() + " " + arguments); }
+
+RunResult run_shell(const std::string& command) {
   RunResult result;
-  const std::string command = prt_binary() + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer;
   std::size_t n;

@@ -12,6 +12,9 @@ struct RunResult {
 /// Runs "<build>/src/cli/prt <arguments>" through the shell (arguments are not quoted for you).
 RunResult run_prt(const std::string& arguments);
 
+/// Runs a shell command line, capturing stdout and stderr together.
+RunResult run_shell(const std::string& command);
+
 /// True if the run exited with status 1 after printing exactly one line that contains `expected` (the
 /// project's rule for bad input).
 bool fails_in_one_line(const RunResult& result, const std::string& expected);
