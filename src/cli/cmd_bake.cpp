@@ -49,7 +49,8 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
          std::to_string(b.bands_out) + " samples " + std::to_string(b.samples) + " bounces " + std::to_string(b.bounces) +
          " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," + exact(b.albedo.b) + " seed " +
          std::to_string(b.seed) + " brdf " + (b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
-         std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty());
+         std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty()) +
+         " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair);
 }
 
 void run_bake(const BakeCommandOptions& o) {
@@ -72,8 +73,8 @@ void run_bake(const BakeCommandOptions& o) {
   bake::validate_options(options);
   if (!o.lightmap.empty()) {
     if (!o.compress.empty()) fail("--compress applies to per-vertex transfer only (not with --lightmap)");
-    if (job().size() > 1) fail("--lightmap: texel bakes do not run distributed yet (docs/distributed.md); run prt bake without mpirun");
-    run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16, o.quiet});
+    run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16,
+                                o.quiet, canonical_options(o, options)});
     return;
   }
   int clusters = 0, pca = 0;

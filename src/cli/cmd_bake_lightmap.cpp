@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli/distributed.h"
 #include "cli/lightmap_glb.h"
 #include "cli/output_paths.h"
 #include "core/atomic_file.h"
@@ -20,14 +21,16 @@ void run_bake_lightmap(const bake::BakeOptions& options, const LightmapBakeReque
   lightmap.gutter = r.gutter;
   lightmap.repair = r.repair;
   lightmap.mesh_path = r.mesh_path;
-  check_outputs({r.output, r.gltf_output}, {r.mesh_path});
+  if (job().is_root()) check_outputs({r.output, r.gltf_output}, {r.mesh_path});
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(r.mesh_path, &load_report, r.quiet);
+  const mesh::Mesh mesh = mesh::load_mesh(r.mesh_path, &load_report, r.quiet || !job().is_root());
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::check_lightmap(mesh, options, lightmap);
+  check_job_inputs({mesh_input(r.mesh_path, mesh), options_input(r.canonical_options)});
   const auto start = std::chrono::steady_clock::now();
   lightmap::LightmapReport report;
   transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report);
+  if (!job().is_root()) return;  // only rank 0 holds the whole result
   if (r.float16) data.header.scalar = transfer::Scalar::float16;
   // Both outputs are written to temporaries and committed together: a failing .glb leaves no .prt.
   AtomicFile prt_file(r.output);
@@ -50,7 +53,7 @@ void run_bake_lightmap(const bake::BakeOptions& options, const LightmapBakeReque
     std::fprintf(stderr, ", %llu rays (%.2f Mrays/s)", static_cast<unsigned long long>(b.rays_traced),
                  b.rays_traced / 1e6 / std::max(1e-9, b.seconds_visibility + b.seconds_bounces));
   if (options.kind == transfer::Kind::interreflected) std::fprintf(stderr, ", %d bounce(s)", b.bounces_done);
-  std::fprintf(stderr, ", %.2f s -> %s\n", seconds, r.output.c_str());
+  std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, r.output.c_str());
 }
 
 }  // namespace prt::cli

@@ -200,12 +200,19 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const bake::LocalSampleSet set = bake::make_local_sample_set(options.samples, options.bands, options.seed);
   const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height};
   bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress, {&positions, &normals}, &grid};
+  ctx.dist = options.dist;
+  const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();
   std::vector<float> geometric;
-  if (options.kind == transfer::Kind::unshadowed)
+  if (options.kind == transfer::Kind::unshadowed) {
     bake::unshadowed_geometric(normals, options.bands, options.threads, geometric);
-  else
+  } else {
     rep.bake.rays_traced += bake::shadowed_geometric(ctx, geometric);
+    // Distributed: every rank needs the direct pass for the bounces, rank 0 alone for the file.
+    const std::size_t geometric_stride = std::size_t(options.bands) * std::size_t(options.bands);
+    if (options.kind == transfer::Kind::interreflected) dist::allgather_items(dist, geometric, geometric_stride, &order);
+    else dist::gather_items(dist, geometric, geometric_stride, &order);
+  }
   rep.bake.seconds_visibility = seconds_since(start);
   std::vector<float> values = bake::apply_albedo(std::move(geometric), albedo, channels, n), bounce_only;
   rep.bake.pass_energy.push_back(bake::pass_energy(values, stride, n, channels));
@@ -224,6 +231,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   }
   to_grid(values, data.values);
   data.coverage = std::move(coverage);
+  rep.bake.rays_traced = dist.sum(rep.bake.rays_traced);
   data.header.parameters_json = lightmap_parameters(options, mesh, lightmap, rep, scene.ray_offset());
   return data;
 }

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -94,6 +95,20 @@ TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical diffuse transfer", "[dist][ba
   CHECK(data.header.channels == 3);
   // The automatic bounce count: the stopping rule sees the same energies on every rank.
   check_identical("interreflected_auto", "bake " + in.grey + " --transfer interreflected --bands 2 --samples 16", ".prt");
+}
+
+TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical lightmaps", "[dist][bake][slow]") {
+  // A floor with a tetrahedron-like tent on it, each in its own chart of the lightmap UVs (OBJ vt).
+  const std::string mesh = test::fresh_temp_dir("dist_lightmap_mesh") + "/tent.obj";
+  std::ofstream(mesh) << (
+                    "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -0.3 0.01 -0.3\nv 0.3 0.01 -0.3\nv 0 0.6 0\n"
+                    "vt 0.05 0.05\nvt 0.95 0.05\nvt 0.95 0.6\nvt 0.05 0.6\nvt 0.1 0.7\nvt 0.5 0.7\nvt 0.3 0.95\n"
+                    "f 1/1 3/3 2/2\nf 1/1 4/4 3/3\nf 5/5 6/6 7/7\n");
+  check_identical("lightmap_shadowed", "bake " + mesh + " --lightmap 32 --transfer shadowed --bands 3 --samples 32", ".prt");
+  // The bounce passes gather the previous pass in the texel grid: every rank needs all of it.
+  const std::string file = check_identical(
+      "lightmap_interreflected", "bake " + mesh + " --lightmap 32x16 --transfer interreflected --bands 3 --samples 32 --bounces 2", ".prt");
+  CHECK(transfer::read_transfer(file).header.texel_width == 32);
 }
 
 TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical glossy transfer", "[dist][bake][slow]") {
