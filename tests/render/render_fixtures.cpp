@@ -10,6 +10,7 @@
 #include "light/light_file.h"
 #include "mesh/writers.h"
 #include "sh/basis.h"
+#include "sh/rotation.h"
 
 namespace prt::render_test {
 
@@ -131,6 +132,16 @@ void write_fixture_files(const std::string& folder) {
   light::LightFileInfo info;
   info.source = "render test lighting";
   light::write_light_file(folder + "/light.json", test_lighting(3), info);
+}
+
+render::FrameSettings black_frame(int transfer, int bands, const glm::dvec3& environment_ypr, const glm::dvec3& object_ypr) {
+  render::FrameSettings settings;
+  settings.transfer = transfer;
+  settings.bands = bands;
+  settings.background = render::Background::black;
+  settings.environment_rotation = sh::rotation_from_yaw_pitch_roll(environment_ypr.x, environment_ypr.y, environment_ypr.z);
+  settings.object_rotation = sh::rotation_from_yaw_pitch_roll(object_ypr.x, object_ypr.y, object_ypr.z);
+  return settings;
 }
 
 }  // namespace prt::render_test

@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "image/image.h"
+#include "render/renderer.h"
 #include "mesh/mesh.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
@@ -33,5 +34,9 @@ image::Image smooth_environment(int width);
 /// (5 bands, RGB, of the mesh as loaded back), transfer_grey.prt (3 bands, 1 channel), other.prt
 /// (a transfer of a different mesh), env.exr (smooth_environment(64)), light.json (test_lighting(3)).
 void write_fixture_files(const std::string& folder);
+
+/// Frame settings of the GPU-against-CPU tests: transfer `transfer` truncated to `bands`, black
+/// background, environment and object turned by yaw, pitch, roll in degrees; default camera.
+render::FrameSettings black_frame(int transfer, int bands, const glm::dvec3& environment_ypr, const glm::dvec3& object_ypr);
 
 }  // namespace prt::render_test

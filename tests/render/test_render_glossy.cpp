@@ -108,13 +108,8 @@ TEST_CASE("headless glossy render equals prt shade's outgoing coefficients evalu
       const sh::RgbCoefficients lighting = test_lighting(c.bands);
       renderer.set_lighting(lighting, nullptr);
 
-      render::FrameSettings settings;
+      render::FrameSettings settings = black_frame(index, c.truncate, c.environment_ypr, c.object_ypr);
       settings.camera = c.camera;
-      settings.transfer = index;
-      settings.bands = c.truncate;
-      settings.background = render::Background::black;
-      settings.environment_rotation = sh::rotation_from_yaw_pitch_roll(c.environment_ypr.x, c.environment_ypr.y, c.environment_ypr.z);
-      settings.object_rotation = sh::rotation_from_yaw_pitch_roll(c.object_ypr.x, c.object_ypr.y, c.object_ypr.z);
       renderer.render(settings, kWidth, kHeight);
       const image::Image gpu = renderer.read_radiance();
 
