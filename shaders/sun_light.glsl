@@ -34,9 +34,16 @@ const float normal_offset = 0.5, constant_bias = 0.5, slope_bias = 0.5, max_slop
 // Search and filter radii are clamped to [min_filter, max_filter] texels.
 const float min_filter = 0.75, max_filter = 12.0;
 
-// Fixed spirals in the unit disc (Vogel's golden-angle spiral, point i at radius sqrt((i + 0.5) / N)):
-// N = search_count for the blocker search, N = filter_count for the filter.
-const int search_count = SEARCH_COUNT, filter_count = 12;
+// Vogel's golden-angle spiral in the unit disc (point i at radius sqrt((i + 0.5) / N), angle i times
+// the golden angle): N = search_count for the blocker search (a fixed table, the loop unrolled: every
+// pixel facing the disc takes all of it), N = filter_count for the filter (generated as it goes).
+// filter_count is a uniform (12, Renderer::bind_sun), not a constant, so that the filter stays a loop:
+// a SIMD software rasteriser (llvmpipe) runs every instruction of a branch whatever its lanes decide,
+// but leaves a loop once no lane is left in it, so the blocks of 8 pixels in which none found a
+// blocker (most of the lit surface) skip all but one of its iterations.
+const int search_count = SEARCH_COUNT;
+uniform int filter_count;
+const float golden_angle = 2.39996322972865332;  // pi (3 - sqrt(5))
 #if SEARCH_COUNT == 6
 const vec2 search_spiral[6] = vec2[6](
     vec2(0.2887, 0.0000), vec2(-0.3687, 0.3377), vec2(0.0564, -0.6430), vec2(0.4647, 0.6061),
@@ -46,18 +53,10 @@ const vec2 search_spiral[8] = vec2[8](
     vec2(0.2500, 0.0000), vec2(-0.3193, 0.2925), vec2(0.0489, -0.5569), vec2(0.4024, 0.5249),
     vec2(-0.7385, -0.1306), vec2(0.6996, -0.4450), vec2(-0.2340, 0.8705), vec2(-0.4463, -0.8593));
 #endif
-const vec2 filter_spiral[12] = vec2[12](
-    vec2(0.2041, 0.0000), vec2(-0.2607, 0.2388), vec2(0.0399, -0.4547), vec2(0.3286, 0.4286),
-    vec2(-0.6030, -0.1067), vec2(0.5712, -0.3634), vec2(-0.1911, 0.7107), vec2(-0.3644, -0.7016),
-    vec2(0.7906, 0.2887), vec2(-0.8224, 0.3395), vec2(0.3965, -0.8472), vec2(0.2930, 0.9341));
-
-// Stored depth of map k at uv (nearest texel; 1, nothing in the way, outside the map). texelFetch: no
-// filtering or level-of-detail work, the cheapest read on llvmpipe.
-float map_depth(int k, vec2 uv, float size) {
-  ivec2 t = ivec2(floor(uv * size));
-  if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(int(size))))) return 1.0;
-  return texelFetch(shadow_maps, ivec3(t, k), 0).r;
-}
+// Stored depth of map k at uv: the nearest texel, floor(uv * size); outside the map the border, 1
+// (nothing in the way). The sampler's own border test is cheaper on llvmpipe than testing the texel
+// index before a texelFetch.
+float map_depth(int k, vec2 uv) { return textureLod(shadow_maps, vec3(uv, float(k)), 0.0).r; }
 
 // Fraction of disc k visible from the point p (mesh coordinates) with unit normal n: 0 when the disc's
 // centre is below the tangent plane; else PCSS: a blocker search over the region a disc-sized cone
@@ -96,7 +95,7 @@ float disc_visibility(int k, vec3 p, vec3 n) {
 #endif
   float blocker_sum = 0.0, blockers = 0.0;
   for (int i = 0; i < search_count; ++i) {
-    float d = map_depth(k, s.xy + search_spiral[i] * (search * texel_uv), size) * depth_scale;
+    float d = map_depth(k, s.xy + search_spiral[i] * (search * texel_uv)) * depth_scale;
     if (d < receiver - bias - bias_per_texel * length(search_spiral[i]) * search) {
       blocker_sum += d;
       blockers += 1.0;
@@ -105,9 +104,13 @@ float disc_visibility(int k, vec3 p, vec3 n) {
   if (blockers == 0.0) return 1.0;
   float penumbra = clamp((receiver - blocker_sum / blockers) * disc_tan_radius[k] * texels_per_unit, min_filter, max_filter);
   float lit = 0.0;
+  vec2 along = vec2(1.0, 0.0);
+  const vec2 turn = vec2(cos(golden_angle), sin(golden_angle));
   for (int i = 0; i < filter_count; ++i) {
-    float d = map_depth(k, s.xy + filter_spiral[i] * (penumbra * texel_uv), size) * depth_scale;
-    lit += d < receiver - bias - bias_per_texel * length(filter_spiral[i]) * penumbra ? 0.0 : 1.0;
+    float r = sqrt((float(i) + 0.5) / float(filter_count));
+    float d = map_depth(k, s.xy + along * (r * penumbra * texel_uv)) * depth_scale;
+    lit += d < receiver - bias - bias_per_texel * r * penumbra ? 0.0 : 1.0;
+    along = vec2(along.x * turn.x - along.y * turn.y, along.x * turn.y + along.y * turn.x);
   }
   return lit / float(filter_count);
 }

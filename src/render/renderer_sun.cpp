@@ -38,6 +38,7 @@ constexpr GLuint kFrameTriangleUnit = 12;     // prt_sun.frag: frame_triangles
 constexpr GLuint kTriangleCornersUnit = 13;   // prt_sun.frag: triangle_corners
 constexpr GLuint kSurfaceUnit = 14;           // prt_sun.frag: surface
 constexpr int kShadowTile = 32;               // texels per tile side; > 2 x sun_light.glsl's max_filter
+constexpr int kFilterCount = 12;              // sun_light.glsl: filter_count, the PCF filter's samples
 constexpr int kTiles = kShadowMapSize / kShadowTile;
 
 GLuint dynamic_buffer(std::size_t bytes) {
@@ -456,6 +457,7 @@ void Renderer::bind_sun(const Program& program, const FrameSettings& settings, b
   glBindTextureUnit(kShadowUnit, s.shadow_texture);
   glBindTextureUnit(kTileUnit, s.tile_texture);
   glUniform1i(program.uniform("shadow_tile"), kShadowTile);
+  glUniform1i(program.uniform("filter_count"), kFilterCount);
   if (glossy) {
     const int terms = static_cast<int>(t.terms.size());
     GLint shapes[kMaxTerms];
