@@ -72,7 +72,7 @@ void run_bake(const BakeCommandOptions& o) {
   options.bands_out = o.bands_out;
   bake::validate_options(options);
   if (!o.lightmap.empty()) {
-    if (!o.compress.empty()) fail("--compress applies to per-vertex transfer only (not with --lightmap)");
+    if (!o.compress.empty()) fail("--compress applies to per-vertex bakes; compress a lightmap with prt compress LIGHTMAP.prt");
     run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16,
                                 o.quiet, canonical_options(o, options)});
     return;
