@@ -1,8 +1,8 @@
 // CPCA of per-texel (lightmap) transfer (docs/formats.md, "Compressed transfer files", version 2): the
 // points are the non-empty texels; a synthetic texel transfer lying exactly in K affine subspaces is
 // recovered exactly; the .cprt keeps the lightmap's size, UV set, UV fingerprint and coverage mask; and
-// through the real binary, `prt shade --lightmap` of the compressed lightmap is within a stated
-// tolerance of the uncompressed one and equal to the shading of its decompressed texels.
+// through the real binary, `prt shade --lightmap` and `prt render` of the compressed lightmap are within
+// a stated tolerance of the uncompressed one and equal to those of its decompressed texels.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -168,7 +168,7 @@ TEST_CASE("CPCA of texel transfer: the non-empty texels are the points, low-rank
   CHECK(contains(error_of(s), "bad.cprt: compressed texel count 121 out of range 1..width x height"));
 }
 
-TEST_CASE("prt compress of a lightmap: prt info shows it, prt shade --lightmap of the .cprt is within 1% of the .prt lightmap",
+TEST_CASE("prt compress of a lightmap: prt info shows it, prt shade --lightmap and prt render of the .cprt within 1% of the .prt",
           "[compress][lightmap][cli]") {
   const std::string dir = test::fresh_temp_dir("compress_lightmap");
   test::write_obj_with_uv(dir + "/s.obj", test::floor_and_box(true));
@@ -201,4 +201,20 @@ TEST_CASE("prt compress of a lightmap: prt info shows it, prt shade --lightmap o
   CHECK(d.rel_rms <= 0.01);  // measured 0.27% (K 32, N 4, 1638 texels)
   CHECK(d.rel_rms > 0.0);  // it is compressed
   CHECK(image::compare_values(compressed.pixels.data(), decompressed.pixels.data(), original.pixels.size()).max_abs == 0.0);
+
+  // prt render of the compressed lightmap (GPU, sampled per pixel): decompressed on load, so its frame
+  // is the frame of the .prt of its decompressed texels, and near the uncompressed lightmap's.
+  const std::string frame = " --env " + dir + "/sky.exr --size 96x72 --camera 30,35,auto --background black -q -o ";
+  for (const char* name : {"lm.prt", "lm.cprt", "decompressed.prt"}) {
+    const test::RunResult r = test::run_prt("render " + dir + "/s.obj " + dir + "/" + name + frame + dir + "/" + name + ".frame.exr");
+    INFO(name << ": " << r.output);
+    REQUIRE(r.exit_code == 0);
+  }
+  const image::Image f_original = image::read_rgb(prt_path + ".frame.exr"), f_compressed = image::read_rgb(cprt_path + ".frame.exr");
+  const image::Image f_decompressed = image::read_rgb(dir + "/decompressed.prt.frame.exr");
+  CHECK(image::compare_values(f_compressed.pixels.data(), f_decompressed.pixels.data(), f_original.pixels.size()).max_abs == 0.0);
+  const image::Difference f = image::compare_values(f_compressed.pixels.data(), f_original.pixels.data(), f_original.pixels.size());
+  INFO("frame of the compressed lightmap vs the uncompressed: rel_rms " << f.rel_rms);
+  CHECK(f.rel_rms <= 0.01);
+  CHECK(f.reference_rms > 0.0);  // the object is in the frame
 }
