@@ -168,7 +168,7 @@ TEST_CASE("CPCA of texel transfer: the non-empty texels are the points, low-rank
   CHECK(contains(error_of(s), "bad.cprt: compressed texel count 121 out of range 1..width x height"));
 }
 
-TEST_CASE("prt compress of a lightmap: prt info shows it, prt shade --lightmap and prt render of the .cprt within 1% of the .prt",
+TEST_CASE("prt compress and bake --compress of a lightmap: prt info shows it, prt shade --lightmap and prt render of the .cprt within 1% of the .prt",
           "[compress][lightmap][cli]") {
   const std::string dir = test::fresh_temp_dir("compress_lightmap");
   test::write_obj_with_uv(dir + "/s.obj", test::floor_and_box(true));
@@ -180,6 +180,12 @@ TEST_CASE("prt compress of a lightmap: prt info shows it, prt shade --lightmap a
   INFO(c.output);
   REQUIRE(c.exit_code == 0);
   CHECK(contains(c.output, "texels x 25 values"));  // 5 bands by default
+  // bake --lightmap --compress K,N: the same model as prt compress without lighting (same seed).
+  REQUIRE(test::run_prt("bake " + dir + "/s.obj --lightmap 48 --transfer interreflected --bounces 1 --samples 128 --quiet --compress 32,4 -o " +
+                        dir + "/baked.cprt").exit_code == 0);
+  REQUIRE(test::run_prt("compress " + prt_path + " --clusters 32 --pca 4 -q -o " + dir + "/plain.cprt").exit_code == 0);
+  CHECK(read_bytes(dir + "/baked.cprt") == read_bytes(dir + "/plain.cprt"));
+  CHECK(read_bytes(dir + "/baked.cprt").size() > 1000);
   const test::RunResult info = test::run_prt("info " + cprt_path);
   CHECK(contains(info.output, "lightmap: 48x48 texels (UV set 0"));
   CHECK(contains(info.output, "compressed texels: "));
