@@ -71,15 +71,14 @@ void run_bake(const BakeCommandOptions& o) {
   }
   options.bands_out = o.bands_out;
   bake::validate_options(options);
-  if (!o.lightmap.empty()) {
-    if (!o.compress.empty()) fail("--compress applies to per-vertex transfer only (not with --lightmap)");
-    run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16,
-                                o.quiet, canonical_options(o, options)});
-    return;
-  }
   int clusters = 0, pca = 0;
   if (!o.compress.empty() && !parse_compress_setting(o.compress, clusters, pca))
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
+  if (!o.lightmap.empty()) {
+    run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16,
+                                o.quiet, clusters, pca, o.threads, canonical_options(o, options)});
+    return;
+  }
   if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
     fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
   // Check the outputs before spending minutes baking (rank 0 alone writes them).
@@ -155,7 +154,7 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");
   cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
   cmd->add_option("--compress", options->compress,
-                  "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file");
+                  "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file (per vertex or, with --lightmap, per texel)");
   cmd->add_option("--lightmap", options->lightmap,
                   "WxH or SIZE: bake transfer per texel of the mesh's lightmap UVs (glTF TEXCOORD_1, else TEXCOORD_0; OBJ vt) "
                   "instead of per vertex (diffuse kinds)");

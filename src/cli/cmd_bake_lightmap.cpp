@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli/cmd_compress.h"
 #include "cli/distributed.h"
 #include "cli/lightmap_glb.h"
 #include "cli/output_paths.h"
 #include "core/atomic_file.h"
+#include "compress/cprt_file.h"
 #include "core/error.h"
 #include "lightmap/texel_bake.h"
 #include "mesh/mesh.h"
@@ -34,7 +36,13 @@ void run_bake_lightmap(const bake::BakeOptions& options, const LightmapBakeReque
   if (r.float16) data.header.scalar = transfer::Scalar::float16;
   // Both outputs are written to temporaries and committed together: a failing .glb leaves no .prt.
   AtomicFile prt_file(r.output);
-  write_staged(prt_file, [&](const std::string& path) { transfer::write_transfer(path, data); });
+  write_staged(prt_file, [&](const std::string& path) {
+    if (r.clusters == 0) return transfer::write_transfer(path, data);
+    CompressionRequest request;
+    request.options = {r.clusters, r.pca, 20, options.seed, r.threads};
+    request.scalar = data.header.scalar;
+    compress::write_cprt(path, compress_for_cli(data, r.output, request));
+  });
   std::unique_ptr<AtomicFile> glb_file;
   if (!r.gltf_output.empty()) {
     glb_file = std::make_unique<AtomicFile>(r.gltf_output);

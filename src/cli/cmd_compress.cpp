@@ -69,7 +69,7 @@ void run_compress(const CompressCommandOptions& o) {
 compress::CompressedTransfer compress_for_cli(const transfer::TransferData& transfer, const std::string& what,
                                               const CompressionRequest& request) {
   const transfer::Header& h = transfer.header;
-  compress::validate_cpca_options(static_cast<std::size_t>(h.vertex_count), static_cast<std::size_t>(h.values_per_vertex()),
+  compress::validate_cpca_options(compress::point_blocks(h, transfer.coverage).size(), static_cast<std::size_t>(h.values_per_vertex()),
                                   request.options, what);
   // The lighting as shading splits it (docs/conventions.md, "Sun and sky"): the transfer meets the sky's
   // SH, its bounce-only part the discs' SH; the discs' direct light is exact and needs no transfer.
@@ -93,8 +93,8 @@ compress::CompressedTransfer compress_for_cli(const transfer::TransferData& tran
 void report_compression(const compress::CompressedTransfer& c, double seconds, const std::string& output) {
   const std::uint64_t before = compress::uncompressed_bytes(c.source, transfer::Scalar::float32);
   const std::uint64_t after = compress::payload_bytes(c);
-  std::fprintf(stderr, "prt compress: %zu vertices x %zu values, %d clusters, %d PCA vectors, %d iterations, %.2f s\n",
-               c.cluster.size(), c.dimension(), c.clusters, c.pca, c.iterations, seconds);
+  std::fprintf(stderr, "prt compress: %zu %s x %zu values, %d clusters, %d PCA vectors, %d iterations, %.2f s\n",
+               c.cluster.size(), c.source.is_texel() ? "texels" : "vertices", c.dimension(), c.clusters, c.pca, c.iterations, seconds);
   std::fprintf(stderr, "  size: %llu -> %llu bytes (%.2f%% of float32)\n", static_cast<unsigned long long>(before),
                static_cast<unsigned long long>(after), 100.0 * static_cast<double>(after) / static_cast<double>(before));
   std::fprintf(stderr, "  transfer rel. error (rms): %.6g\n", c.total.transfer_relative());
@@ -120,7 +120,7 @@ bool parse_compress_setting(const std::string& text, int& clusters, int& pca) {
 void add_compress_command(CLI::App& app) {
   auto options = std::make_shared<CompressCommandOptions>();
   CLI::App* cmd = app.add_subcommand("compress", "Compress a transfer file with clustered PCA (Sloan et al. 2003) into a .cprt file");
-  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt), diffuse or glossy")->required();
+  cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt), diffuse or glossy, per vertex or a lightmap (per texel)")->required();
   cmd->add_option("--clusters", options->clusters, "K: clusters, 1..vertex count")->required();
   cmd->add_option("--pca", options->pca, "N: principal directions per cluster, 1..values per vertex")->required();
   cmd->add_option("--iterations", options->iterations, "Most CPCA rounds (stops earlier when the error stops falling)")

@@ -50,26 +50,52 @@ void add_squares(const float* a, const float* b, std::size_t floats, std::uint32
 double ErrorSums::transfer_relative() const { return transfer_norm2 > 0.0 ? std::sqrt(transfer_error2 / transfer_norm2) : 0.0; }
 double ErrorSums::radiance_relative() const { return radiance_norm2 > 0.0 ? std::sqrt(radiance_error2 / radiance_norm2) : 0.0; }
 
+std::vector<std::size_t> point_blocks(const transfer::Header& h, const std::vector<std::uint8_t>& coverage) {
+  std::vector<std::size_t> blocks;
+  if (!h.is_texel()) {
+    blocks.resize(static_cast<std::size_t>(h.vertex_count));
+    for (std::size_t p = 0; p < blocks.size(); ++p) blocks[p] = p;
+    return blocks;
+  }
+  for (std::size_t t = 0; t < coverage.size(); ++t)
+    if (coverage[t] != transfer::kTexelEmpty) blocks.push_back(t);
+  return blocks;
+}
+
+namespace {
+
+// The points CPCA sees: each point block's values (and bounce-only values), then G applied. Empty when
+// the transfer's values can be used as they are (per vertex, one section, no metric).
+std::vector<float> gather_points(const transfer::TransferData& t, const std::vector<std::size_t>& blocks, const Metric* metric,
+                                 std::size_t D, std::size_t E) {
+  const bool weighted = metric && !metric->identity, bounce = E != D;
+  std::vector<float> points;
+  if (!bounce && !weighted && !t.header.is_texel()) return points;
+  points.resize(blocks.size() * E);
+  for (std::size_t p = 0; p < blocks.size(); ++p) {
+    std::copy_n(&t.values[blocks[p] * D], D, &points[p * E]);
+    if (bounce) std::copy_n(&t.bounce_only[blocks[p] * D], D, &points[p * E + D]);
+  }
+  if (weighted) apply_metric(*metric, points.data(), points.data(), blocks.size(), false);
+  return points;
+}
+
+}  // namespace
+
 CompressedTransfer compress_transfer(const transfer::TransferData& transfer, const CpcaOptions& options, transfer::Scalar scalar,
                                      const std::string& what, const Metric* metric) {
-  const std::size_t P = static_cast<std::size_t>(transfer.header.vertex_count);
-  const std::size_t D = static_cast<std::size_t>(transfer.header.values_per_vertex());
-  if (transfer.values.size() != P * D) fail_file(what, "internal: value count does not match the header");
+  const transfer::Header& h = transfer.header;
+  const std::size_t D = static_cast<std::size_t>(h.values_per_vertex());
+  if (transfer.values.size() != h.block_count() * D) fail_file(what, "internal: value count does not match the header");
+  if (h.is_texel() && transfer.coverage.size() != h.block_count()) fail_file(what, "internal: coverage mask does not match the header");
   const bool bounce = !transfer.bounce_only.empty();
-  if (bounce && transfer.bounce_only.size() != P * D) fail_file(what, "internal: bounce-only value count does not match the header");
-  const std::size_t E = bounce ? 2 * D : D;  // values per point
+  if (bounce && transfer.bounce_only.size() != transfer.values.size()) fail_file(what, "internal: bounce-only value count does not match the header");
+  const std::vector<std::size_t> blocks = point_blocks(h, transfer.coverage);
+  const std::size_t P = blocks.size(), E = bounce ? 2 * D : D;  // points, values per point
   const bool weighted = metric && !metric->identity;
   if (metric && metric->dimension != E) fail_file(what, "internal: the compression metric does not match the transfer");
   validate_cpca_options(P, D, options, what);  // N is bounded by the transfer's D, before the work
-  std::vector<float> points;
-  if (bounce || weighted) {
-    points.resize(P * E);
-    for (std::size_t p = 0; p < P; ++p) {
-      std::copy_n(&transfer.values[p * D], D, &points[p * E]);
-      if (bounce) std::copy_n(&transfer.bounce_only[p * D], D, &points[p * E + D]);
-    }
-    if (weighted) apply_metric(*metric, points.data(), points.data(), P, false);
-  }
+  const std::vector<float> points = gather_points(transfer, blocks, metric, D, E);
   CpcaResult r = cpca(points.empty() ? transfer.values.data() : points.data(), P, E, options, what);
   if (weighted) {
     apply_metric(*metric, r.means.data(), r.means.data(), static_cast<std::size_t>(r.clusters), true);
@@ -77,8 +103,10 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
   }
   CompressedTransfer c;
   c.bounce = bounce;
-  c.source = transfer.header;
+  c.source = h;
   c.source.scalar = scalar;
+  c.coverage = transfer.coverage;
+  c.texel_points = h.is_texel() ? P : 0;
   c.clusters = r.clusters;
   c.pca = r.pca;
   c.iterations = static_cast<int>(r.error_history.size());
@@ -93,7 +121,7 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
   std::vector<float> block(E);
   for (std::size_t p = 0; p < P; ++p) {  // the transfer's values (the bounce-only part is a part of them)
     reconstruct(c, p, block.data());
-    add_squares(block.data(), &transfer.values[p * D], D, c.cluster[p], &ErrorSums::transfer_error2, &ErrorSums::transfer_norm2, c);
+    add_squares(block.data(), &transfer.values[blocks[p] * D], D, c.cluster[p], &ErrorSums::transfer_error2, &ErrorSums::transfer_norm2, c);
   }
   return c;
 }
@@ -109,14 +137,18 @@ transfer::TransferData decompress(const CompressedTransfer& c) {
   transfer::TransferData t;
   t.header = c.source;
   t.header.scalar = transfer::Scalar::float32;
-  const std::size_t P = c.cluster.size(), D = c.dimension(), E = c.point_dimension();
-  t.values.resize(P * D);
-  if (c.bounce) t.bounce_only.resize(P * D);
+  t.header.bounce_only_section = c.bounce;
+  t.coverage = c.coverage;
+  const std::size_t D = c.dimension(), E = c.point_dimension();
+  const std::vector<std::size_t> blocks = point_blocks(c.source, c.coverage);
+  if (blocks.size() != c.cluster.size()) fail("internal: the compressed transfer's points do not match its coverage");
+  t.values.assign(static_cast<std::size_t>(c.source.block_count()) * D, 0.0f);
+  if (c.bounce) t.bounce_only.assign(t.values.size(), 0.0f);
   std::vector<float> block(E);
-  for (std::size_t p = 0; p < P; ++p) {
+  for (std::size_t p = 0; p < blocks.size(); ++p) {
     reconstruct(c, p, block.data());
-    std::copy_n(block.data(), D, &t.values[p * D]);
-    if (c.bounce) std::copy_n(block.data() + D, D, &t.bounce_only[p * D]);
+    std::copy_n(block.data(), D, &t.values[blocks[p] * D]);
+    if (c.bounce) std::copy_n(block.data() + D, D, &t.bounce_only[blocks[p] * D]);
   }
   return t;
 }
@@ -142,13 +174,15 @@ void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& ori
     for (std::size_t i = 0; i < test.size(); ++i) test[i] += test_bounce[i], reference[i] += reference_bounce[i];
   }
   const std::size_t stride = glossy ? static_cast<std::size_t>(original.header.bands_out) * original.header.bands_out : 1;
-  for (std::size_t p = 0; p < c.cluster.size(); ++p)
-    add_squares(&test[p * stride].x, &reference[p * stride].x, 3 * stride, c.cluster[p], &ErrorSums::radiance_error2, &ErrorSums::radiance_norm2, c);
+  const std::vector<std::size_t> blocks = point_blocks(c.source, c.coverage);
+  for (std::size_t p = 0; p < blocks.size(); ++p)
+    add_squares(&test[blocks[p] * stride].x, &reference[blocks[p] * stride].x, 3 * stride, c.cluster[p], &ErrorSums::radiance_error2,
+                &ErrorSums::radiance_norm2, c);
   c.has_radiance_error = true;
 }
 
 std::uint64_t uncompressed_bytes(const transfer::Header& header, transfer::Scalar scalar) {
-  return header.vertex_count * header.values_per_vertex() * (scalar == transfer::Scalar::float16 ? 2 : 4);
+  return header.block_count() * header.values_per_vertex() * (scalar == transfer::Scalar::float16 ? 2 : 4);
 }
 
 }  // namespace prt::compress

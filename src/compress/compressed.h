@@ -42,18 +42,30 @@ struct CompressedTransfer {
   bool bounce = false;
   std::vector<float> means;             ///< K x point_dimension() (already rounded to source.scalar)
   std::vector<float> bases;             ///< K x N x point_dimension()
-  std::vector<std::uint32_t> cluster;   ///< per vertex, < K
-  std::vector<float> weights;           ///< per vertex, N
+  std::vector<std::uint32_t> cluster;   ///< per point (vertex or non-empty texel), < K
+  std::vector<float> weights;           ///< per point, N
+  /// Texel (lightmap) transfer (source.is_texel()): the source's coverage mask, W x H. The model's points
+  /// are the non-empty texels (covered and gutter) in row-major order (point_blocks); empty texels are 0.
+  std::vector<std::uint8_t> coverage;
+  std::uint64_t texel_points = 0;       ///< texel transfer: the number of non-empty texels
   bool has_radiance_error = false;
   ErrorSums total;
   std::vector<ErrorSums> per_cluster;   ///< K entries
+  /// P: the model's points: the vertices, or the non-empty texels of a texel transfer.
+  std::uint64_t point_count() const { return source.is_texel() ? texel_points : source.vertex_count; }
   /// D: the transfer's values per vertex.
   std::size_t dimension() const { return static_cast<std::size_t>(source.values_per_vertex()); }
   /// Values per mean or direction: D, or 2D with the bounce-only section.
   std::size_t point_dimension() const { return dimension() * (bounce ? 2 : 1); }
 };
 
-/// Compresses `transfer` (any kind, 1 or 3 channels; with its bounce-only part if it has one) with CPCA, stores the model as `scalar` (float16
+/// The block each point of a model stands for (block b = values at b * values per vertex): every vertex
+/// of a per-vertex transfer; the texels of `coverage` that are not transfer::kTexelEmpty, in row-major
+/// order, of a texel transfer (header.is_texel()).
+std::vector<std::size_t> point_blocks(const transfer::Header& header, const std::vector<std::uint8_t>& coverage);
+
+/// Compresses `transfer` (any kind, 1 or 3 channels, per vertex or per texel: the points are its
+/// point_blocks; with its bounce-only part if it has one) with CPCA, stores the model as `scalar` (float16
 /// rounds means, directions and weights to nearest even) and fills the transfer-space error sums of
 /// the stored model. `what` names the input in errors (bad K, N, iterations).
 /// With a `metric` (metric.h; null or identity: plain L2 of the values), CPCA runs on G T_p and the
@@ -67,8 +79,9 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
 /// naming `what` if a glossy transfer records no BRDF.
 Metric transfer_metric(const transfer::TransferData& transfer, const MetricLighting& lighting, const std::string& what);
 
-/// The reconstruction mu_k + sum_n w_pn b_kn of every vertex, as a float32 TransferData with the
-/// source header (and bounce_only from the model's second section, if it has one).
+/// The reconstruction mu_k + sum_n w_pn b_kn of every point, as a float32 TransferData with the
+/// source header (and bounce_only from the model's second section, if it has one); a texel transfer
+/// gets its coverage mask back and zeros in its empty texels.
 transfer::TransferData decompress(const CompressedTransfer& compressed);
 
 /// Adds the shaded-radiance error sums against the uncompressed `original` (see the header comment)
@@ -78,7 +91,8 @@ transfer::TransferData decompress(const CompressedTransfer& compressed);
 void add_radiance_error(CompressedTransfer& compressed, const transfer::TransferData& original, const sh::RgbCoefficients& sky,
                         const std::string& what, const sh::RgbCoefficients* discs = nullptr);
 
-/// Payload bytes of the uncompressed transfer stored as `scalar` (cprt_file.h gives the compressed).
+/// Payload bytes of the uncompressed transfer's values (one section; a texel file's every texel) stored
+/// as `scalar` (cprt_file.h gives the compressed).
 std::uint64_t uncompressed_bytes(const transfer::Header& header, transfer::Scalar scalar);
 
 }  // namespace prt::compress

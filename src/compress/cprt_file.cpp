@@ -15,7 +15,9 @@ namespace prt::compress {
 
 namespace {
 
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 1;       // per-vertex transfer
+constexpr std::uint32_t kVersionTexel = 2;  // texel (lightmap) transfer: a texel block and a coverage mask
+constexpr std::size_t kTexelBlockBytes = transfer::kTexelBlockBytes + 8;  // the .prt texel block, then the point count
 constexpr std::size_t kFixedHeaderBytes = 124;  // up to and including the parameters length
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
 constexpr std::uint32_t kMaxBands = 32;
@@ -30,17 +32,20 @@ using le::get_u64;
 
 std::uint64_t scalar_bytes(transfer::Scalar s) { return s == transfer::Scalar::float16 ? 2 : 4; }
 
+// Payload bytes of the coverage mask (texel transfer only).
+std::uint64_t mask_bytes(const CompressedTransfer& c) { return c.source.is_texel() ? transfer::coverage_mask_bytes(c.source.block_count()) : 0; }
+
 // Payload bytes for the header's fields; 0 if they overflow 64 bits.
 std::uint64_t payload_size(const CompressedTransfer& c) {
   const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca);
-  const std::uint64_t D = c.point_dimension(), P = c.source.vertex_count;
+  const std::uint64_t D = c.point_dimension(), P = c.point_count();
   std::uint64_t kd = 0, kdn = 0, pn = 0, values = 0, bytes = 0, ids = 0, total = 0;
   const bool overflow = __builtin_mul_overflow(K, D, &kd) || __builtin_mul_overflow(kd, N, &kdn) ||
                         __builtin_mul_overflow(P, N, &pn) || __builtin_add_overflow(kd, kdn, &values) ||
                         __builtin_add_overflow(values, pn, &values) ||
                         __builtin_mul_overflow(values, scalar_bytes(c.source.scalar), &bytes) ||
                         __builtin_mul_overflow(P, std::uint64_t{4}, &ids) || __builtin_add_overflow(bytes, ids, &total) ||
-                        __builtin_add_overflow(total, 32 * K, &total);
+                        __builtin_add_overflow(total, 32 * K, &total) || __builtin_add_overflow(total, mask_bytes(c), &total);
   return overflow ? 0 : total;
 }
 
@@ -62,8 +67,11 @@ void validate(const std::string& path, const CompressedTransfer& c, std::uint32_
   if (h.scalar != transfer::Scalar::float32 && h.scalar != transfer::Scalar::float16)
     fail_file(path, "unknown scalar type " + std::to_string(static_cast<std::uint32_t>(h.scalar)));
   if (h.vertex_count < 1) fail_file(path, "vertex count 0");
-  if (c.clusters < 1 || static_cast<std::uint64_t>(c.clusters) > h.vertex_count)
-    fail_file(path, "cluster count " + std::to_string(c.clusters) + " out of range 1..vertex count");
+  transfer::validate_texel_size(path, h);
+  if (h.is_texel() && (c.texel_points < 1 || c.texel_points > h.block_count()))
+    fail_file(path, "compressed texel count " + std::to_string(c.texel_points) + " out of range 1..width x height");
+  if (c.clusters < 1 || static_cast<std::uint64_t>(c.clusters) > c.point_count())
+    fail_file(path, "cluster count " + std::to_string(c.clusters) + (h.is_texel() ? " out of range 1..compressed texel count" : " out of range 1..vertex count"));
   if (c.pca < 1 || static_cast<std::uint64_t>(c.pca) > h.values_per_vertex())
     fail_file(path, "PCA count " + std::to_string(c.pca) + " out of range 1..values per vertex (" +
                         std::to_string(h.values_per_vertex()) + ")");
@@ -79,7 +87,7 @@ void validate(const std::string& path, const CompressedTransfer& c, std::uint32_
 std::string encode_header(const CompressedTransfer& c, std::uint64_t payload_bytes, std::uint64_t checksum) {
   const transfer::Header& h = c.source;
   std::string out(kCprtMagic, kCprtMagic + 8);
-  for (std::uint32_t v : {kVersion, static_cast<std::uint32_t>(h.kind), h.bands, h.bands_out, h.channels,
+  for (std::uint32_t v : {h.is_texel() ? kVersionTexel : kVersion, static_cast<std::uint32_t>(h.kind), h.bands, h.bands_out, h.channels,
                           static_cast<std::uint32_t>(h.scalar), static_cast<std::uint32_t>(c.clusters),
                           static_cast<std::uint32_t>(c.pca), static_cast<std::uint32_t>(c.iterations), flags_of(c)})
     le::put_u32(out, v);
@@ -91,6 +99,10 @@ std::string encode_header(const CompressedTransfer& c, std::uint64_t payload_byt
   le::put_u32(out, static_cast<std::uint32_t>(h.parameters_json.size()));
   out += h.parameters_json;
   while (out.size() % 8) out.push_back('\0');
+  if (h.is_texel()) {
+    transfer::put_texel_block(out, h);
+    le::put_u64(out, c.texel_points);
+  }
   le::put_u64(out, fnv1a64(out.data(), out.size()));
   return out;
 }
@@ -138,8 +150,10 @@ Decoded decode_header(const std::string& path, std::ifstream& in, std::uint64_t 
   if (!in) fail_file(path, "truncated header");
   const auto* p = reinterpret_cast<const unsigned char*>(fixed.data());
   if (std::memcmp(p, kCprtMagic, 8) != 0) fail_file(path, "not a prt compressed transfer file (wrong magic)");
-  if (get_u32(p + 8) != kVersion)
-    fail_file(path, "unsupported compressed transfer file version " + std::to_string(get_u32(p + 8)) + " (this prt reads version 1)");
+  const std::uint32_t version = get_u32(p + 8);
+  if (version != kVersion && version != kVersionTexel)
+    fail_file(path, "unsupported compressed transfer file version " + std::to_string(version) + " (this prt reads versions 1 and 2)");
+  const bool texel = version == kVersionTexel;
   Decoded d;
   CompressedTransfer& c = d.c;
   transfer::Header& h = c.source;
@@ -162,7 +176,8 @@ Decoded decode_header(const std::string& path, std::ifstream& in, std::uint64_t 
   d.payload_checksum = get_u64(p + 112);
   const std::uint32_t params = get_u32(p + 120);
   if (params > kMaxParametersBytes) fail_file(path, "corrupt header: parameters block of " + std::to_string(params) + " bytes");
-  const std::uint64_t padded = (kFixedHeaderBytes + params + 7) / 8 * 8;
+  const std::uint64_t padded_params = (kFixedHeaderBytes + params + 7) / 8 * 8;
+  const std::uint64_t padded = padded_params + (texel ? kTexelBlockBytes : 0);
   d.header_bytes = padded + 8;
   if (file_size < d.header_bytes) fail_file(path, "truncated header");
   std::string rest(static_cast<std::size_t>(d.header_bytes - kFixedHeaderBytes), '\0');
@@ -172,6 +187,11 @@ Decoded decode_header(const std::string& path, std::ifstream& in, std::uint64_t 
   if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != le::get_u64(all, static_cast<std::size_t>(padded)))
     fail_file(path, "header checksum mismatch (file is corrupt)");
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
+  if (texel) {
+    const auto* block = reinterpret_cast<const unsigned char*>(all.data()) + padded_params;
+    transfer::get_texel_block(path, block, h);
+    c.texel_points = get_u64(block + transfer::kTexelBlockBytes);
+  }
   validate(path, c, flags);
   if (d.payload_bytes != payload_size(c))
     fail_file(path, "corrupt header: payload size does not match vertex count, clusters, PCA count and dimension");
@@ -200,12 +220,15 @@ std::uint64_t payload_bytes(const CompressedTransfer& c) { return payload_size(c
 void write_cprt(const std::string& path, const CompressedTransfer& c) {
   validate(path, c, flags_of(c));
   const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca), D = c.point_dimension();
-  const std::uint64_t P = c.source.vertex_count;
+  const std::uint64_t P = c.point_count();
   if (c.means.size() != K * D || c.bases.size() != K * N * D || c.weights.size() != P * N || c.cluster.size() != P ||
-      c.per_cluster.size() != K)
+      c.per_cluster.size() != K || c.coverage.size() != (c.source.is_texel() ? c.source.block_count() : 0) ||
+      (c.source.is_texel() && point_blocks(c.source, c.coverage).size() != P))
     fail_file(path, "internal: array sizes do not match the header");
   std::string payload;
   payload.reserve(static_cast<std::size_t>(payload_size(c)));
+  payload.append(c.coverage.begin(), c.coverage.end());
+  payload.resize(static_cast<std::size_t>(mask_bytes(c)), '\0');
   put_values(payload, c.means, c.source.scalar);
   put_values(payload, c.bases, c.source.scalar);
   put_values(payload, c.weights, c.source.scalar);
@@ -234,8 +257,15 @@ CompressedTransfer read_cprt(const std::string& path) {
   if (fnv1a64(payload.data(), payload.size()) != d.payload_checksum) fail_file(path, "payload checksum mismatch (file is corrupt)");
   CompressedTransfer& c = d.c;
   const std::uint64_t K = static_cast<std::uint64_t>(c.clusters), N = static_cast<std::uint64_t>(c.pca), D = c.point_dimension();
-  const std::uint64_t P = c.source.vertex_count;
+  const std::uint64_t P = c.point_count();
   const auto* at = reinterpret_cast<const unsigned char*>(payload.data());
+  if (c.source.is_texel()) {
+    c.coverage = transfer::get_coverage_mask(path, at, static_cast<std::size_t>(c.source.block_count()));
+    const std::size_t filled = point_blocks(c.source, c.coverage).size();
+    if (filled != P)
+      fail_file(path, "coverage mask has " + std::to_string(filled) + " non-empty texels, the header " + std::to_string(P));
+    at += mask_bytes(c);
+  }
   c.means = get_values(path, at, K * D, c.source.scalar, "cluster means");
   c.bases = get_values(path, at, K * N * D, c.source.scalar, "cluster directions");
   c.weights = get_values(path, at, P * N, c.source.scalar, "vertex weights");
@@ -259,6 +289,7 @@ std::string describe(const CompressedTransfer& c) {
   s << transfer::describe(c.source);
   s << "compression: CPCA, " << c.clusters << " clusters, " << c.pca << " PCA vectors, " << c.iterations << " iterations"
     << (c.bounce ? ", with the bounce-only part" : "") << "\n";
+  if (c.source.is_texel()) s << "compressed texels: " << c.texel_points << " (covered and gutter; empty texels are 0)\n";
   s << "compressed payload: " << payload_size(c) << " bytes (uncompressed float32: "
     << uncompressed_bytes(c.source, transfer::Scalar::float32) << " bytes)\n";
   s << "transfer rel. error (rms): " << c.total.transfer_relative() << "\n";
@@ -283,6 +314,10 @@ std::shared_ptr<const CompressedTransfer> read_transfer_or_model(const std::stri
     return nullptr;
   }
   auto model = std::make_shared<const CompressedTransfer>(read_cprt(path));
+  if (model->source.is_texel()) {  // lightmaps: decompressed on load into the lightmap pass's texture arrays
+    out = decompress(*model);
+    return nullptr;
+  }
   out = transfer::TransferData{};
   out.header = model->source;
   out.header.scalar = transfer::Scalar::float32;

@@ -36,8 +36,10 @@ bool is_cprt_file(const std::string& path);
 /// transfer.
 transfer::TransferData read_transfer_or_cprt(const std::string& path);
 
-/// For renderers: a .cprt file gives its model (returned) and `header_only` gets its source header
-/// (float32) with no values; a .prt file gives null and `header_only` the whole transfer.
+/// For renderers: a per-vertex .cprt file gives its model (returned) and `header_only` gets its source
+/// header (float32) with no values; a .prt file, and a texel (lightmap) .cprt file, give null and
+/// `header_only` the whole transfer (the lightmap decompressed on load: the renderer's lightmap pass
+/// samples texture arrays of the reconstructed texels, so it draws it as it draws a .prt lightmap).
 std::shared_ptr<const CompressedTransfer> read_transfer_or_model(const std::string& path, transfer::TransferData& header_only);
 
 }  // namespace prt::compress

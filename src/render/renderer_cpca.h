@@ -71,7 +71,8 @@ int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t
 
 /// For the viewer's transfer list: ", 25.0 MB" for a .prt transfer (float32 on the GPU), or
 /// ", CPCA K 128 N 8, 2.9 MB, error 1.23%" for a compressed one (its payload; the recorded relative
-/// transfer-space error, and the shaded-radiance error if recorded).
+/// transfer-space error, and the shaded-radiance error if recorded); a compressed lightmap (decompressed
+/// on load) gets the lightmap's label and then its file's CPCA label.
 std::string transfer_memory_label(const SceneInputs& scene, std::size_t i);
 
 }  // namespace prt::render

@@ -22,7 +22,6 @@ constexpr std::uint32_t kVersion = 1;            // one payload section
 constexpr std::uint32_t kVersionBounce = 2;      // two: the transfer, then its bounce-only part
 constexpr std::uint32_t kVersionTexel = 3;       // texel file (lightmap), one payload section
 constexpr std::uint32_t kVersionTexelBounce = 4; // texel file, two sections
-constexpr std::size_t kTexelBlockBytes = 24;     // width, height, UV set, reserved, UV fingerprint
 constexpr std::size_t kFixedHeaderBytes = 76;  // up to and including the parameters length
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
 constexpr float kMaxTransferMagnitude = 1e15f;
@@ -64,12 +63,7 @@ void validate(const std::string& path, const Header& h) {
   if (h.parameters_json.size() > kMaxParametersBytes) fail_file(path, "parameters block larger than 1 MiB");
   if (h.bounce_only_section && h.kind != Kind::interreflected && h.kind != Kind::glossy_interreflected)
     fail_file(path, std::string("a bounce-only section (version 2) needs an interreflected kind, not ") + kind_name(h.kind));
-  if (h.is_texel() || h.texel_height != 0) {
-    if (is_glossy(h.kind)) fail_file(path, std::string("texel (lightmap) files hold diffuse kinds only, not ") + kind_name(h.kind));
-    if (h.texel_width < 1 || h.texel_width > kMaxTexelSide || h.texel_height < 1 || h.texel_height > kMaxTexelSide)
-      fail_file(path, "lightmap size " + std::to_string(h.texel_width) + "x" + std::to_string(h.texel_height) +
-                          " out of range 1..16384");
-  }
+  validate_texel_size(path, h);
 }
 
 std::uint32_t version_of(const Header& h) {
@@ -78,7 +72,7 @@ std::uint32_t version_of(const Header& h) {
 }
 
 // Bytes of the coverage mask in the payload (padded to 8); 0 for per-vertex files.
-std::uint64_t coverage_bytes(const Header& h) { return h.is_texel() ? (h.block_count() + 7) / 8 * 8 : 0; }
+std::uint64_t coverage_bytes(const Header& h) { return h.is_texel() ? coverage_mask_bytes(h.block_count()) : 0; }
 
 std::uint64_t sections_of(const Header& h) { return h.bounce_only_section ? 2 : 1; }
 
@@ -99,13 +93,7 @@ std::string encode_header(const Header& h, std::uint64_t payload_bytes, std::uin
   put_u32(out, static_cast<std::uint32_t>(h.parameters_json.size()));
   out += h.parameters_json;
   while (out.size() % 8) out.push_back('\0');
-  if (h.is_texel()) {
-    put_u32(out, h.texel_width);
-    put_u32(out, h.texel_height);
-    put_u32(out, h.uv_set);
-    put_u32(out, 0);
-    put_u64(out, h.uv_fingerprint);
-  }
+  if (h.is_texel()) put_texel_block(out, h);
   put_u64(out, fnv1a64(out.data(), out.size()));
   return out;
 }
@@ -116,15 +104,6 @@ struct DecodedHeader {
   std::uint64_t payload_bytes = 0;
   std::uint64_t payload_checksum = 0;
 };
-
-void decode_texel_block(const std::string& path, const unsigned char* p, Header* h) {
-  h->texel_width = get_u32(p);
-  h->texel_height = get_u32(p + 4);
-  h->uv_set = get_u32(p + 8);
-  if (get_u32(p + 12) != 0) fail_file(path, "corrupt header: reserved texel field is not 0");
-  h->uv_fingerprint = get_u64(p + 16);
-  if (h->texel_width == 0) fail_file(path, "lightmap size 0x" + std::to_string(h->texel_height) + " out of range 1..16384");
-}
 
 // The block count is bounded by the file size before it is multiplied (2^62 + 4 would wrap).
 void check_payload_size(const std::string& path, const DecodedHeader& d, std::uint64_t file_size) {
@@ -176,7 +155,7 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   std::uint64_t stored = get_u64(reinterpret_cast<const unsigned char*>(all.data()) + padded);
   if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != stored) fail_file(path, "header checksum mismatch (file is corrupt)");
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
-  if (texel) decode_texel_block(path, reinterpret_cast<const unsigned char*>(all.data()) + padded_params, &h);
+  if (texel) get_texel_block(path, reinterpret_cast<const unsigned char*>(all.data()) + padded_params, h);
   check_json_depth(h.parameters_json, path);
   validate(path, h);
   check_payload_size(path, d, file_size);
@@ -315,13 +294,7 @@ void check_payload_range(const std::string& path, const TransferData& data) {
 // Texel files: mask values 0, 1, 2 only, zero padding, and empty texels' values all zero.
 void decode_coverage(const std::string& path, const unsigned char* p, TransferData* data) {
   const Header& h = data->header;
-  const std::size_t texels = static_cast<std::size_t>(h.block_count());
-  data->coverage.assign(p, p + texels);
-  for (std::size_t t = 0; t < texels; ++t)
-    if (data->coverage[t] > kTexelGutter)
-      fail_file(path, "coverage of texel " + std::to_string(t) + " is " + std::to_string(data->coverage[t]) + " (0, 1 or 2 expected)");
-  for (std::size_t t = texels; t < coverage_bytes(h); ++t)
-    if (p[t] != 0) fail_file(path, "coverage padding is not zero");
+  data->coverage = get_coverage_mask(path, p, static_cast<std::size_t>(h.block_count()));
 }
 
 void check_empty_texels(const std::string& path, const TransferData& data) {
@@ -359,6 +332,40 @@ TransferData read_transfer(const std::string& path) {
   check_payload_range(path, data);
   check_empty_texels(path, data);
   return data;
+}
+
+void put_texel_block(std::string& out, const Header& h) {
+  put_u32(out, h.texel_width);
+  put_u32(out, h.texel_height);
+  put_u32(out, h.uv_set);
+  put_u32(out, 0);
+  put_u64(out, h.uv_fingerprint);
+}
+
+void get_texel_block(const std::string& path, const unsigned char* p, Header& h) {
+  h.texel_width = get_u32(p);
+  h.texel_height = get_u32(p + 4);
+  h.uv_set = get_u32(p + 8);
+  if (get_u32(p + 12) != 0) fail_file(path, "corrupt header: reserved texel field is not 0");
+  h.uv_fingerprint = get_u64(p + 16);
+  if (h.texel_width == 0) fail_file(path, "lightmap size 0x" + std::to_string(h.texel_height) + " out of range 1..16384");
+}
+
+void validate_texel_size(const std::string& path, const Header& h) {
+  if (!h.is_texel() && h.texel_height == 0) return;
+  if (is_glossy(h.kind)) fail_file(path, std::string("texel (lightmap) files hold diffuse kinds only, not ") + kind_name(h.kind));
+  if (h.texel_width < 1 || h.texel_width > kMaxTexelSide || h.texel_height < 1 || h.texel_height > kMaxTexelSide)
+    fail_file(path, "lightmap size " + std::to_string(h.texel_width) + "x" + std::to_string(h.texel_height) + " out of range 1..16384");
+}
+
+std::vector<std::uint8_t> get_coverage_mask(const std::string& path, const unsigned char* p, std::size_t texels) {
+  std::vector<std::uint8_t> coverage(p, p + texels);
+  for (std::size_t t = 0; t < texels; ++t)
+    if (coverage[t] > kTexelGutter)
+      fail_file(path, "coverage of texel " + std::to_string(t) + " is " + std::to_string(coverage[t]) + " (0, 1 or 2 expected)");
+  for (std::size_t t = texels; t < coverage_mask_bytes(texels); ++t)
+    if (p[t] != 0) fail_file(path, "coverage padding is not zero");
+  return coverage;
 }
 
 void check_mesh_match(const std::string& path, const Header& h, std::uint64_t vertex_count, std::uint64_t triangle_count,

@@ -9,6 +9,7 @@
 // 3, 4: a lightmap, one block per texel of a width x height grid over the mesh's lightmap UVs, plus a
 // coverage mask; docs/formats.md "Texel transfer files", docs/conventions.md "Lightmap texels").
 // Texel files hold diffuse kinds only (glossy matrices per texel wait for transfer compression).
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -112,6 +113,22 @@ void check_mesh_match(const std::string& path, const Header& header, std::uint64
 /// Texel files: throws prt::Error("<path>: transfer was baked for different lightmap UVs (...)")
 /// unless header.uv_fingerprint == fingerprint. Per-vertex files: no check.
 void check_uv_match(const std::string& path, const Header& header, std::uint64_t fingerprint);
+
+/// The texel block of a texel header as .prt and .cprt files store it (docs/formats.md, "Texel transfer
+/// files"): width, height, UV set, a reserved 0 (u32 each), UV fingerprint (u64).
+inline constexpr std::size_t kTexelBlockBytes = 24;
+void put_texel_block(std::string& out, const Header& header);
+/// Decodes a texel block at `p` (kTexelBlockBytes) into `header`; throws prt::Error("<path>: ...") for a
+/// non-zero reserved field or width 0.
+void get_texel_block(const std::string& path, const unsigned char* p, Header& header);
+/// Texel headers: throws prt::Error("<path>: ...") for a glossy kind or a side outside 1..kMaxTexelSide.
+/// Per-vertex headers (width and height 0): nothing.
+void validate_texel_size(const std::string& path, const Header& header);
+/// Bytes of a stored coverage mask of `texels` texels: one byte each, zero-padded to a multiple of 8.
+inline std::uint64_t coverage_mask_bytes(std::uint64_t texels) { return (texels + 7) / 8 * 8; }
+/// Reads the stored mask at `p` (coverage_mask_bytes(texels) bytes); throws prt::Error("<path>: ...")
+/// naming a texel whose value is not 0, 1 or 2, or non-zero padding.
+std::vector<std::uint8_t> get_coverage_mask(const std::string& path, const unsigned char* p, std::size_t texels);
 
 /// Multi-line human-readable description of a header, for `prt info`.
 std::string describe(const Header& header);

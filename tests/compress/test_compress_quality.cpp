@@ -1,5 +1,5 @@
 // CPCA on real transfer at the issue's acceptance settings: glossy shadowed transfer of a bowl and of
-// the bundled lion, K in 64..256 and N = 8, and diffuse interreflected transfer of the lion with N = 4.
+// the bundled lion, K in 64..256 and N = 8, and diffuse interreflected transfer with N = 4.
 // The measure is the shaded radiance of `prt shade` (the CPU reference: the sun as an exact disc, the
 // sky as SH through the transfer, the sun's bounce light through the bounce-only part) of the
 // decompressed transfer against the uncompressed one under the bundled sunrise environment: glossy
@@ -140,7 +140,7 @@ TEST_CASE("CPCA of converged transfer of a bowl: glossy K 64 N 8 within 2%, diff
   CHECK(diffuse <= 0.01);
 }
 
-TEST_CASE("CPCA of the lion: glossy K 64 N 8 within 2%, diffuse interreflected K 256 N 4", "[compress][slow]") {
+TEST_CASE("CPCA of the lion: glossy K 64 N 8 within 2%, diffuse interreflected K 1024 N 4 within 1%", "[compress][slow]") {
   const mesh::Mesh lion = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/guardian_lion_10k.ply", nullptr, true);
   const light::SceneLighting glossy_light = split_sunrise(true);
   const transfer::TransferData glossy = bake_glossy(lion, 1024);
@@ -149,18 +149,22 @@ TEST_CASE("CPCA of the lion: glossy K 64 N 8 within 2%, diffuse interreflected K
   INFO("lion glossy: transfer " << gc.total.transfer_relative() << ", radiance " << glossy_radiance);
   CHECK(glossy_radiance <= 0.02);
   // The metric averages over rotations of the lighting: another orientation of the same sky is as good.
-  const double turned = glossy_error(lion, glossy, gc, split_sunrise(true, glm::dvec3(120.0, 35.0, 0.0)));
+  const glm::dvec3 turn(120.0, 35.0, 0.0);
+  const double turned = glossy_error(lion, glossy, gc, split_sunrise(true, turn));
   INFO("lion glossy, environment turned (yaw 120, pitch 35): " << turned);
   CHECK(turned <= 0.02);
 
-  // Diffuse interreflected, N = 4, with the bounce-only part in the same model. The issue's target (1%)
-  // is NOT met on this mesh (see the note of issue 13): its 25-coefficient transfer is high-dimensional
-  // (curls and mane), one global PCA with 16 of 25 directions leaves 11%. The bound holds what was
-  // measured, so a regression shows.
+  // Diffuse interreflected, N = 4, with the bounce-only part in the same model (50 values per point).
+  // The lion needs many clusters at N = 4: K 256 gives 1.40%, K 512 1.08%, K 768 0.83% (note of issue
+  // 13: the error is the model's capacity -- neither bake noise, nor the seed, nor the shared cluster
+  // assignment of the two parts); the issue fixes N = 4 here, not K. Checked in the sky's orientation
+  // and turned, as for glossy.
   const transfer::TransferData t = bake_interreflected(lion, 256);
   const light::SceneLighting light = split_sunrise(false);
-  const compress::CompressedTransfer c = compress_for(t, 256, 4, light);
+  const compress::CompressedTransfer c = compress_for(t, 1024, 4, light);
   const double error = diffuse_error(lion, t, c, light);
-  INFO("lion diffuse: transfer " << c.total.transfer_relative() << ", radiance " << error);
-  CHECK(error <= 0.016);
+  const double diffuse_turned = diffuse_error(lion, t, c, split_sunrise(false, turn));
+  INFO("lion diffuse: transfer " << c.total.transfer_relative() << ", radiance " << error << ", turned " << diffuse_turned);
+  CHECK(error <= 0.01);
+  CHECK(diffuse_turned <= 0.01);
 }

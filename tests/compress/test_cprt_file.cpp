@@ -171,8 +171,8 @@ TEST_CASE(".cprt readers name each kind of damage in one line", "[compress]") {
   s[0] = 'X';
   check(s, "wrong magic");
   s = good;
-  put32(s, 8, 2);
-  check(s, "unsupported compressed transfer file version 2");
+  put32(s, 8, 3);  // 1 = per vertex, 2 = texel
+  check(s, "unsupported compressed transfer file version 3");
   s = good;
   put32(s, 32, 3);  // K changed without resealing
   check(s, "header checksum mismatch");
