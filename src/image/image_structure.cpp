@@ -1,5 +1,6 @@
 #include "image/image_structure.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -159,6 +160,26 @@ std::string exr_problem(File& file) {
   }
 }
 
+// BMP ("BMP file format", Microsoft's BITMAPINFOHEADER, BITMAPCOREHEADER): a 14-byte file header,
+// then the DIB header's little-endian size and the image's width and height, int32 (negative height:
+// rows from the top) or, in the 12-byte OS/2 core header, uint16. OpenImageIO 2.4 multiplies them in
+// int before it allocates an RLE image's buffer: large sides overflow and abort the program.
+std::string bmp_problem(File& file) {
+  const std::string header = file.read(14, 12);
+  if (header.size() < 12) return "";  // the reader refuses a short header
+  const std::int32_t dib = little_endian32(header, 0);
+  double width = 0, height = 0;
+  if (dib == 12) {
+    auto u16 = [&](std::size_t at) { return double(static_cast<unsigned char>(header[at]) | (static_cast<unsigned char>(header[at + 1]) << 8)); };
+    width = u16(4);
+    height = u16(6);
+  } else if (dib == 40 || dib == 52 || dib == 56 || dib == 108 || dib == 124) {
+    width = little_endian32(header, 4);
+    height = std::abs(double(little_endian32(header, 8)));
+  }
+  return width > 0 && height > 0 ? backend::limits_problem(width, height, 1) : "";
+}
+
 }  // namespace
 
 std::string structure_problem(const std::string& path) {
@@ -168,6 +189,9 @@ std::string structure_problem(const std::string& path) {
   const std::string magic = file.read(0, 8);
   if (magic == std::string(kPngSignature, 8)) return png_problem(file);
   if (magic.size() == 8 && magic.compare(0, 4, kExrMagic) == 0) return exr_problem(file);
+  // The file-header magics OpenImageIO's BMP reader accepts: BM, and OS/2's BA, CI, CP, PT.
+  for (const char* bmp : {"BM", "BA", "CI", "CP", "PT"})
+    if (magic.compare(0, 2, bmp) == 0) return bmp_problem(file);
   return "";
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "hardening/bad_input_files.h"
@@ -171,6 +172,42 @@ TEST_CASE("OpenEXR attributes that lie about their size are refused before OpenE
     REQUIRE_THROWS_WITH(image::read_rgb(path), Contains(path) && Contains("image of 100000x1 pixels") &&
                                                    Contains("exceeds prt's limits"));
   }
+}
+
+// A BMP: the 14-byte file header, then a 40-byte BITMAPINFOHEADER of the given size, 24 bits per pixel
+// and `compression` (0 none, 1 RLE8), then `pixels`.
+std::string bmp(std::int32_t width, std::int32_t height, std::uint32_t compression, const std::string& pixels) {
+  std::string out = "BM";
+  put32(out, static_cast<std::uint32_t>(54 + pixels.size()));
+  put32(out, 0);
+  put32(out, 54);
+  for (std::uint32_t v : {40u, std::uint32_t(width), std::uint32_t(height)}) put32(out, v);
+  out += std::string{1, 0, char(compression == 1 ? 8 : 24), 0};  // planes, bits per pixel
+  for (std::uint32_t v : {compression, std::uint32_t(pixels.size()), 2835u, 2835u, 0u, 0u}) put32(out, v);
+  return out + pixels;
+}
+
+TEST_CASE("BMP sides beyond prt's limits are refused before OpenImageIO allocates by them", "[hardening][image]") {
+  // A valid 2x1 BMP first (rows bottom-up, BGR, padded to 4 bytes): pixels (255, 0, 0) and (0, 0, 255).
+  const image::Image im = image::read_rgb(put("two.bmp", bmp(2, 1, 0, std::string{0, 0, char(255), char(255), 0, 0, 0, 0})));
+  REQUIRE(im.width == 2);
+  REQUIRE(im.height == 1);
+  REQUIRE(im.pixels == std::vector<float>{1, 0, 0, 0, 0, 1});
+  // The fuzz target's crash (corpus/image/bmp_rle_height.bmp): an RLE8 BMP of 4 x -989888509 rows,
+  // whose width x height OpenImageIO 2.4 computed in int: "vector::_M_default_append" escaped as an
+  // internal error (exit status 2), or std::terminate under ASan.
+  for (std::int32_t height : {-989888509, 989888509, 40000}) {
+    const std::string path = put("tall.bmp", bmp(4, height, 1, std::string(16, '\0')));
+    REQUIRE_THROWS_WITH(image::read_rgb(path), Contains(path) && Contains("exceeds prt's limits"));
+  }
+  // The 12-byte OS/2 header's uint16 sides: 65535 x 65535 also overflowed int.
+  std::string os2 = "BM";
+  put32(os2, 14 + 12 + 16);
+  put32(os2, 0);
+  put32(os2, 26);
+  put32(os2, 12);
+  os2 += std::string{char(255), char(255), char(255), char(255), 1, 0, 24, 0} + std::string(16, '\0');
+  REQUIRE_THROWS_WITH(image::read_rgb(put("os2.bmp", os2)), Contains("image of 65535x65535 pixels"));
 }
 
 TEST_CASE("an image taller than one decoding band reads back exactly", "[hardening][image]") {
