@@ -23,7 +23,7 @@ cd "$(dirname "$0")/.."
 all=(ply obj gltf image prt brdf light probes points)
 # Executions per target for --ci: about 12 s each at the rates measured on the shared (heavily
 # loaded) AMD EPYC development machine, so less on an idle CI machine (tests/fuzz/README.md).
-declare -A ci_runs=([ply]=12400 [obj]=8400 [gltf]=10400 [image]=400 [prt]=28800 [brdf]=6000 [light]=10400 [probes]=26800 [points]=12800)
+declare -A ci_runs=([ply]=12400 [obj]=8400 [gltf]=10400 [image]=8000 [prt]=28800 [brdf]=6000 [light]=10400 [probes]=26800 [points]=12800)
 mode=time; seconds=600; runs=0; build_only=0; targets=()
 while (($#)); do
   case "$1" in
