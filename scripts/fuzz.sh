@@ -57,13 +57,16 @@ if [ "$mode" = line-coverage ]; then
     corpus="$build_dir/corpus/$t"
     [ -d "$corpus" ] && [ -n "$(ls -A "$corpus")" ] || corpus="tests/fuzz/corpus/$t"
     rm -f "$cov_dir/$t"-*.profraw
-    LLVM_PROFILE_FILE="$cov_dir/$t-%p.profraw" "$cov_dir/tests/fuzz/fuzz_$t" -runs=0 -artifact_prefix="$cov_dir/$t-" "$corpus" \
+    # %m: one profile per instrumented binary (the image target's dlopen'd backend module writes its own).
+    LLVM_PROFILE_FILE="$cov_dir/$t-%p-%m.profraw" "$cov_dir/tests/fuzz/fuzz_$t" -runs=0 -artifact_prefix="$cov_dir/$t-" "$corpus" \
       > "$cov_dir/replay_$t.log" 2>&1 || { echo "fuzz: $t: replay failed ($cov_dir/replay_$t.log)" >&2; exit 1; }
     llvm-profdata-14 merge -sparse "$cov_dir/$t"-*.profraw -o "$cov_dir/$t.profdata"
     echo "fuzz: $t: $(ls "$corpus" | wc -l) inputs from $corpus; line coverage per prt source file it runs:"
     # llvm-cov's columns (paths under src/): regions, missed, cover, functions, missed, executed, lines,
     # missed, cover, ...; files the target never enters are left out.
-    llvm-cov-14 report "$cov_dir/tests/fuzz/fuzz_$t" -instr-profile="$cov_dir/$t.profdata" \
+    objects=()
+    [ "$t" = image ] && objects=(-object "$cov_dir/src/image/libprt_image_oiio.so")
+    llvm-cov-14 report "$cov_dir/tests/fuzz/fuzz_$t" "${objects[@]}" -instr-profile="$cov_dir/$t.profdata" \
       -ignore-filename-regex='^/usr/|tests/fuzz/' |
       awk '$1 != "Filename" && $1 !~ /^-/ && NF >= 10 {
         if ($7 == "0.00%" && $1 != "TOTAL") next
