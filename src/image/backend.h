@@ -34,9 +34,32 @@ inline constexpr int kAbiVersion = 1;
 /// "Limits"): a side of at most 32768, at most 2^26 pixels (8192 x 8192, 16384 x 4096), at most 16
 /// channels, and at most 2^28 decoded floats (1 GiB) in all.
 inline constexpr int kMaxImageSide = 32768;
-inline constexpr double kMaxImagePixels = double(1 << 26);
 inline constexpr int kMaxImageChannels = 16;
-inline constexpr double kMaxImageFloats = double(1 << 28);
+#ifndef PRT_FUZZ_IMAGE_LIMITS
+inline constexpr int kMaxImagePixelsLog2 = 26;
+inline constexpr int kMaxImageFloatsLog2 = 28;
+#else
+// Only the fuzz build (-DPRT_BUILD_FUZZ=ON, tests/fuzz/README.md) is compiled with these: 2^18 pixels
+// and 2^20 floats (4 MiB), so that a mutated header cannot make every execution decode a large image.
+inline constexpr int kMaxImagePixelsLog2 = 18;
+inline constexpr int kMaxImageFloatsLog2 = 20;
+#endif
+inline constexpr double kMaxImagePixels = double(1 << kMaxImagePixelsLog2);
+inline constexpr double kMaxImageFloats = double(1 << kMaxImageFloatsLog2);
+
+/// "" if a width x height image of `channels` channels is within the limits above, else the one-line
+/// problem ("image of 60000x30000 pixels and 3 channels exceeds prt's limits (...)").
+inline std::string limits_problem(double width, double height, int channels) {
+  const double pixels = width * height;
+  if (width <= kMaxImageSide && height <= kMaxImageSide && pixels <= kMaxImagePixels &&
+      channels <= kMaxImageChannels && pixels * channels <= kMaxImageFloats)
+    return "";
+  return "image of " + std::to_string(static_cast<long long>(width)) + "x" +
+         std::to_string(static_cast<long long>(height)) + " pixels and " + std::to_string(channels) +
+         (channels == 1 ? " channel" : " channels") + " exceeds prt's limits (sides up to " + std::to_string(kMaxImageSide) + ", 2^" +
+         std::to_string(kMaxImagePixelsLog2) + " pixels, " + std::to_string(kMaxImageChannels) + " channels, 2^" +
+         std::to_string(kMaxImageFloatsLog2) + " values)";
+}
 
 }  // namespace prt::image::backend
 

@@ -14,6 +14,7 @@
 #include "core/srgb.h"
 #include "core/text.h"
 #include "image/backend.h"
+#include "image/image_structure.h"
 
 namespace prt::image {
 
@@ -60,6 +61,8 @@ Image read_rgb(const std::string& path) {
   if (!std::filesystem::exists(path, ec)) fail_file(path, "file not found");
   if (std::filesystem::is_directory(path, ec)) fail_file(path, "is a folder, not an image");
   check_regular_input(path);
+  // Lengths the file declares are checked against its size first (image_structure.h).
+  if (const std::string problem = structure_problem(path); !problem.empty()) fail_file(path, problem);
   backend::DecodedImage raw;
   const std::string problem = functions().read(path, raw);
   if (!problem.empty()) fail_file(path, problem);

@@ -3,7 +3,9 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
@@ -25,19 +27,26 @@ bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
 }
 
 /// Sends what the codec libraries print on stderr themselves (libpng's "libpng error: ..." lines,
-/// libtiff's warnings) to a temporary file while it lives; text() gives it back as one line, so prt
-/// can fold it into its own "prt: <file>: <problem>" line instead of leaving an unprefixed one.
+/// libtiff's warnings) into a pipe while it lives; text() gives the first 200 bytes back as one line,
+/// so prt can fold them into its own "prt: <file>: <problem>" line instead of leaving an unprefixed
+/// one. The pipe is non-blocking: what does not fit in it (64 KiB on Linux) is dropped, never waited
+/// for. A pipe rather than a temporary file: no file system work per image (the fuzz target reads
+/// hundreds of images a second).
 class StderrCapture {
  public:
   StderrCapture() {
     std::fflush(stderr);
-    file_ = std::tmpfile();
-    saved_ = file_ ? dup(STDERR_FILENO) : -1;
-    if (saved_ >= 0) dup2(fileno(file_), STDERR_FILENO);
+    if (pipe2(pipe_, O_NONBLOCK | O_CLOEXEC) != 0) pipe_[0] = pipe_[1] = -1;
+    saved_ = pipe_[1] >= 0 ? dup(STDERR_FILENO) : -1;
+    if (saved_ >= 0 && dup2(pipe_[1], STDERR_FILENO) < 0) {
+      close(saved_);
+      saved_ = -1;
+    }
   }
   ~StderrCapture() {
     restore();
-    if (file_) std::fclose(file_);
+    for (int fd : pipe_)
+      if (fd >= 0) close(fd);
   }
   StderrCapture(const StderrCapture&) = delete;
   StderrCapture& operator=(const StderrCapture&) = delete;
@@ -45,11 +54,10 @@ class StderrCapture {
   /// Restores stderr and returns what was captured, as one line (at most 200 characters).
   std::string text() {
     restore();
-    if (!file_) return "";
-    std::rewind(file_);
-    char buffer[201] = {};
-    const std::size_t n = std::fread(buffer, 1, 200, file_);
-    return one_line(std::string(buffer, n));
+    if (pipe_[0] < 0) return "";
+    char buffer[200];
+    const ssize_t n = read(pipe_[0], buffer, sizeof buffer);
+    return n > 0 ? one_line(std::string(buffer, static_cast<std::size_t>(n))) : "";
   }
 
  private:
@@ -59,8 +67,9 @@ class StderrCapture {
     dup2(saved_, STDERR_FILENO);
     close(saved_);
     saved_ = -1;
+    std::clearerr(stderr);  // a write refused by the full pipe must not mark stderr as failed
   }
-  std::FILE* file_ = nullptr;
+  int pipe_[2] = {-1, -1};
   int saved_ = -1;
 };
 
@@ -70,6 +79,33 @@ std::string with_codec_text(const std::string& problem, StderrCapture& capture) 
   return printed.empty() ? problem : problem + " (" + printed + ")";
 }
 
+// Decodes the first subimage as width x height x nchannels interleaved floats into `out`. Scanline
+// files with one sample format are read in that (native) format, a band of rows of at most 4 MiB at a
+// time, and converted here: asked for float directly, OpenImageIO 2.4's read_scanlines allocates a
+// conversion buffer of 64 MiB of rows on every call, whatever the image's size (imageinput.cpp, "Split
+// into reasonable chunks"). Tiled files and files with per-channel formats take read_image's path.
+bool decode_as_float(OIIO::ImageInput& input, const OIIO::ImageSpec& spec, float* out) {
+  if (spec.tile_width > 0 || !spec.channelformats.empty())
+    return input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out);
+  const OIIO::TypeDesc native = spec.format;
+  const int y0 = spec.y, y1 = spec.y + spec.height;
+  if (native == OIIO::TypeDesc::FLOAT)
+    return input.read_scanlines(0, 0, y0, y1, spec.z, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, out);
+  const std::size_t row_values = static_cast<std::size_t>(spec.width) * spec.nchannels;
+  const std::size_t row_bytes = row_values * native.size();
+  constexpr std::size_t kBandBytes = std::size_t(4) << 20;
+  const int band = static_cast<int>(std::clamp<std::size_t>(kBandBytes / row_bytes, 1, spec.height));
+  std::vector<unsigned char> rows(band * row_bytes);
+  for (int y = y0; y < y1; y += band) {
+    const int n = std::min(band, y1 - y);
+    if (!input.read_scanlines(0, 0, y, y + n, spec.z, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, rows.data()) ||
+        !OIIO::convert_pixel_values(native, rows.data(), OIIO::TypeDesc::FLOAT, out + (y - y0) * row_values,
+                                    static_cast<int>(n * row_values)))
+      return false;
+  }
+  return true;
+}
+
 std::string read_pixels(const std::string& path, DecodedImage& out, StderrCapture& capture) {
   auto input = OIIO::ImageInput::open(path);
   if (!input) return with_codec_text("cannot read as an image: " + one_line(OIIO::geterror()), capture);
@@ -77,17 +113,12 @@ std::string read_pixels(const std::string& path, DecodedImage& out, StderrCaptur
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return "image has no pixels";
   if (spec.depth > 1) return "volume images are not supported";
   // The header decides the allocation: refuse sizes beyond the limits before any pixel is decoded.
-  const double pixels = double(spec.width) * double(spec.height);
-  if (spec.width > kMaxImageSide || spec.height > kMaxImageSide || pixels > kMaxImagePixels ||
-      spec.nchannels > kMaxImageChannels || pixels * spec.nchannels > kMaxImageFloats)
-    return "image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels and " +
-           std::to_string(spec.nchannels) + " channels exceeds prt's limits (sides up to 32768, 2^26 pixels, " +
-           "16 channels, 2^28 values)";
+  if (std::string limits = limits_problem(spec.width, spec.height, spec.nchannels); !limits.empty()) return limits;
   out.width = spec.width;
   out.height = spec.height;
   out.channels = spec.nchannels;
   out.pixels.resize(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()))
+  if (!decode_as_float(*input, spec, out.pixels.data()))
     return with_codec_text("cannot decode: " + one_line(input->geterror()), capture);
   out.srgb_encoded = is_srgb_encoded(spec);
   input->close();

@@ -83,6 +83,27 @@ std::string triangle_obj(const std::string& v1, const std::string& v2, const std
   return "v " + v1 + "\nv " + v2 + "\nv " + v3 + "\n" + face + "\n";
 }
 
+std::uint32_t crc32(const std::string& bytes) {
+  std::uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xffffffffu;
+}
+
+std::string png_chunk(const std::string& type, const std::string& data) {
+  std::string out;
+  const std::uint32_t n = static_cast<std::uint32_t>(data.size());
+  for (int k = 3; k >= 0; --k) out.push_back(static_cast<char>((n >> (8 * k)) & 0xff));
+  const std::uint32_t crc = crc32(type + data);
+  out += type + data;
+  for (int k = 3; k >= 0; --k) out.push_back(static_cast<char>((crc >> (8 * k)) & 0xff));
+  return out;
+}
+
+std::string png_signature() { return std::string("\x89PNG\r\n\x1a\n", 8); }
+
 bool is_one_error_line(const std::string& output) {
   std::string text = output;
   if (!text.empty() && text.back() == '\n') text.pop_back();

@@ -40,6 +40,14 @@ std::string triangle_gltf_json(const std::string& buffer, const std::string& ext
 std::string triangle_obj(const std::string& v1, const std::string& v2, const std::string& v3,
                          const std::string& face = "f 1 2 3");
 
+/// CRC-32 of ISO/IEC 15948 (PNG) and zlib: polynomial 0xedb88320, reflected, initial and final
+/// complement; computed bit by bit here.
+std::uint32_t crc32(const std::string& bytes);
+/// A PNG chunk (ISO/IEC 15948, section 5.3): big-endian data length, type, data, CRC of type + data.
+std::string png_chunk(const std::string& type, const std::string& data);
+/// The 8-byte PNG signature.
+std::string png_signature();
+
 /// True when `output` is exactly one line "prt: <mentions>...<problem>..." (trailing newline allowed).
 bool is_one_error_line(const std::string& output);
 

@@ -201,26 +201,7 @@ TEST_CASE("a BRDF matrix with a NaN value is refused", "[hardening][brdf]") {
   REQUIRE_THROWS_WITH(brdf::read_brdf_matrix(path), Contains(path) && Contains("not finite"));
 }
 
-// A PNG (ISO/IEC 15948) with the given IHDR size and one tiny IDAT, CRCs computed here.
-std::uint32_t crc32(const std::string& bytes) {
-  std::uint32_t c = 0xffffffffu;
-  for (unsigned char b : bytes) {
-    c ^= b;
-    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
-  }
-  return c ^ 0xffffffffu;
-}
-
-std::string png_chunk(const std::string& type, const std::string& data) {
-  std::string out;
-  const std::uint32_t n = static_cast<std::uint32_t>(data.size());
-  for (int k = 3; k >= 0; --k) out.push_back(static_cast<char>((n >> (8 * k)) & 0xff));
-  const std::uint32_t crc = crc32(type + data);
-  out += type + data;
-  for (int k = 3; k >= 0; --k) out.push_back(static_cast<char>((crc >> (8 * k)) & 0xff));
-  return out;
-}
-
+// A PNG (ISO/IEC 15948) with the given IHDR size and one tiny IDAT.
 std::string png_declaring(std::uint32_t width, std::uint32_t height) {
   std::string ihdr;
   for (std::uint32_t v : {width, height})

@@ -71,16 +71,20 @@ TEST_CASE("over-long path components give one line, not a filesystem_error", "[h
 }
 
 TEST_CASE("a codec's own stderr text is folded into prt's one line", "[hardening][cli][image]") {
-  // A PNG cut inside its IDAT chunk: libpng prints its own line unless prt captures it.
-  std::string png = file_bytes(scene().env);  // not a PNG: build one from the EXR's pixels instead
+  // A PNG whose IHDR CRC is wrong (bytes 29-32: after the signature, the chunk's length and type and
+  // its 13 data bytes): libpng prints its own "libpng error: IHDR: CRC error" line unless prt captures
+  // it. (A PNG cut short no longer reaches libpng: image_structure.h refuses it first.)
   const std::string good = scene().dir + "/good.png";
   image::Image grey(4, 4, 3);
   grey.pixels.assign(grey.pixels.size(), 0.5f);
   image::write(good, grey);
-  png = file_bytes(good);
-  const std::string cut = scene().dir + "/cut.png";
-  write_bytes(cut, png.substr(0, png.size() - 20));
-  require_one_line_error(run_prt("light " + cut + " -o " + scene().dir + "/cut.json"), cut);
+  std::string png = file_bytes(good);
+  png[29] = static_cast<char>(png[29] ^ 0xff);
+  const std::string bad = scene().dir + "/bad_crc.png";
+  write_bytes(bad, png);
+  const RunResult run = run_prt("light " + bad + " -o " + scene().dir + "/bad_crc.json");
+  require_one_line_error(run, bad);
+  REQUIRE_THAT(run.output, Contains("(libpng error: IHDR: CRC error)"));
 }
 
 TEST_CASE("finite but extreme option values are refused before they reach Embree", "[hardening][cli][range]") {
