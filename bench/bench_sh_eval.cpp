@@ -96,6 +96,28 @@ void bench_fill(benchmark::State& state, int bands, std::size_t count, std::size
   state.counters["dirs"] = static_cast<double>(count);
 }
 
+// The bound of the staged path (out_stride = count): the same bytes written by std::fill in its order,
+// tile by tile, each row in runs of sh::detail::staged_tile_directions directions.
+template <typename T>
+void bench_fill_tiled(benchmark::State& state, int bands, std::size_t count, std::size_t stride) {
+  std::vector<T> storage(static_cast<std::size_t>(bands * bands) * stride + 64 / sizeof(T));
+  T* out = storage.data();
+  while (reinterpret_cast<std::uintptr_t>(out) % 64 != 0) ++out;
+  const std::size_t tile = sh::detail::staged_tile_directions(bands, sizeof(T));
+  T value = static_cast<T>(0.5);
+  for (auto _ : state) {
+    for (std::size_t j = 0; j < count; j += tile) {
+      const std::size_t end = std::min(count, j + tile);
+      for (int k = 0; k < bands * bands; ++k) std::fill(out + k * stride + j, out + k * stride + end, value);
+    }
+    value += static_cast<T>(1e-7);
+    benchmark::DoNotOptimize(out);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * count));
+  state.counters["dirs"] = static_cast<double>(count);
+}
+
 // Evaluation where projection uses it: fused with accumulation. sh::eval_accumulate adds
 // sum_j w_j Y_k(d_j) into bands^2 sums (or the generic recurrence's values, weighted, for 'generic'), so
 // nothing per direction is stored and only the 16 input bytes per direction are read.
@@ -204,8 +226,9 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
               " the runtime-loop recurrence (eval_batch beyond %d bands), 'x' the fast path's speed-up over it.\n",
               batch, sh::padded_stride(batch, sizeof(float)), batch, one_count, sh::detail::kLanes<float>,
               sh::detail::kLanes<double>, sh::kMaxFastBands);
-  std::printf("%5s %5s | %-36s | %-23s | %-26s | %-15s | %-17s | %-30s | %-22s\n", "bands", "coefs",
+  std::printf("%5s %5s | %-36s | %-23s | %-26s | %-22s | %-15s | %-17s | %-30s | %-22s\n", "bands", "coefs",
               "float batch ns/dir ns/coef  target", "stride=count /padded", "write bound ns  B/dir  GB/s",
+              "s=c bound: rows  tiled",
               "generic      x", "double ns/dir coef", "eval float  generic x  (Sloan)", "eval double generic x");
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
     const double n2 = bands * bands;
@@ -216,6 +239,8 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
     double df = fast ? r.median(name_of("batch", "double", Path::kFast, bands)) : dg;
     double fc = r.median(name_of("batch_stride=count", "float", Path::kFast, bands));
     double fill = r.median(name_of("fill", "float", Path::kFast, bands));
+    double fill_count = r.median(name_of("fill_stride=count", "float", Path::kFast, bands));
+    double fill_tiled = r.median(name_of("fill_tiled_stride=count", "float", Path::kFast, bands));
     double of = r.median(name_of("one", "float", Path::kFast, bands));
     double og = r.median(name_of("one", "float", Path::kGeneric, bands));
     double odf = r.median(name_of("one", "double", Path::kFast, bands));
@@ -230,10 +255,11 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
     }
     char scalar_peer[32] = "";
     if (!std::isnan(sloan_scalar_ns(bands))) std::snprintf(scalar_peer, sizeof scalar_peer, "(%.1f)", sloan_scalar_ns(bands));
-    std::printf("%5d %5d | %7.3f %8.4f  %-14s | %7.3f %5.2fx %-8s | %7.3f %6.0f %7.1f   | %7.3f %6.2fx | %7.3f %8.4f | "
+    std::printf("%5d %5d | %7.3f %8.4f  %-14s | %7.3f %5.2fx %-8s | %7.3f %6.0f %7.1f   | %7.3f %4zu %7.3f | %7.3f %6.2fx | %7.3f %8.4f | "
                 "%7.2f %7.2f %5.2fx %-7s | %7.2f %7.2f %5.2fx\n",
                 bands, bands * bands, ff, ff / n2, target, fc, fc / ff, fc <= 1.05 * ff ? "ok" : "SLOWER", fill,
-                n2 * sizeof(float), n2 * sizeof(float) / fill, fg, fg / ff, df, df / n2, of, og, og / of, scalar_peer,
+                n2 * sizeof(float), n2 * sizeof(float) / fill, fill_count, sh::detail::staged_tile_directions(bands, sizeof(float)),
+                fill_tiled, fg, fg / ff, df, df / n2, of, og, og / of, scalar_peer,
                 odf, odg, odg / odf);
   }
   std::printf("targets (float, batched, per direction): 3 bands <= 0.6 ns, 5 <= 1.6 ns, 9 <= 6 ns; ns/coef flat "
@@ -242,6 +268,9 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
               "direction, shown) in the padded layout, measured in this run, and the write bandwidth it reaches: a "
               "batch cannot beat it; where the output outgrows L1 (32 KiB here: bands^2 x 4 B x %zu directions) the "
               "batch figure is that bound plus a little, and the targets are bounds on memory, not on evaluation.\n"
+              "'s=c bound': std::fill of the same bytes with out_stride = count, whole rows one after another ('rows'), "
+              "and in the staged path's order ('tiled': tile by tile, each row in runs of the shown number of "
+              "directions, the most a 16 KiB L1 scratch tile holds): the staged path cannot beat 'tiled'.\n"
               "Peer figures in parentheses are CONSTANTS (Sloan, JCGT 2013, SSE x4 0.61 / 1.58 / 3.35 / 6.0 ns and "
               "scalar 2.1 / 6.4 / 13.6 / 23.2 ns for 3 / 5 / 7 / 9 bands, measured once on this machine kind), not "
               "measured in this run.\n", batch);
@@ -303,6 +332,10 @@ int main(int argc, char** argv) {
         add(name_of("batch_stride=count", "float", path, bands),
             [=](benchmark::State& s) { bench_batch<float>(s, bands, path, batch, batch); });
         add(name_of("fill", "float", path, bands), [=](benchmark::State& s) { bench_fill<float>(s, bands, batch, stride_f); });
+        add(name_of("fill_stride=count", "float", path, bands),
+            [=](benchmark::State& s) { bench_fill<float>(s, bands, batch, batch); });
+        add(name_of("fill_tiled_stride=count", "float", path, bands),
+            [=](benchmark::State& s) { bench_fill_tiled<float>(s, bands, batch, batch); });
       }
       for (std::size_t count : fused_counts(batch)) {
         if (path == Path::kGeneric && count != batch) continue;  // the generic path at the batch only

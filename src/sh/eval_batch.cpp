@@ -278,6 +278,13 @@ void eval_batch_generic(int bands, std::size_t count, const double* x, const dou
   batch_generic<double>(bands, count, x, y, z, out, out_stride);
 }
 
+std::size_t staged_tile_directions(int bands, std::size_t element_bytes) {
+  if (element_bytes == sizeof(double)) {
+    return bands <= kMaxFastBands ? kernel_tile<double>(bands) : kStageBytes / sizeof(double);
+  }
+  return bands <= kMaxFastBands ? kernel_tile<float>(bands) : kStageBytes / sizeof(float);
+}
+
 void eval_one_generic(int bands, float x, float y, float z, float* out) {
   auto put = [out](int k, float v) { out[k] = v; };
   eval_generic<float>(bands, x, y, z, put);

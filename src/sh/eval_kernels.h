@@ -281,6 +281,10 @@ void eval_accumulate_generic(int bands, std::size_t count, const float* x, const
 void eval_accumulate_generic(int bands, std::size_t count, const double* x, const double* y, const double* z,
                              const double* w, double* sums);
 
+/// Directions per tile of eval_batch's staged path (crowded strides such as out_stride = count = 1024)
+/// for `bands` and elements of element_bytes (4 or 8): each output row is written in runs of this many.
+std::size_t staged_tile_directions(int bands, std::size_t element_bytes);
+
 /// One direction through eval_generic (scalar runtime loops); same contract as sh::eval.
 void eval_one_generic(int bands, float x, float y, float z, float* out);
 void eval_one_generic(int bands, double x, double y, double z, double* out);
