@@ -62,6 +62,19 @@ void eval_batch(int bands, std::size_t count, const float* x, const float* y, co
 void eval_batch(int bands, std::size_t count, const double* x, const double* y, const double* z, double* out,
                 std::size_t out_stride);
 
+/// Evaluation fused with accumulation, for projecting a sampled function onto the basis:
+/// sums[k] += sum_{j < count} w[j] Y_k(x[j], y[j], z[j]) for k < bands^2; nothing per direction is
+/// stored, so the cost per direction does not depend on count. Preconditions: 1 <= bands <= kMaxBands,
+/// unit directions; `sums` holds bands^2 values (added to, not cleared) and does not overlap the inputs.
+/// The fast path (bands <= kMaxFastBands) is specialised per band count and vectorised across directions.
+/// Rounding: the sum runs in T in kLanes-wide partial sums, so a float sum of many terms carries float
+/// accumulation error (relative ~ count / lanes x 6e-8 of sum_j |w_j Y_k|); use double for long sums.
+/// Deterministic: the same inputs give the same bits.
+void eval_accumulate(int bands, std::size_t count, const float* x, const float* y, const float* z, const float* w,
+                     float* sums);
+void eval_accumulate(int bands, std::size_t count, const double* x, const double* y, const double* z,
+                     const double* w, double* sums);
+
 /// An out_stride >= count (at most count + 2 cache lines more) that keeps eval_batch on its fastest
 /// path, for elements of `element_bytes` (4 for float, 8 for double): an odd number of 64-byte lines,
 /// so rows stay line-aligned when `out` is and spread over all cache sets.

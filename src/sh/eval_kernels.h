@@ -99,6 +99,28 @@ PRT_SH_INLINE V splat(T s) {
   return V{} + s;
 }
 
+/// Two vectors of directions as one value (kernels see it as one V): the kernels run on both at once,
+/// and a store of a Pair writes 2 sizeof(V) contiguous bytes (a whole 64-byte line for 32-byte vectors).
+template <typename V>
+struct Pair {
+  V a, b;
+};
+template <typename V>
+PRT_SH_INLINE Pair<V> operator+(Pair<V> p, Pair<V> q) { return {p.a + q.a, p.b + q.b}; }
+template <typename V>
+PRT_SH_INLINE Pair<V> operator-(Pair<V> p, Pair<V> q) { return {p.a - q.a, p.b - q.b}; }
+template <typename V>
+PRT_SH_INLINE Pair<V> operator*(Pair<V> p, Pair<V> q) { return {p.a * q.a, p.b * q.b}; }
+template <typename V, typename T>
+PRT_SH_INLINE Pair<V> operator*(T t, Pair<V> p) { return {t * p.a, t * p.b}; }
+template <typename V, typename T>
+PRT_SH_INLINE Pair<V> operator+(Pair<V> p, T t) { return {p.a + t, p.b + t}; }
+/// Loads two consecutive vectors of T values.
+template <typename V, typename T>
+PRT_SH_INLINE Pair<V> load_pair(const T* p) {
+  return {load<V>(p), load<V>(p + sizeof(V) / sizeof(T))};
+}
+
 // ---------------------------------------------------------------------------------------------
 // Recurrence constants (double; the float kernels round each to float once).
 
@@ -251,6 +273,17 @@ void eval_batch_generic(int bands, std::size_t count, const float* x, const floa
                         std::size_t out_stride);
 void eval_batch_generic(int bands, std::size_t count, const double* x, const double* y, const double* z,
                         double* out, std::size_t out_stride);
+
+/// eval_accumulate through eval_generic (values weighted and added, no rescaled recurrence) for any band
+/// count 1..kMaxBands; same contract as sh::eval_accumulate (eval_accumulate.cpp).
+void eval_accumulate_generic(int bands, std::size_t count, const float* x, const float* y, const float* z,
+                             const float* w, float* sums);
+void eval_accumulate_generic(int bands, std::size_t count, const double* x, const double* y, const double* z,
+                             const double* w, double* sums);
+
+/// Directions per tile of eval_batch's staged path (crowded strides such as out_stride = count = 1024)
+/// for `bands` and elements of element_bytes (4 or 8): each output row is written in runs of this many.
+std::size_t staged_tile_directions(int bands, std::size_t element_bytes);
 
 /// One direction through eval_generic (scalar runtime loops); same contract as sh::eval.
 void eval_one_generic(int bands, float x, float y, float z, float* out);

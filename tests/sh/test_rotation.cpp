@@ -375,3 +375,33 @@ TEST_CASE("FloatRotation gives f(R^-1 d) to float precision and its RGB form rot
     }
   }
 }
+
+TEST_CASE("FloatRotation agrees with the double Rotation::apply to float rounding of each band", "[sh][rotation]") {
+  // Each output is a (2l+1)-term float sum of float-rounded blocks times float inputs: the error is at
+  // most about (2l+1) float roundings of the band's magnitude sum_k |block| |in| <= sqrt(2l+1) |band|.
+  std::mt19937_64 rng(23);
+  double worst_ratio = 0;
+  for (int bands : {1, 2, 3, 5, 9, 16, 17, 32}) {
+    for (int trial = 0; trial < 3; ++trial) {
+      const glm::dmat3 r = random_rotation(rng);
+      const std::vector<double> c = random_coefficients(rng, bands);
+      const Rotation rotation(bands, r);
+      std::vector<double> exact(c.size());
+      rotation.apply(c.data(), exact.data());
+      std::vector<float> in(c.begin(), c.end()), out(c.size());
+      prt::sh::FloatRotation{rotation}.apply(in.data(), out.data());
+      for (int l = 0; l < bands; ++l) {
+        double norm = 0;
+        for (int m = -l; m <= l; ++m) norm += c[prt::sh::index(l, m)] * c[prt::sh::index(l, m)];
+        const double bound = 2.0 * kFloatEps * (2 * l + 2) * std::sqrt((2.0 * l + 1.0) * norm);
+        for (int m = -l; m <= l; ++m) {
+          const int k = prt::sh::index(l, m);
+          INFO("bands " << bands << ", l " << l << ", m " << m);
+          REQUIRE(std::abs(out[k] - exact[k]) <= bound);
+          worst_ratio = std::max(worst_ratio, std::abs(out[k] - exact[k]) / bound);
+        }
+      }
+    }
+  }
+  CHECK(worst_ratio >= 0.01);  // the bound is within two orders of magnitude of what happens
+}
