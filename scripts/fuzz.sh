@@ -12,7 +12,7 @@
 #   --line-coverage  no fuzzing: build the targets with clang's source-based coverage (no sanitizers) in
 #                 build-fuzz-cov/, replay build-fuzz/corpus/<target> (else the seed corpus) once and print
 #                 llvm-cov's line, function and region coverage of each prt source file the target runs
-#   TARGET        ply obj gltf image prt brdf light probes points (default: all)
+#   TARGET        ply obj gltf image prt cprt brdf light probes points (default: all)
 # The committed seed corpus tests/fuzz/corpus/<target> is copied to build-fuzz/corpus/<target>, which
 # collects the new inputs; crashes go to build-fuzz/artifacts/. Exits non-zero on any crash, sanitizer
 # report, leak, timeout (10 s per input) or out-of-memory (2 GiB), printing the reproducer's path.
@@ -20,10 +20,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-all=(ply obj gltf image prt brdf light probes points)
+all=(ply obj gltf image prt cprt brdf light probes points)
 # Executions per target for --ci: about 12 s each at the rates measured on the shared (heavily
 # loaded) AMD EPYC development machine, so less on an idle CI machine (tests/fuzz/README.md).
-declare -A ci_runs=([ply]=12400 [obj]=8400 [gltf]=10400 [image]=8000 [prt]=28800 [brdf]=6000 [light]=10400 [probes]=26800 [points]=12800)
+declare -A ci_runs=([ply]=12400 [obj]=8400 [gltf]=10400 [image]=8000 [prt]=28800 [cprt]=28800 [brdf]=6000 [light]=10400 [probes]=26800 [points]=12800)
 mode=time; seconds=600; runs=0; build_only=0; targets=()
 while (($#)); do
   case "$1" in
