@@ -120,6 +120,13 @@ std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3&
   return std::vector<glm::vec3>(mesh.positions.size(), fallback);
 }
 
+trace::SceneOptions bake_scene_options(int threads) {
+  trace::SceneOptions options;
+  options.build_threads = threads;
+  options.robust = false;
+  return options;
+}
+
 transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
   validate_options(options);
   if (transfer::is_glossy(options.kind)) return bake_glossy(mesh, options, report);
@@ -158,7 +165,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   PassContext ctx;
   if (options.kind != transfer::Kind::unshadowed) {
     auto start = std::chrono::steady_clock::now();
-    scene = std::make_unique<trace::Scene>(mesh, trace::SceneOptions{options.threads, true});
+    scene = std::make_unique<trace::Scene>(mesh, bake_scene_options(options.threads));
     rep.seconds_build = seconds_since(start);
     ray_offset = scene->ray_offset();
     samples = make_local_sample_set(options.samples, options.bands, options.seed);

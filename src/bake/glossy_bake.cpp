@@ -67,7 +67,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   h.mesh_fingerprint = mesh::fingerprint(mesh);
 
   auto start = std::chrono::steady_clock::now();
-  const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
+  const trace::Scene scene(mesh, bake_scene_options(options.threads));
   rep.seconds_build = seconds_since(start);
   const LocalSampleSet samples = make_uniform_sample_set(options.samples, options.bands, options.seed);
   const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);

@@ -78,6 +78,7 @@
 // (measured once on this machine). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
 // array.
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -95,6 +96,12 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 inline constexpr std::uint32_t kNoHit = 0xFFFFFFFFu;
 /// Rays per RayBatch unless a capacity is given (see BATCH SIZE AND CALLS).
 inline constexpr std::size_t kDefaultBatchCapacity = 256;
+
+/// Where and how the rays leaving one surface point are traced (Scene::spawn_point).
+struct SpawnPoint {
+  glm::vec3 origin{0.0f};  ///< p + n * Scene::ray_offset(); tnear = 0
+  bool robust = false;     ///< trace this point's batches with RayBatch::set_robust(true) (p touches another surface)
+};
 
 /// One ray, laid out exactly as Embree's RTCRay (48 bytes, 16-byte aligned; checked in scene.cpp).
 /// The ray is the segment origin + t * dir, t in [tnear, tfar]; dir need not be unit length (t is then
@@ -142,8 +149,12 @@ class RayBatch {
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   bool full() const { return size_ == rays_.size(); }
-  /// Forgets all rays (capacity is kept).
+  /// Forgets all rays (capacity is kept); the robust flag stays.
   void clear() { size_ = 0; }
+  /// Whether Scene::occluded / intersect trace this batch with RTC_SCENE_FLAG_ROBUST even in a scene built
+  /// without it (SpawnPoint::robust; a scene built with it always uses it). Default false.
+  void set_robust(bool robust) { robust_ = robust; }
+  bool robust() const { return robust_; }
 
   /// Appends the ray origin + t dir, t in [tnear, tfar] (0 <= tnear <= tfar, tfar may be kInfinity) and
   /// returns its index. Precondition: !full() (checked with assert only: this is the hot loop).
@@ -178,6 +189,7 @@ class RayBatch {
  private:
   std::vector<RayHit> rays_;  // capacity() records, all 16-byte aligned
   std::size_t size_ = 0;
+  bool robust_ = false;
 };
 
 inline std::size_t RayBatch::push(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {
@@ -218,6 +230,10 @@ struct SceneOptions {
   bool robust = true;
   /// How batches are traced (see BatchCall); the results are bit-identical either way (tested).
   BatchCall batch_call = BatchCall::stream;
+  /// In a scene without robust mode: whether Scene::spawn_point sends the rays of points that touch
+  /// another surface through robust mode (a second BVH, built on first use; ROBUST MODE at the top of
+  /// this header). Off only to measure what the rule buys (tests/trace/test_robust.cpp).
+  bool contact_rule = true;
 };
 
 /// What building the scene measured.
@@ -261,6 +277,19 @@ class Scene {
   float ray_offset() const { return ray_offset_; }
   /// p + n * ray_offset(): where a ray leaving the surface point p with unit normal n starts.
   glm::vec3 offset_origin(const glm::vec3& p, const glm::vec3& n) const { return p + n * ray_offset_; }
+  /// Where the rays leaving surface point p (unit normal n) start, and whether they need robust mode:
+  /// true only in a scene built without it (SceneOptions::contact_rule) where p touches another surface
+  /// (ROBUST MODE at the top of this header). Costs one Embree point query in such a scene (about a
+  /// microsecond); call it once per point, not per ray.
+  SpawnPoint spawn_point(const glm::vec3& p, const glm::vec3& n) const;
+  /// Whether the lifted origin offset_origin(p, n) lies within contact_distance() of a triangle (exact
+  /// point-triangle distance in double): another surface touches p (a block standing on a floor, the
+  /// neighbouring face at an unwelded concave edge), or p's own faces meet n at grazing angles
+  /// (n.n_f < 1/16).
+  bool origin_touches_surface(const glm::vec3& p, const glm::vec3& n) const;
+  /// ray_offset() / 16 (2-4 float ulps of M): how close a lifted origin must come to another surface to
+  /// touch it.
+  float contact_distance() const { return std::ldexp(ray_offset_, -4); }
 
   /// Bounding box of the mesh's referenced and unreferenced vertices (zero box for an empty mesh).
   glm::vec3 bounds_lo() const { return lo_; }
@@ -272,6 +301,7 @@ class Scene {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   float ray_offset_ = 0.0f;
+  bool contact_rule_ = false;
   glm::vec3 lo_{0.0f}, hi_{0.0f};
   std::size_t triangle_count_ = 0;
 };

@@ -2,7 +2,7 @@
 // The loop every per-vertex hemisphere pass runs (the bake's shadowed, interreflection and glossy
 // passes, the probes' surface passes): vertices in a given order, split over threads in chunks of 64;
 // each vertex traces the same local sample directions turned into its own frame
-// sh::vertex_frame(n, seed, v), from Scene::offset_origin(p, n), in batches of up to
+// sh::vertex_frame(n, seed, v), from Scene::spawn_point(p, n), in batches of up to
 // kDefaultBatchCapacity rays. What a pass does with the hits is its worker's business.
 // The "vertices" may be other surface sample points (a lightmap's texel samples): VertexRays::positions
 // and ::normals then replace the mesh's, and the index v names a sample point.
@@ -71,12 +71,13 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
       const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
-      const glm::vec3 origin = r.scene->offset_origin(positions[v], normals[v]);
+      const SpawnPoint spawn = r.scene->spawn_point(positions[v], normals[v]);
       worker.start(v, frame);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);
         batch.clear();
-        for (std::size_t s = first; s < first + count; ++s) batch.push(origin, frame * local[s]);
+        batch.set_robust(spawn.robust);
+        for (std::size_t s = first; s < first + count; ++s) batch.push(spawn.origin, frame * local[s]);
         if (r.query == Query::occluded) r.scene->occluded(batch);
         else r.scene->intersect(batch);
         worker.batch(v, batch, first);
