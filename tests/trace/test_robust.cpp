@@ -162,3 +162,49 @@ TEST_CASE("the contact rule flags few vertices of meshes without contacts and lo
     CHECK(diff.extra_self_hits <= 0);
   }
 }
+
+TEST_CASE("closest-hit study: what robust mode changes in the hits of vertex rays", "[.leaks]") {
+  // Closest hits (the bounce passes) of the same rays in a robust and a non-robust scene; where they
+  // name different triangles, the exact closest hit decides which one is wrong.
+  const auto dirs = trace::testing::test_directions(64);
+  struct Case {
+    std::string name;
+    mesh::Mesh m;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"guardian lion 10k", asset("guardian_lion_10k.ply")});
+  cases.push_back({"armadillo", asset("armadillo.ply")});
+  cases.push_back({"bumpy icosphere L6", bench::bumpy_icosphere(6, 0.35f)});
+  for (const Case& c : cases) {
+    const trace::Scene robust = make_scene(c.m, true), fast = make_scene(c.m, false);
+    const double D = trace::testing::diagonal(robust);
+    trace::RayBatch br(dirs.size()), bf(dirs.size());
+    std::size_t rays = 0, differ = 0, robust_wrong = 0, fast_wrong = 0, fast_miss = 0;
+    for (std::size_t v = 0; v < c.m.positions.size(); ++v) {
+      trace::testing::push_vertex_rays(robust, c.m, v, dirs, Spawn{}, br);
+      trace::testing::push_vertex_rays(fast, c.m, v, dirs, Spawn{}, bf);
+      robust.intersect(br);
+      fast.intersect(bf);
+      rays += dirs.size();
+      for (std::size_t k = 0; k < dirs.size(); ++k) {
+        const trace::HitResult hr = br.hit(k), hf = bf.hit(k);
+        if (hr.prim_id == hf.prim_id) continue;
+        ++differ;
+        const glm::dvec3 o = glm::dvec3(c.m.positions[v]) + glm::dvec3(c.m.normals[v]) * (1e-9 * D);
+        const auto truth = trace::testing::reference_closest_hit(c.m, o, glm::dvec3(br.direction(k)), 0.0, 1e300);
+        // Wrong: not the exact triangle and not at the exact distance (an edge hit may name either side).
+        auto wrong = [&](const trace::HitResult& h) {
+          if (h.prim_id == truth.prim_id) return false;
+          return !h.hit() || std::abs(double(h.t) - truth.t) > 1e-6 * D;
+        };
+        robust_wrong += wrong(hr);
+        fast_wrong += wrong(hf);
+        fast_miss += !hf.hit() && truth.hit();
+      }
+    }
+    std::printf("%s: %zu rays, %zu name different triangles; wrong: robust %zu, not robust %zu (%zu of them misses)\n",
+                c.name.c_str(), rays, differ, robust_wrong, fast_wrong, fast_miss);
+    std::fflush(stdout);
+  }
+  SUCCEED();
+}
