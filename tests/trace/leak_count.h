@@ -6,6 +6,7 @@
 // "Ray offset").
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -83,6 +84,13 @@ inline std::vector<char> exact_occlusion(const mesh::Mesh& m, const std::vector<
   });
   return exact;
 }
+
+/// A mesh of a printed study (test_trace "[.sweep]", "[.leaks]"): every `stride`-th vertex is traced.
+struct StudyCase {
+  std::string name;
+  mesh::Mesh m;
+  std::size_t stride = 1;
+};
 
 /// Disagreements with the exact answer.
 struct Disagreements {

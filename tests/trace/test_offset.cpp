@@ -129,12 +129,7 @@ TEST_CASE("with the offset rule, occlusion from vertices of concave meshes match
 
 TEST_CASE("offset rule sweep: self-hits and leaks of alternative rules (prints the table in scene.h)", "[.sweep]") {
   const auto dirs = test_directions(64);
-  struct Case {
-    std::string name;
-    mesh::Mesh m;
-    std::size_t stride;
-  };
-  std::vector<Case> cases;
+  std::vector<trace::testing::StudyCase> cases;
   cases.push_back({"icosphere L4, radial normals", bench::icosphere(4), 1});
   cases.push_back({"icosphere L4 at x = 100", bench::icosphere(4, 1.0f, glm::vec3(100.0f, 0.0f, 0.0f)), 1});
   cases.push_back({"bumpy icosphere L4", bench::bumpy_icosphere(4, 0.35f), 1});
@@ -153,7 +148,7 @@ TEST_CASE("offset rule sweep: self-hits and leaks of alternative rules (prints t
                         {"lift 1e-4 D", 1e-4, 0, 0},
                         {"lift 2^-18 M (prt)", 0, std::ldexp(1.0, -18), 0},
                         {"lift 2^-21 M", 0, std::ldexp(1.0, -21), 0}};
-  for (const Case& c : cases) {
+  for (const trace::testing::StudyCase& c : cases) {
     trace::SceneOptions options;
     options.robust = true;  // the table in scene.h was measured with RTC_SCENE_FLAG_ROBUST
     const trace::Scene scene(c.m, options);

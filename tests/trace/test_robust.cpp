@@ -35,12 +35,7 @@ mesh::Mesh asset(const char* name) {
 
 TEST_CASE("leak study: robust mode and origin rules against the exact answers", "[.leaks]") {
   const auto dirs = trace::testing::test_directions(64);
-  struct Case {
-    std::string name;
-    mesh::Mesh m;
-    std::size_t stride;
-  };
-  std::vector<Case> cases;
+  std::vector<trace::testing::StudyCase> cases;
   cases.push_back({"icosphere L4", bench::icosphere(4), 1});
   cases.push_back({"bumpy icosphere L4", bench::bumpy_icosphere(4, 0.35f), 1});
   cases.push_back({"cup (open box, smooth creases)", bench::open_box(glm::vec3(0.0f), glm::vec3(1.0f), 8), 1});
@@ -64,7 +59,7 @@ TEST_CASE("leak study: robust mode and origin rules against the exact answers", 
                         {"fast, lift + pullback eps/16", false, false, 1.0 / 16},
                         {"fast, lift + pullback eps/4", false, false, 0.25},
                         {"fast, lift + pullback eps", false, false, 1.0}};
-  for (const Case& c : cases) {
+  for (const trace::testing::StudyCase& c : cases) {
     const trace::Scene robust = make_scene(c.m, true), fast = make_scene(c.m, false);
     const double D = trace::testing::diagonal(robust);
     const auto exact = trace::testing::exact_occlusion(c.m, dirs, D, c.stride);
