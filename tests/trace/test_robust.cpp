@@ -11,6 +11,7 @@
 
 #include "bench_meshes.h"
 #include "mesh/mesh.h"
+#include "sh/sampling.h"
 #include "trace/leak_count.h"
 #include "trace/scene.h"
 
@@ -201,5 +202,45 @@ TEST_CASE("closest-hit study: what robust mode changes in the hits of vertex ray
                 c.name.c_str(), rays, differ, robust_wrong, fast_wrong, fast_miss);
     std::fflush(stdout);
   }
+  SUCCEED();
+}
+
+TEST_CASE("bake-ray study: where robust mode and the contact rule disagree on a scan's bake rays", "[.leaks]") {
+  // The diffuse bake's own rays (1024 cosine directions, seed 1, sh::vertex_frame per vertex, the
+  // area-weighted normals `prt bake` computes for a PLY without normals) on the armadillo scan.
+  mesh::Mesh m = asset("armadillo.ply");
+  const std::vector<glm::dvec3> cosine = sh::hemisphere_directions_cosine(1024, 1);
+  std::vector<glm::vec3> local(cosine.begin(), cosine.end());
+  const trace::Scene robust = make_scene(m, true), fast = make_scene(m, false);
+  const double D = trace::testing::diagonal(robust);
+  trace::RayBatch br(local.size()), bf(local.size());
+  std::size_t differ = 0, robust_right = 0;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const glm::mat3 frame = sh::vertex_frame(m.normals[v], 1, v);
+    const trace::SpawnPoint s = fast.spawn_point(m.positions[v], m.normals[v]);
+    br.clear();
+    bf.clear();
+    bf.set_robust(s.robust);
+    for (const glm::vec3& l : local) {
+      br.push(robust.offset_origin(m.positions[v], m.normals[v]), frame * l);
+      bf.push(s.origin, frame * l);
+    }
+    robust.occluded(br);
+    fast.occluded(bf);
+    for (std::size_t k = 0; k < local.size(); ++k) {
+      if (br.is_occluded(k) == bf.is_occluded(k)) continue;
+      ++differ;
+      const glm::dvec3 o = glm::dvec3(m.positions[v]) + glm::dvec3(m.normals[v]) * (1e-9 * D);
+      const glm::dvec3 d(br.direction(k));
+      const bool truth = trace::testing::reference_occluded(m, o, d, 0.0, 1e300);
+      robust_right += br.is_occluded(k) == truth;
+      const auto hit = trace::testing::reference_closest_hit(m, o, d, 0.0, 1e300);
+      std::printf("vertex %zu ray %zu: robust %d, prt %d, exact %d (exact hit t = %.3g D, edge margin %.3g, d.n = %.3g)\n", v, k,
+                  int(br.is_occluded(k)), int(bf.is_occluded(k)), int(truth), hit.t / D, hit.edge_margin,
+                  double(glm::dot(br.direction(k), m.normals[v])));
+    }
+  }
+  std::printf("armadillo bake rays: %zu of %zu differ, robust right in %zu\n", differ, m.positions.size() * local.size(),
+              robust_right);
   SUCCEED();
 }
