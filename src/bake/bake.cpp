@@ -120,6 +120,13 @@ std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3&
   return std::vector<glm::vec3>(mesh.positions.size(), fallback);
 }
 
+void use_robust_scene(std::unique_ptr<trace::Scene>& scene, const mesh::Mesh& mesh, int threads, double& build_seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  scene.reset();
+  scene = std::make_unique<trace::Scene>(mesh, trace::SceneOptions{threads, true});
+  build_seconds += seconds_since(start);
+}
+
 trace::SceneOptions bake_scene_options(int threads) {
   trace::SceneOptions options;
   options.build_threads = threads;
@@ -184,6 +191,8 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   rep.pass_energy.push_back(pass_energy(data.values, stride, n, channels));
 
   if (options.kind == transfer::Kind::interreflected) {
+    use_robust_scene(scene, mesh, options.threads, rep.seconds_build);
+    ctx.scene = scene.get();
     auto start = std::chrono::steady_clock::now();
     // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
     // renderer can shade a disc's direct light exactly and only its bounces through the transfer.
