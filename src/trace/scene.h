@@ -78,7 +78,8 @@
 // and the non-robust hit is the wrong one (not the exact triangle, not at its distance) about twice as
 // often (lion 8 against 3 of 720,000; armadillo 7 / 4 of 1.87M; blob class 6 / 3 of 2.95M). So the
 // per-vertex loop (vertex_rays.h) traces every closest-hit query robust: the bounce passes keep robust
-// mode's hits, and a scene without it holds two BVHs once one is traced.
+// mode's hits; a scene without it would then hold two BVHs, so the interreflected bakes replace theirs
+// by a robust scene before the first bounce pass (bake/passes.h, use_robust_scene).
 //
 // DETERMINISM. For a fixed mesh, rays and options, every result (occluded flags, prim_id, t, u, v) is
 // bit-identical across runs, across the number of threads that trace, across the order in which
