@@ -247,13 +247,13 @@ void orthonormal_frame(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
   b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
-namespace {
-
 double process_cpu_seconds() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
+
+namespace {
 
 // Shared body of the two passes: per vertex, fills batches with the vertex's rays and calls `trace`,
 // which returns how many rays of the batch count.

@@ -65,6 +65,9 @@ std::vector<glm::vec3> hemisphere_directions(std::size_t count);
 void orthonormal_frame(const glm::vec3& n, glm::vec3& t, glm::vec3& b);
 
 /// What a baseline pass did.
+/// CPU seconds of the whole process so far (all threads; CLOCK_PROCESS_CPUTIME_ID).
+double process_cpu_seconds();
+
 struct PassResult {
   double seconds = 0.0;               ///< wall time of the pass (rays built and traced)
   double cpu_seconds = 0.0;           ///< CPU time of the whole process during the pass (all threads)

@@ -120,6 +120,20 @@ std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3&
   return std::vector<glm::vec3>(mesh.positions.size(), fallback);
 }
 
+void use_robust_scene(std::unique_ptr<trace::Scene>& scene, const mesh::Mesh& mesh, int threads, double& build_seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  scene.reset();
+  scene = std::make_unique<trace::Scene>(mesh, trace::SceneOptions{threads, true});
+  build_seconds += seconds_since(start);
+}
+
+trace::SceneOptions bake_scene_options(int threads) {
+  trace::SceneOptions options;
+  options.build_threads = threads;
+  options.robust = false;
+  return options;
+}
+
 transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
   validate_options(options);
   if (transfer::is_glossy(options.kind)) return bake_glossy(mesh, options, report);
@@ -158,7 +172,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   PassContext ctx;
   if (options.kind != transfer::Kind::unshadowed) {
     auto start = std::chrono::steady_clock::now();
-    scene = std::make_unique<trace::Scene>(mesh, trace::SceneOptions{options.threads, true});
+    scene = std::make_unique<trace::Scene>(mesh, bake_scene_options(options.threads));
     rep.seconds_build = seconds_since(start);
     ray_offset = scene->ray_offset();
     samples = make_local_sample_set(options.samples, options.bands, options.seed);
@@ -177,6 +191,8 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   rep.pass_energy.push_back(pass_energy(data.values, stride, n, channels));
 
   if (options.kind == transfer::Kind::interreflected) {
+    use_robust_scene(scene, mesh, options.threads, rep.seconds_build);
+    ctx.scene = scene.get();
     auto start = std::chrono::steady_clock::now();
     // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
     // renderer can shade a disc's direct light exactly and only its bounces through the transfer.

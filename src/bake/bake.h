@@ -68,6 +68,7 @@
 #include "dist/context.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
+#include "trace/scene.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::bake {
@@ -110,6 +111,11 @@ void validate_options(const BakeOptions& options);
 /// kind without a BRDF, bands_out out of range). The header carries the mesh's counts and fingerprint
 /// and the bake parameters as JSON (glossy: also "bands_out", "brdf" (brdf::to_spec) and "frame").
 transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report = nullptr);
+
+/// The ray scene of the vertex bakes (bake, bake_glossy): `threads` build threads, RTC_SCENE_FLAG_ROBUST
+/// off, rays spawned with the origin pullback that keeps robust mode's answers (trace/scene.h, ROBUST
+/// MODE; docs/conventions.md, "Robust mode").
+trace::SceneOptions bake_scene_options(int threads);
 
 /// Per-vertex albedo the bake uses: the mesh's own, or options.albedo for every vertex.
 std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback);

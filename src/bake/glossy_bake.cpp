@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/glossy_passes.h"
+#include "bake/passes.h"
 #include "brdf/frame.h"
 #include "brdf/projection.h"
 #include "trace/scene.h"
@@ -67,13 +68,13 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   h.mesh_fingerprint = mesh::fingerprint(mesh);
 
   auto start = std::chrono::steady_clock::now();
-  const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
+  auto scene = std::make_unique<trace::Scene>(mesh, bake_scene_options(options.threads));
   rep.seconds_build = seconds_since(start);
   const LocalSampleSet samples = make_uniform_sample_set(options.samples, options.bands, options.seed);
   const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
   std::vector<glm::mat3> frames(vertices);
   for (std::size_t v = 0; v < vertices; ++v) frames[v] = brdf::shading_frame(mesh.normals[v]);
-  const GlossyContext ctx{&mesh, &scene, &samples, &order, &frames, options.bands, bands_out,
+  GlossyContext ctx{&mesh, scene.get(), &samples, &order, &frames, options.bands, bands_out,
                           options.seed, options.threads, options.progress, options.dist};
   const dist::Context& dist = dist::or_single(options.dist);
 
@@ -96,6 +97,8 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   rep.pass_energy.push_back(pass_energy(data.values, matrix_size, vertices * channels));
 
   if (interreflected) {
+    use_robust_scene(scene, mesh, options.threads, rep.seconds_build);
+    ctx.scene = scene.get();
     start = std::chrono::steady_clock::now();
     const brdf::BrdfMatrix brdf_matrix = brdf::project(options.brdf, bands_out);
     const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
@@ -121,7 +124,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     rep.seconds_bounces = seconds_since(start);
   }
   rep.rays_traced = dist.sum(rep.rays_traced);
-  h.parameters_json = parameters_json(options, bands_out, rep.bounces_done, scene.ray_offset());
+  h.parameters_json = parameters_json(options, bands_out, rep.bounces_done, scene->ray_offset());
   return data;
 }
 

@@ -5,6 +5,7 @@
 // points are the mesh's vertices, or (PassContext::points) the texel sample points of a lightmap.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,13 @@ using PrevFromNext = std::function<void(std::vector<float>& next, std::vector<fl
 void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const BakeOptions& options,
                   std::vector<float> prev, const PrevFromNext& prev_from_next, std::vector<float>& values,
                   std::vector<float>& bounce_only, BakeReport& rep);
+
+/// Before the bounce passes: replaces `scene` (the direct pass's, built with bake_scene_options, without
+/// robust mode) by a robust scene of the same mesh, freeing the first BVH before building the second:
+/// the bounce passes trace only closest hits, which trace/vertex_rays.h always traces robust, so a scene
+/// without robust mode would otherwise build its robust BVH beside its own. Adds the build time to
+/// `build_seconds`. The answers are those of the lazily built robust BVH (the same deterministic build).
+void use_robust_scene(std::unique_ptr<trace::Scene>& scene, const mesh::Mesh& mesh, int threads, double& build_seconds);
 
 /// The bake parameters block of a diffuse transfer file (JSON object text).
 std::string parameters_json(const BakeOptions& options, const mesh::Mesh& mesh, int bounces_done, float ray_offset);

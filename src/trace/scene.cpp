@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstring>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -93,10 +94,55 @@ struct Scene::Impl {
   std::vector<float> padded_positions;  // x,y,z per vertex + 1 float of padding; empty when shared
   SceneStats stats;
   BatchCall batch_call = BatchCall::stream;
+  const std::vector<glm::vec3>* positions = nullptr;  // the mesh's, for the contact query
+  const std::vector<std::uint32_t>* indices = nullptr;
+
+  const void* vertex_data = nullptr;  // the mesh's positions or padded_positions
+  bool robust = true;                  // of `scene`
+  std::once_flag robust_once;          // builds robust_scene (scenes without robust mode)
+  RTCScene robust_scene = nullptr;
 
   ~Impl() {
+    if (robust_scene) rtcReleaseScene(robust_scene);
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
+  }
+
+  // A committed scene of the mesh (MEDIUM quality, deterministic), with or without robust mode.
+  RTCScene new_scene(bool robust_mode) {
+    RTCScene s = rtcNewScene(device);
+    check("scene creation");
+    rtcSetSceneFlags(s, robust_mode ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_MEDIUM);
+    const std::size_t triangles = indices->size() / 3;
+    if (triangles > 0) {
+      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      check("geometry creation");
+      static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+      // Embree loads the last vertex with a 16-byte read: vertex_data has 4 bytes of slack after it.
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertex_data, 0, sizeof(glm::vec3),
+                                 positions->size());
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices->data(), 0,
+                                 3 * sizeof(std::uint32_t), triangles);
+      rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_MEDIUM);
+      rtcCommitGeometry(geometry);
+      rtcAttachGeometryByID(s, geometry, 0);
+      rtcReleaseGeometry(geometry);
+      check("geometry setup");
+    }
+    {
+      ScopedFlushDenormals ftz;
+      rtcCommitScene(s);
+    }
+    check("BVH build");
+    return s;
+  }
+
+  // The scene with robust mode: `scene` itself, or a second one built on first use.
+  RTCScene robust_for_contacts() {
+    if (robust) return scene;
+    std::call_once(robust_once, [this] { robust_scene = new_scene(true); });
+    return robust_scene;
   }
 
   // Throws prt::Error if Embree reported an error since the last check.
@@ -169,6 +215,7 @@ Scene::Scene(const mesh::Mesh& mesh, const SceneOptions& options) : impl_(std::m
 
   triangle_count_ = indices.size() / 3;
   ray_offset_ = ray_offset_for(positions);
+  contact_rule_ = !options.robust && options.contact_rule;
   if (!positions.empty()) {
     lo_ = hi_ = positions[0];
     for (const glm::vec3& p : positions) {
@@ -179,47 +226,25 @@ Scene::Scene(const mesh::Mesh& mesh, const SceneOptions& options) : impl_(std::m
 
   Impl& im = *impl_;
   im.batch_call = options.batch_call;
+  im.positions = &positions;
+  im.indices = &indices;
   const std::string config = "threads=" + std::to_string(std::max(options.build_threads, 0));
   im.device = rtcNewDevice(config.c_str());
   if (!im.device) im.check("device creation");
   rtcSetDeviceErrorFunction(im.device, record_error, &im.errors);
   rtcSetDeviceMemoryMonitorFunction(im.device, monitor_memory, &im.memory);
 
-  im.scene = rtcNewScene(im.device);
-  im.check("scene creation");
-  rtcSetSceneFlags(im.scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-  rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_MEDIUM);
-
-  if (triangle_count_ > 0) {
-    RTCGeometry geometry = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    im.check("geometry creation");
-    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-    // Embree loads the last vertex with a 16-byte read: share the mesh's storage only if the vector's
-    // allocation extends past it.
-    im.stats.shares_positions = positions.capacity() > positions.size();
-    const void* vertex_data = positions.data();
-    if (!im.stats.shares_positions) {
-      im.padded_positions.assign(3 * positions.size() + 1, 0.0f);
-      std::memcpy(im.padded_positions.data(), positions.data(), positions.size() * sizeof(glm::vec3));
-      vertex_data = im.padded_positions.data();
-    }
-    im.stats.geometry_bytes = im.padded_positions.size() * sizeof(float);
-    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertex_data, 0,
-                               sizeof(glm::vec3), positions.size());
-    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices.data(), 0,
-                               3 * sizeof(std::uint32_t), triangle_count_);
-    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_MEDIUM);
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometryByID(im.scene, geometry, 0);
-    rtcReleaseGeometry(geometry);
-    im.check("geometry setup");
+  im.stats.shares_positions = triangle_count_ > 0 && positions.capacity() > positions.size();
+  im.vertex_data = positions.data();
+  if (!im.stats.shares_positions && triangle_count_ > 0) {
+    im.padded_positions.assign(3 * positions.size() + 1, 0.0f);
+    std::memcpy(im.padded_positions.data(), positions.data(), positions.size() * sizeof(glm::vec3));
+    im.vertex_data = im.padded_positions.data();
   }
-
+  im.stats.geometry_bytes = im.padded_positions.size() * sizeof(float);
+  im.robust = options.robust;
   const auto start = std::chrono::steady_clock::now();
-  {
-    ScopedFlushDenormals ftz;
-    rtcCommitScene(im.scene);
-  }
+  im.scene = im.new_scene(options.robust);
   im.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   im.check("BVH build");
   im.stats.embree_bytes = static_cast<std::size_t>(std::max<std::int64_t>(im.memory.now.load(), 0));
@@ -235,21 +260,23 @@ const SceneStats& Scene::stats() const { return impl_->stats; }
 void Scene::occluded(RayBatch& batch) const {
   if (batch.empty()) return;
   ScopedFlushDenormals ftz;
+  RTCScene target = batch.robust() ? impl_->robust_for_contacts() : impl_->scene;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   if (impl_->batch_call == BatchCall::stream) {
-    rtcOccluded1M(impl_->scene, &context, reinterpret_cast<RTCRay*>(batch.data()), static_cast<unsigned>(batch.size()),
+    rtcOccluded1M(target, &context, reinterpret_cast<RTCRay*>(batch.data()), static_cast<unsigned>(batch.size()),
                   sizeof(RayHit));
   } else {
     for (std::size_t i = 0; i < batch.size(); ++i)
-      rtcOccluded1(impl_->scene, &context, reinterpret_cast<RTCRay*>(&batch.data()[i].ray));
+      rtcOccluded1(target, &context, reinterpret_cast<RTCRay*>(&batch.data()[i].ray));
   }
 }
 
 void Scene::intersect(RayBatch& batch) const {
   if (batch.empty()) return;
   ScopedFlushDenormals ftz;
+  RTCScene target = batch.robust() ? impl_->robust_for_contacts() : impl_->scene;
   RayHit* rays = batch.data();
   for (std::size_t i = 0; i < batch.size(); ++i) {
     rays[i].hit.geom_id = kNoHit;
@@ -260,12 +287,79 @@ void Scene::intersect(RayBatch& batch) const {
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   if (impl_->batch_call == BatchCall::stream) {
-    rtcIntersect1M(impl_->scene, &context, reinterpret_cast<RTCRayHit*>(rays), static_cast<unsigned>(batch.size()),
+    rtcIntersect1M(target, &context, reinterpret_cast<RTCRayHit*>(rays), static_cast<unsigned>(batch.size()),
                    sizeof(RayHit));
   } else {
     for (std::size_t i = 0; i < batch.size(); ++i)
-      rtcIntersect1(impl_->scene, &context, reinterpret_cast<RTCRayHit*>(&rays[i]));
+      rtcIntersect1(target, &context, reinterpret_cast<RTCRayHit*>(&rays[i]));
   }
+}
+
+namespace {
+
+// Distance from q to triangle (a, b, c) in double: to the plane where q projects inside the triangle,
+// else to the nearest edge. A degenerate triangle is measured by its edges.
+double distance_to_segment(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 ab = b - a;
+  const double len2 = glm::dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(glm::dot(q - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return glm::length(q - (a + t * ab));
+}
+
+double distance_to_triangle(const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 normal = glm::cross(b - a, c - a);
+  const double area2 = glm::dot(normal, normal);
+  if (area2 > 0.0) {
+    // Signed sub-areas: q's projection is inside iff all three have the normal's orientation.
+    const bool inside = glm::dot(glm::cross(b - a, q - a), normal) >= 0.0 && glm::dot(glm::cross(c - b, q - b), normal) >= 0.0 &&
+                        glm::dot(glm::cross(a - c, q - c), normal) >= 0.0;
+    if (inside) return std::fabs(glm::dot(q - a, normal)) / std::sqrt(area2);
+  }
+  return std::min({distance_to_segment(q, a, b), distance_to_segment(q, b, c), distance_to_segment(q, c, a)});
+}
+
+// What the contact query's callback needs.
+struct ContactQuery {
+  const std::vector<glm::vec3>* positions;
+  const std::vector<std::uint32_t>* indices;
+  glm::dvec3 origin;    // the lifted origin
+  double distance;      // contact_distance()
+  bool touches = false;
+};
+
+bool contact_callback(RTCPointQueryFunctionArguments* args) {
+  auto* q = static_cast<ContactQuery*>(args->userPtr);
+  const std::uint32_t* tri = q->indices->data() + 3 * static_cast<std::size_t>(args->primID);
+  const glm::vec3 &a = (*q->positions)[tri[0]], &b = (*q->positions)[tri[1]], &c = (*q->positions)[tri[2]];
+  if (distance_to_triangle(q->origin, glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)) > q->distance) return false;
+  q->touches = true;
+  args->query->radius = 0.0f;  // found: nothing more to visit
+  return true;
+}
+
+}  // namespace
+
+bool Scene::origin_touches_surface(const glm::vec3& p, const glm::vec3& n) const {
+  if (triangle_count_ == 0) return false;
+  const glm::vec3 o = offset_origin(p, n);
+  ContactQuery query{impl_->positions, impl_->indices, glm::dvec3(o), static_cast<double>(contact_distance())};
+  RTCPointQuery point;
+  point.x = o.x;
+  point.y = o.y;
+  point.z = o.z;
+  point.time = 0.0f;
+  point.radius = contact_distance();
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(impl_->scene, &point, &context, contact_callback, &query);
+  return query.touches;
+}
+
+SpawnPoint Scene::spawn_point(const glm::vec3& p, const glm::vec3& n) const {
+  SpawnPoint s;
+  s.origin = offset_origin(p, n);
+  s.robust = contact_rule_ && origin_touches_surface(p, n);
+  return s;
 }
 
 // Spreads the low 10 bits of v to every third bit.

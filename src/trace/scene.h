@@ -8,9 +8,10 @@
 //   parallel_for(order.size(), 64, threads, [&](size_t begin, size_t end) {
 //     RayBatch batch;                                   // 256 rays, one per chunk, reused: no per-ray allocation
 //     for vertex i in order[begin, end):
-//       glm::vec3 o = scene.offset_origin(positions[i], normals[i]);
+//       SpawnPoint s = scene.spawn_point(positions[i], normals[i]);   // origin, robust (ROBUST MODE)
 //       for each group of 256 directions d:
-//         batch.clear(); for each d: batch.push(o, d);  // tnear 0, tfar infinity
+//         batch.clear(); batch.set_robust(s.robust);
+//         for each d: batch.push(s.origin, d);          // tnear 0, tfar infinity
 //         scene.occluded(batch);                        // rtcOccluded1M, INCOHERENT
 //         ... batch.is_occluded(k) ...
 //   });
@@ -53,6 +54,33 @@
 // at grazing angles (n.n_f down to ~0.1) and for meshes far from the origin.
 // Preconditions of the rule: n is unit length and points to the side the rays leave from (the front).
 //
+// ROBUST MODE (RTC_SCENE_FLAG_ROBUST). Without the flag Embree's triangle test counts a hit only for
+// t > tnear and its box tests round towards speed; with it hits at exactly t = tnear count and the
+// tests are watertight, at 1.2-1.35x the cost of a ray. With the lift above, the two answer differently
+// only where a lifted origin lies ON another surface: a block standing on a floor (both at y = 0), whose
+// bottom-row side vertices lift sideways, stay in the floor's plane and send half their rays into the
+// floor at t = 0 (missed without the flag), or the neighbouring face at an unwelded concave edge. So a
+// scene built without the flag (SceneOptions::robust = false, the bakes' choice) still traces, by the
+// contact rule, the rays of such points with robust mode:
+//   spawn_point(p, n): origin o = p + n eps; robust iff o lies within eps/16 (2-4 ulps of M) of any
+//   triangle (an Embree point query of radius eps/16, exact point-triangle distance in double);
+//   RayBatch::set_robust(true) then sends the point's batches to a second, robust BVH of the same
+//   mesh, built on first use (never for a mesh without such points: no memory or build cost there).
+// Measured against the exact answer (64 + 8 grazing rays per vertex; `test_trace "[.leaks]"`,
+// docs/conventions.md "Robust mode"): without the flag and without the rule the Cornell box's
+// contact vertices leak 4.8% of all rays; with the rule 0, as robust mode; on spheres, the cup, the
+// guardian lion, the armadillo and a bumpy blob the rule's answers equal robust mode's on every vertex's
+// rays (0 differing answers), with 0 to 4 vertices per mesh flagged. Alternatives measured: pulling
+// every origin back along the ray by eps/16 (an error-bounded spawn in the spirit of pbrt's) fixes the
+// Cornell box at y = 0 but leaks 0.7% of its rays when the box is moved to y = 5 (o - d eps/16 rounds
+// back onto the floor for grazing d) and adds self-hits on the lion (0.008%); by eps, 1-3% self-hits.
+// Closest hits differ more: of the same rays, robust and not name different triangles for ~1e-5 of them,
+// and the non-robust hit is the wrong one (not the exact triangle, not at its distance) about twice as
+// often (lion 8 against 3 of 720,000; armadillo 7 / 4 of 1.87M; blob class 6 / 3 of 2.95M). So the
+// per-vertex loop (vertex_rays.h) traces every closest-hit query robust: the bounce passes keep robust
+// mode's hits; a scene without it would then hold two BVHs, so the interreflected bakes replace theirs
+// by a robust scene before the first bounce pass (bake/passes.h, use_robust_scene).
+//
 // DETERMINISM. For a fixed mesh, rays and options, every result (occluded flags, prim_id, t, u, v) is
 // bit-identical across runs, across the number of threads that trace, across the order in which
 // batches are traced, and across SceneOptions::build_threads: tests/trace/test_determinism.cpp traces
@@ -71,13 +99,14 @@
 //                loop of rtcOccluded1: 5.4                      -> rtcOccluded1M, 1.8x
 //   closest hit: rtcIntersect1M batch 64..1024: 5.2-5.4
 //                loop of rtcIntersect1: 5.1                     -> rtcIntersect1M (never slower)
-//   RTC_SCENE_FLAG_ROBUST (on by default, see SceneOptions::robust): 7.5 occlusion, 4.4 closest hit.
+//   RTC_SCENE_FLAG_ROBUST (see SceneOptions::robust, ROBUST MODE): 7.5 occlusion, 4.4 closest hit.
 // kDefaultBatchCapacity = 256 rays (20 KiB, stays in L1 while Embree reads it): 256 and 1024 are within
 // noise of each other (256 ahead in 4 of 6 comparisons, by 4% on average); 64-ray batches are 8-15%
 // slower. A baker with 1024 rays per vertex makes 4 calls per vertex. The COHERENT flag and ray packets gain nothing
 // (measured once on this machine). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
 // array.
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -95,6 +124,12 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 inline constexpr std::uint32_t kNoHit = 0xFFFFFFFFu;
 /// Rays per RayBatch unless a capacity is given (see BATCH SIZE AND CALLS).
 inline constexpr std::size_t kDefaultBatchCapacity = 256;
+
+/// Where and how the rays leaving one surface point are traced (Scene::spawn_point).
+struct SpawnPoint {
+  glm::vec3 origin{0.0f};  ///< p + n * Scene::ray_offset(); tnear = 0
+  bool robust = false;     ///< trace this point's batches with RayBatch::set_robust(true) (p touches another surface)
+};
 
 /// One ray, laid out exactly as Embree's RTCRay (48 bytes, 16-byte aligned; checked in scene.cpp).
 /// The ray is the segment origin + t * dir, t in [tnear, tfar]; dir need not be unit length (t is then
@@ -142,8 +177,12 @@ class RayBatch {
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   bool full() const { return size_ == rays_.size(); }
-  /// Forgets all rays (capacity is kept).
+  /// Forgets all rays (capacity is kept); the robust flag stays.
   void clear() { size_ = 0; }
+  /// Whether Scene::occluded / intersect trace this batch with RTC_SCENE_FLAG_ROBUST even in a scene built
+  /// without it (SpawnPoint::robust; a scene built with it always uses it). Default false.
+  void set_robust(bool robust) { robust_ = robust; }
+  bool robust() const { return robust_; }
 
   /// Appends the ray origin + t dir, t in [tnear, tfar] (0 <= tnear <= tfar, tfar may be kInfinity) and
   /// returns its index. Precondition: !full() (checked with assert only: this is the hot loop).
@@ -178,6 +217,7 @@ class RayBatch {
  private:
   std::vector<RayHit> rays_;  // capacity() records, all 16-byte aligned
   std::size_t size_ = 0;
+  bool robust_ = false;
 };
 
 inline std::size_t RayBatch::push(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {
@@ -209,15 +249,20 @@ struct SceneOptions {
   /// Threads for the BVH build (Embree device "threads="); 0 = all hardware threads. Queries run on the
   /// calling threads whatever this is.
   int build_threads = 0;
-  /// RTC_SCENE_FLAG_ROBUST: watertight triangle tests that also count hits at exactly t = tnear, 20%
-  /// slower. On by default for contacts: where a vertex lies exactly on another surface (a
-  /// block standing on a floor, both at y = 0), its rays into that surface start exactly in its plane
-  /// and hit it at t = 0; without the flag Embree misses them (Cornell box: 3-5% of all vertex rays,
-  /// half the lower hemisphere of every contact vertex, leak under the blocks). On a mesh without exact
-  /// contacts it changes almost nothing (1 of 84M bench rays) and may be turned off for speed.
+  /// RTC_SCENE_FLAG_ROBUST: watertight triangle tests that also count hits at exactly t = tnear, 1.2-1.35x
+  /// the cost of a ray. Where a vertex lies exactly on another surface (a block standing on a floor,
+  /// both at y = 0), its rays into that surface start exactly in its plane and hit it at t = 0; without
+  /// the flag Embree misses them (Cornell box: 4.8% of all vertex rays, leak under the blocks). On by
+  /// default (callers that trace from their own origins); off in the bakes, which trace through
+  /// spawn_point and RayBatch::set_robust: the contact rule (ROBUST MODE above) keeps robust mode's
+  /// answers for the points that need it.
   bool robust = true;
   /// How batches are traced (see BatchCall); the results are bit-identical either way (tested).
   BatchCall batch_call = BatchCall::stream;
+  /// In a scene without robust mode: whether Scene::spawn_point sends the rays of points that touch
+  /// another surface through robust mode (a second BVH, built on first use; ROBUST MODE at the top of
+  /// this header). Off only to measure what the rule buys (tests/trace/test_robust.cpp).
+  bool contact_rule = true;
 };
 
 /// What building the scene measured.
@@ -261,6 +306,19 @@ class Scene {
   float ray_offset() const { return ray_offset_; }
   /// p + n * ray_offset(): where a ray leaving the surface point p with unit normal n starts.
   glm::vec3 offset_origin(const glm::vec3& p, const glm::vec3& n) const { return p + n * ray_offset_; }
+  /// Where the rays leaving surface point p (unit normal n) start, and whether they need robust mode:
+  /// true only in a scene built without it (SceneOptions::contact_rule) where p touches another surface
+  /// (ROBUST MODE at the top of this header). Costs one Embree point query in such a scene (about a
+  /// microsecond); call it once per point, not per ray.
+  SpawnPoint spawn_point(const glm::vec3& p, const glm::vec3& n) const;
+  /// Whether the lifted origin offset_origin(p, n) lies within contact_distance() of a triangle (exact
+  /// point-triangle distance in double): another surface touches p (a block standing on a floor, the
+  /// neighbouring face at an unwelded concave edge), or p's own faces meet n at grazing angles
+  /// (n.n_f < 1/16).
+  bool origin_touches_surface(const glm::vec3& p, const glm::vec3& n) const;
+  /// ray_offset() / 16 (2-4 float ulps of M): how close a lifted origin must come to another surface to
+  /// touch it.
+  float contact_distance() const { return std::ldexp(ray_offset_, -4); }
 
   /// Bounding box of the mesh's referenced and unreferenced vertices (zero box for an empty mesh).
   glm::vec3 bounds_lo() const { return lo_; }
@@ -272,6 +330,7 @@ class Scene {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   float ray_offset_ = 0.0f;
+  bool contact_rule_ = false;
   glm::vec3 lo_{0.0f}, hi_{0.0f};
   std::size_t triangle_count_ = 0;
 };

@@ -2,8 +2,9 @@
 // The loop every per-vertex hemisphere pass runs (the bake's shadowed, interreflection and glossy
 // passes, the probes' surface passes): vertices in a given order, split over threads in chunks of 64;
 // each vertex traces the same local sample directions turned into its own frame
-// sh::vertex_frame(n, seed, v), from Scene::offset_origin(p, n), in batches of up to
-// kDefaultBatchCapacity rays. What a pass does with the hits is its worker's business.
+// sh::vertex_frame(n, seed, v), from Scene::spawn_point(p, n), in batches of up to
+// kDefaultBatchCapacity rays, robust mode where the scene's contact rule asks for it and for every
+// closest-hit query (trace/scene.h, ROBUST MODE). What a pass does with the hits is its worker's business.
 // The "vertices" may be other surface sample points (a lightmap's texel samples): VertexRays::positions
 // and ::normals then replace the mesh's, and the index v names a sample point.
 #include <algorithm>
@@ -60,6 +61,10 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
   const std::vector<glm::vec3>& normals = r.normals ? *r.normals : r.mesh->normals;
   const std::vector<glm::vec3>& local = *r.directions;
   const std::size_t samples = local.size();
+  // Closest hits always go through robust mode (a scene without it builds its robust BVH on first use):
+  // without it ~5e-6 of vertex rays name a wrong triangle (trace/scene.h, ROBUST MODE), and a bounce
+  // pass reads transfer at the hit. Occlusion takes robust mode only for contact points.
+  const bool closest_robust = r.query == Query::closest_hit;
   std::atomic<std::uint64_t> rays{0};
   const std::size_t share_end = std::min(r.order_end, r.order->size()), share_begin = std::min(r.order_begin, share_end);
   const double progress_scale =
@@ -71,12 +76,13 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
       const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
-      const glm::vec3 origin = r.scene->offset_origin(positions[v], normals[v]);
+      const SpawnPoint spawn = r.scene->spawn_point(positions[v], normals[v]);
       worker.start(v, frame);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);
         batch.clear();
-        for (std::size_t s = first; s < first + count; ++s) batch.push(origin, frame * local[s]);
+        batch.set_robust(spawn.robust || closest_robust);
+        for (std::size_t s = first; s < first + count; ++s) batch.push(spawn.origin, frame * local[s]);
         if (r.query == Query::occluded) r.scene->occluded(batch);
         else r.scene->intersect(batch);
         worker.batch(v, batch, first);

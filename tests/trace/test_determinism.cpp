@@ -9,7 +9,9 @@
 
 #include "bench_meshes.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "trace/scene.h"
+#include "trace/vertex_rays.h"
 
 using namespace prt;
 
@@ -121,4 +123,46 @@ TEST_CASE("results are identical for 1 and 2 build threads, repeated builds and 
     const trace::Scene scene_all(m);
     check_same(trace_all(scene_all, m, 2));
   }
+}
+
+TEST_CASE("without robust mode the per-vertex loop is identical for any thread count, contact points included", "[trace]") {
+  // The Cornell box's contact vertices go through the robust scene that the first of them builds
+  // (Scene::spawn_point): whichever thread builds it, every answer must be the same.
+  const mesh::Mesh m = bench::cornell_box(12);
+  const std::vector<glm::vec3> local = bench::hemisphere_directions(300);
+  const std::vector<std::uint32_t> order = trace::morton_order(m.positions);
+  auto trace_with = [&](int build_threads, int threads) {
+    trace::SceneOptions options;
+    options.build_threads = build_threads;
+    options.robust = false;
+    const trace::Scene scene(m, options);
+    trace::VertexRays rays{&scene, &m, &order, &local, 7u, threads, trace::Query::occluded};
+    std::vector<std::uint8_t> occluded(m.positions.size() * local.size());
+    struct Worker {
+      std::vector<std::uint8_t>* out;
+      std::size_t samples;
+      void start(std::uint32_t, const glm::mat3&) {}
+      void batch(std::uint32_t v, const trace::RayBatch& b, std::size_t first) {
+        for (std::size_t k = 0; k < b.size(); ++k) (*out)[v * samples + first + k] = b.is_occluded(k);
+      }
+      void finish(std::uint32_t, const glm::mat3&) {}
+    };
+    Progress progress("test", "vertices", order.size(), false);
+    trace::trace_vertex_rays(rays, progress, [&] { return Worker{&occluded, local.size()}; });
+    return occluded;
+  };
+  {
+    trace::SceneOptions options;
+    options.robust = false;
+    const trace::Scene scene(m, options);
+    std::size_t contacts = 0;
+    for (std::size_t v = 0; v < m.positions.size(); ++v) contacts += scene.spawn_point(m.positions[v], m.normals[v]).robust;
+    CHECK(contacts == 24);  // the blocks' bottom-row side vertices (test_robust.cpp)
+  }
+  const std::vector<std::uint8_t> reference = trace_with(1, 1);
+  std::size_t count = 0;
+  for (std::uint8_t o : reference) count += o;
+  CHECK(count > reference.size() / 4);  // the room (open at +Z) and the blocks shadow
+  CHECK(trace_with(2, 2) == reference);
+  CHECK(trace_with(0, 5) == reference);
 }

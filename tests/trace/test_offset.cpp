@@ -12,38 +12,26 @@
 
 #include "bench_meshes.h"
 #include "core/parallel.h"
-#include "trace/reference_tracer.h"
+#include "trace/leak_count.h"
 #include "trace/scene.h"
 
 using namespace prt;
 
+using trace::testing::compare;
+using trace::testing::diagonal;
+using trace::testing::Disagreements;
+using trace::testing::exact_occlusion;
+using trace::testing::test_directions;
+
 namespace {
 
-// Directions about +Z for the vertex tests: `count` uniform hemisphere directions and 8 grazing ones
-// with d.n = 1e-3.
-std::vector<glm::vec3> test_directions(std::size_t count) {
-  std::vector<glm::vec3> dirs = bench::hemisphere_directions(count);
-  for (int g = 0; g < 8; ++g) {
-    const double phi = 0.785 * g + 0.1, z = 1e-3, r = std::sqrt(1.0 - z * z);
-    dirs.push_back(glm::vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z)));
-  }
-  return dirs;
-}
-
-// Direction k of vertex v in world space: the set rotated into v's frame, twisted about n by a
-// per-vertex angle so that neighbouring vertices do not share directions.
-glm::vec3 vertex_direction(const mesh::Mesh& m, std::size_t v, const glm::vec3& local) {
-  glm::vec3 t, b;
-  const glm::vec3 n = m.normals[v];
-  bench::orthonormal_frame(n, t, b);
-  const double twist = 2.399963 * double(v);
-  const float c = float(std::cos(twist)), s = float(std::sin(twist));
-  const glm::vec3 l(c * local.x - s * local.y, s * local.x + c * local.y, local.z);
-  return glm::normalize(t * l.x + b * l.y + n * l.z);
-}
-
-double diagonal(const trace::Scene& scene) {
-  return glm::length(glm::dvec3(scene.bounds_hi()) - glm::dvec3(scene.bounds_lo()));
+// Origin p + n * lift, tnear: an alternative to the scene's own rule (leak_count.h).
+trace::testing::Spawn lifted(float lift, float tnear) {
+  trace::testing::Spawn s;
+  s.own_rule = false;
+  s.lift = lift;
+  s.tnear = tnear;
+  return s;
 }
 
 // Occluded rays from every `stride`-th vertex along its test directions, origin p + n * lift, tnear.
@@ -52,59 +40,11 @@ std::size_t count_occluded(const trace::Scene& scene, const mesh::Mesh& m, const
   trace::RayBatch batch(dirs.size());
   std::size_t occluded = 0;
   for (std::size_t v = 0; v < m.positions.size(); v += stride) {
-    batch.clear();
-    const glm::vec3 o = m.positions[v] + m.normals[v] * lift;
-    for (const glm::vec3& l : dirs) batch.push(o, vertex_direction(m, v, l), tnear);
+    trace::testing::push_vertex_rays(scene, m, v, dirs, lifted(lift, tnear), batch);
     scene.occluded(batch);
     occluded += batch.occluded_count();
   }
   return occluded;
-}
-
-// Disagreements with the exact answer: the double-precision brute-force tracer from p + n * 1e-9 D
-// (far above double rounding, far below any feature), which is "occluded iff something really blocks
-// the ray leaving the surface".
-struct Disagreements {
-  std::size_t rays = 0, truly_occluded = 0;
-  std::size_t self_hits = 0;  // occluded although nothing blocks the ray
-  std::size_t leaks = 0;      // not occluded although something blocks it
-};
-
-// Exact answers for every `stride`-th vertex and its test directions.
-std::vector<char> exact_occlusion(const mesh::Mesh& m, const std::vector<glm::vec3>& dirs, double D,
-                                  std::size_t stride) {
-  const std::size_t vertices = (m.positions.size() + stride - 1) / stride;
-  std::vector<char> exact(vertices * dirs.size());
-  parallel_for(vertices, 8, 0, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t v = i * stride;
-      const glm::dvec3 o = glm::dvec3(m.positions[v]) + glm::dvec3(m.normals[v]) * (1e-9 * D);
-      for (std::size_t k = 0; k < dirs.size(); ++k)
-        exact[i * dirs.size() + k] =
-            trace::testing::reference_occluded(m, o, glm::dvec3(vertex_direction(m, v, dirs[k])), 0.0, 1e300);
-    }
-  });
-  return exact;
-}
-
-Disagreements compare(const trace::Scene& scene, const mesh::Mesh& m, const std::vector<glm::vec3>& dirs,
-                      const std::vector<char>& exact, float lift, float tnear, std::size_t stride) {
-  Disagreements d;
-  trace::RayBatch batch(dirs.size());
-  for (std::size_t v = 0, i = 0; v < m.positions.size(); v += stride, ++i) {
-    batch.clear();
-    const glm::vec3 o = m.positions[v] + m.normals[v] * lift;
-    for (const glm::vec3& l : dirs) batch.push(o, vertex_direction(m, v, l), tnear);
-    scene.occluded(batch);
-    for (std::size_t k = 0; k < dirs.size(); ++k) {
-      const bool truth = exact[i * dirs.size() + k];
-      ++d.rays;
-      d.truly_occluded += truth;
-      d.self_hits += batch.is_occluded(k) && !truth;
-      d.leaks += !batch.is_occluded(k) && truth;
-    }
-  }
-  return d;
 }
 
 }  // namespace
@@ -168,8 +108,8 @@ TEST_CASE("with the offset rule, occlusion from vertices of concave meshes match
     fast_options.robust = false;
     const trace::Scene fast(c.m, fast_options);
     const auto exact = exact_occlusion(c.m, dirs, diagonal(robust), 1);
-    const Disagreements r = compare(robust, c.m, dirs, exact, robust.ray_offset(), 0.0f, 1);
-    const Disagreements f = compare(fast, c.m, dirs, exact, fast.ray_offset(), 0.0f, 1);
+    const Disagreements r = compare(robust, c.m, dirs, exact, lifted(robust.ray_offset(), 0.0f), 1);
+    const Disagreements f = compare(fast, c.m, dirs, exact, lifted(fast.ray_offset(), 0.0f), 1);
     INFO("rays " << r.rays << ", truly occluded " << r.truly_occluded << "; leaks: robust " << r.leaks << ", fast "
                  << f.leaks << "; self-hits: robust " << r.self_hits << ", fast " << f.self_hits);
     CHECK(r.truly_occluded > r.rays / 20);  // the meshes do shadow themselves
@@ -178,7 +118,8 @@ TEST_CASE("with the offset rule, occlusion from vertices of concave meshes match
     CHECK(f.self_hits == 0);
     if (std::string(c.name) == "Cornell box") {
       // The blocks stand exactly on the floor: without RTC_SCENE_FLAG_ROBUST their bottom vertices' rays
-      // into the floor (hits at t = 0) are missed (SceneOptions::robust).
+      // into the floor (hits at t = 0) are missed (SceneOptions::robust); the contact rule of
+      // Scene::spawn_point recovers them (test_robust.cpp).
       CHECK(f.leaks > r.rays / 50);
     } else {
       CHECK(f.leaks <= f.rays / 1000);
@@ -188,12 +129,7 @@ TEST_CASE("with the offset rule, occlusion from vertices of concave meshes match
 
 TEST_CASE("offset rule sweep: self-hits and leaks of alternative rules (prints the table in scene.h)", "[.sweep]") {
   const auto dirs = test_directions(64);
-  struct Case {
-    std::string name;
-    mesh::Mesh m;
-    std::size_t stride;
-  };
-  std::vector<Case> cases;
+  std::vector<trace::testing::StudyCase> cases;
   cases.push_back({"icosphere L4, radial normals", bench::icosphere(4), 1});
   cases.push_back({"icosphere L4 at x = 100", bench::icosphere(4, 1.0f, glm::vec3(100.0f, 0.0f, 0.0f)), 1});
   cases.push_back({"bumpy icosphere L4", bench::bumpy_icosphere(4, 0.35f), 1});
@@ -212,7 +148,7 @@ TEST_CASE("offset rule sweep: self-hits and leaks of alternative rules (prints t
                         {"lift 1e-4 D", 1e-4, 0, 0},
                         {"lift 2^-18 M (prt)", 0, std::ldexp(1.0, -18), 0},
                         {"lift 2^-21 M", 0, std::ldexp(1.0, -21), 0}};
-  for (const Case& c : cases) {
+  for (const trace::testing::StudyCase& c : cases) {
     trace::SceneOptions options;
     options.robust = true;  // the table in scene.h was measured with RTC_SCENE_FLAG_ROBUST
     const trace::Scene scene(c.m, options);
@@ -221,7 +157,7 @@ TEST_CASE("offset rule sweep: self-hits and leaks of alternative rules (prints t
     std::printf("%s (D = %.4g, M = %.4g)\n", c.name.c_str(), D, M);
     for (const Rule& r : rules) {
       const Disagreements d =
-          compare(scene, c.m, dirs, exact, float(r.lift_d * D + r.lift_m * M), float(r.tnear_d * D), c.stride);
+          compare(scene, c.m, dirs, exact, lifted(float(r.lift_d * D + r.lift_m * M), float(r.tnear_d * D)), c.stride);
       std::printf("  %-24s self-hits %8.5f%%   leaks %8.5f%%   (%zu rays, %zu truly occluded)\n", r.name,
                   100.0 * double(d.self_hits) / double(d.rays), 100.0 * double(d.leaks) / double(d.rays), d.rays,
                   d.truly_occluded);
