@@ -175,20 +175,12 @@ Decoded decode_header(const std::string& path, std::ifstream& in, std::uint64_t 
   d.payload_bytes = get_u64(p + 104);
   d.payload_checksum = get_u64(p + 112);
   const std::uint32_t params = get_u32(p + 120);
-  if (params > kMaxParametersBytes) fail_file(path, "corrupt header: parameters block of " + std::to_string(params) + " bytes");
-  const std::uint64_t padded_params = (kFixedHeaderBytes + params + 7) / 8 * 8;
-  const std::uint64_t padded = padded_params + (texel ? kTexelBlockBytes : 0);
-  d.header_bytes = padded + 8;
-  if (file_size < d.header_bytes) fail_file(path, "truncated header");
-  std::string rest(static_cast<std::size_t>(d.header_bytes - kFixedHeaderBytes), '\0');
-  in.read(rest.data(), static_cast<std::streamsize>(rest.size()));
-  if (!in) fail_file(path, "truncated header");
-  const std::string all = fixed + rest;
-  if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != le::get_u64(all, static_cast<std::size_t>(padded)))
-    fail_file(path, "header checksum mismatch (file is corrupt)");
+  const transfer::HeaderTail tail = transfer::read_header_tail(path, in, fixed, params, texel ? kTexelBlockBytes : 0, file_size);
+  d.header_bytes = tail.size;
+  const std::string& all = tail.bytes;
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
   if (texel) {
-    const auto* block = reinterpret_cast<const unsigned char*>(all.data()) + padded_params;
+    const auto* block = reinterpret_cast<const unsigned char*>(all.data()) + tail.extra_at;
     transfer::get_texel_block(path, block, h);
     c.texel_points = get_u64(block + transfer::kTexelBlockBytes);
   }

@@ -142,20 +142,12 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
   h.mesh_fingerprint = get_u64(p + 48);
   d.payload_bytes = get_u64(p + 56);
   d.payload_checksum = get_u64(p + 64);
-  std::uint32_t params = get_u32(p + 72);
-  if (params > kMaxParametersBytes) fail_file(path, "corrupt header: parameters block of " + std::to_string(params) + " bytes");
-  const std::uint64_t padded_params = (kFixedHeaderBytes + params + 7) / 8 * 8;
-  const std::uint64_t padded = padded_params + (texel ? kTexelBlockBytes : 0);
-  d.header_bytes = padded + 8;
-  if (file_size < d.header_bytes) fail_file(path, "truncated header");
-  std::string rest(static_cast<std::size_t>(d.header_bytes - kFixedHeaderBytes), '\0');
-  in.read(rest.data(), static_cast<std::streamsize>(rest.size()));
-  if (!in) fail_file(path, "truncated header");
-  std::string all = fixed + rest;
-  std::uint64_t stored = get_u64(reinterpret_cast<const unsigned char*>(all.data()) + padded);
-  if (fnv1a64(all.data(), static_cast<std::size_t>(padded)) != stored) fail_file(path, "header checksum mismatch (file is corrupt)");
+  const std::uint32_t params = get_u32(p + 72);
+  const HeaderTail tail = read_header_tail(path, in, fixed, params, texel ? kTexelBlockBytes : 0, file_size);
+  d.header_bytes = tail.size;
+  const std::string& all = tail.bytes;
   h.parameters_json = all.substr(kFixedHeaderBytes, params);
-  if (texel) get_texel_block(path, reinterpret_cast<const unsigned char*>(all.data()) + padded_params, h);
+  if (texel) get_texel_block(path, reinterpret_cast<const unsigned char*>(all.data()) + tail.extra_at, h);
   check_json_depth(h.parameters_json, path);
   validate(path, h);
   check_payload_size(path, d, file_size);
@@ -182,6 +174,25 @@ std::ifstream open_for_reading(const std::string& path) {
 }
 
 }  // namespace
+
+HeaderTail read_header_tail(const std::string& path, std::istream& in, const std::string& fixed, std::uint32_t params,
+                            std::uint64_t extra_bytes, std::uint64_t file_size) {
+  if (params > kMaxParametersBytes) fail_file(path, "corrupt header: parameters block of " + std::to_string(params) + " bytes");
+  HeaderTail tail;
+  const std::uint64_t padded_params = (fixed.size() + params + 7) / 8 * 8;
+  tail.extra_at = padded_params;
+  const std::uint64_t checksummed = padded_params + extra_bytes;
+  tail.size = checksummed + 8;
+  if (file_size < tail.size) fail_file(path, "truncated header");
+  std::string rest(static_cast<std::size_t>(tail.size - fixed.size()), '\0');
+  in.read(rest.data(), static_cast<std::streamsize>(rest.size()));
+  if (!in) fail_file(path, "truncated header");
+  tail.bytes = fixed + rest;
+  const std::uint64_t stored = get_u64(reinterpret_cast<const unsigned char*>(tail.bytes.data()) + checksummed);
+  if (fnv1a64(tail.bytes.data(), static_cast<std::size_t>(checksummed)) != stored)
+    fail_file(path, "header checksum mismatch (file is corrupt)");
+  return tail;
+}
 
 Kind parse_kind(const std::string& name) {
   for (const auto& k : kKinds)

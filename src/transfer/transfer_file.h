@@ -11,6 +11,7 @@
 // Texel files hold diffuse kinds only (glossy matrices per texel wait for transfer compression).
 #include <cstddef>
 #include <cstdint>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -129,6 +130,21 @@ inline std::uint64_t coverage_mask_bytes(std::uint64_t texels) { return (texels 
 /// Reads the stored mask at `p` (coverage_mask_bytes(texels) bytes); throws prt::Error("<path>: ...")
 /// naming a texel whose value is not 0, 1 or 2, or non-zero padding.
 std::vector<std::uint8_t> get_coverage_mask(const std::string& path, const unsigned char* p, std::size_t texels);
+
+/// The variable part of a .prt or .cprt header, after its fixed fields (docs/formats.md): the
+/// parameters block, zero-padded so that the header so far is a multiple of 8 bytes, then
+/// `extra_bytes` (a texel block, or 0), then the FNV-1a 64 checksum of everything before it.
+struct HeaderTail {
+  std::string bytes;            ///< the whole header: the fixed fields, then the tail, checksum included
+  std::uint64_t extra_at = 0;   ///< offset in `bytes` of the `extra_bytes` block
+  std::uint64_t size = 0;       ///< bytes.size(): where the payload starts
+};
+/// Reads the tail from `in` (positioned right after `fixed`, the fixed fields already read), for a
+/// parameters block of `params` bytes (at most 1 MiB) in a file of `file_size` bytes, and checks the
+/// checksum; throws prt::Error("<path>: ...") for an oversized block, a truncated header or a
+/// mismatch. Allocates only after the sizes are checked against the file.
+HeaderTail read_header_tail(const std::string& path, std::istream& in, const std::string& fixed, std::uint32_t params,
+                            std::uint64_t extra_bytes, std::uint64_t file_size);
 
 /// Multi-line human-readable description of a header, for `prt info`.
 std::string describe(const Header& header);
