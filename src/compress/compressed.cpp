@@ -18,18 +18,6 @@ void round_to(std::vector<float>& values, transfer::Scalar scalar) {
   for (float& v : values) v = transfer::half_to_float(transfer::float_to_half(v));
 }
 
-// Reconstruction of vertex p into out[0, point_dimension()), accumulated in double in a fixed order.
-void reconstruct(const CompressedTransfer& c, std::size_t p, float* out) {
-  const std::size_t D = c.point_dimension(), N = static_cast<std::size_t>(c.pca), k = c.cluster[p];
-  const float* mean = &c.means[k * D];
-  const float* w = &c.weights[p * N];
-  for (std::size_t i = 0; i < D; ++i) {
-    double s = mean[i];
-    for (std::size_t n = 0; n < N; ++n) s += static_cast<double>(w[n]) * c.bases[(k * N + n) * D + i];
-    out[i] = static_cast<float>(s);
-  }
-}
-
 // Adds |a - b|^2 and |b|^2 over `floats` values to the sums of cluster k and to the total.
 void add_squares(const float* a, const float* b, std::size_t floats, std::uint32_t k, double ErrorSums::*error2,
                  double ErrorSums::*norm2, CompressedTransfer& c) {
@@ -46,21 +34,6 @@ void add_squares(const float* a, const float* b, std::size_t floats, std::uint32
 }
 
 }  // namespace
-
-double ErrorSums::transfer_relative() const { return transfer_norm2 > 0.0 ? std::sqrt(transfer_error2 / transfer_norm2) : 0.0; }
-double ErrorSums::radiance_relative() const { return radiance_norm2 > 0.0 ? std::sqrt(radiance_error2 / radiance_norm2) : 0.0; }
-
-std::vector<std::size_t> point_blocks(const transfer::Header& h, const std::vector<std::uint8_t>& coverage) {
-  std::vector<std::size_t> blocks;
-  if (!h.is_texel()) {
-    blocks.resize(static_cast<std::size_t>(h.vertex_count));
-    for (std::size_t p = 0; p < blocks.size(); ++p) blocks[p] = p;
-    return blocks;
-  }
-  for (std::size_t t = 0; t < coverage.size(); ++t)
-    if (coverage[t] != transfer::kTexelEmpty) blocks.push_back(t);
-  return blocks;
-}
 
 namespace {
 
@@ -120,7 +93,7 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
   c.per_cluster.assign(static_cast<std::size_t>(c.clusters), ErrorSums{});
   std::vector<float> block(E);
   for (std::size_t p = 0; p < P; ++p) {  // the transfer's values (the bounce-only part is a part of them)
-    reconstruct(c, p, block.data());
+    reconstruct_point(c, p, block.data());
     add_squares(block.data(), &transfer.values[blocks[p] * D], D, c.cluster[p], &ErrorSums::transfer_error2, &ErrorSums::transfer_norm2, c);
   }
   return c;
@@ -131,26 +104,6 @@ Metric transfer_metric(const transfer::TransferData& transfer, const MetricLight
   brdf::BrdfMatrix b;
   if (transfer::is_glossy(h.kind)) b = brdf::project(shade::baked_brdf(h, what), static_cast<int>(h.bands_out));
   return shaded_metric(h, transfer.bounce_only.empty() ? 1 : 2, lighting, &b);
-}
-
-transfer::TransferData decompress(const CompressedTransfer& c) {
-  transfer::TransferData t;
-  t.header = c.source;
-  t.header.scalar = transfer::Scalar::float32;
-  t.header.bounce_only_section = c.bounce;
-  t.coverage = c.coverage;
-  const std::size_t D = c.dimension(), E = c.point_dimension();
-  const std::vector<std::size_t> blocks = point_blocks(c.source, c.coverage);
-  if (blocks.size() != c.cluster.size()) fail("internal: the compressed transfer's points do not match its coverage");
-  t.values.assign(static_cast<std::size_t>(c.source.block_count()) * D, 0.0f);
-  if (c.bounce) t.bounce_only.assign(t.values.size(), 0.0f);
-  std::vector<float> block(E);
-  for (std::size_t p = 0; p < blocks.size(); ++p) {
-    reconstruct(c, p, block.data());
-    std::copy_n(block.data(), D, &t.values[blocks[p] * D]);
-    if (c.bounce) std::copy_n(block.data() + D, D, &t.bounce_only[blocks[p] * D]);
-  }
-  return t;
 }
 
 void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& original, const sh::RgbCoefficients& sky,
@@ -179,10 +132,6 @@ void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& ori
     add_squares(&test[blocks[p] * stride].x, &reference[blocks[p] * stride].x, 3 * stride, c.cluster[p], &ErrorSums::radiance_error2,
                 &ErrorSums::radiance_norm2, c);
   c.has_radiance_error = true;
-}
-
-std::uint64_t uncompressed_bytes(const transfer::Header& header, transfer::Scalar scalar) {
-  return header.block_count() * header.values_per_vertex() * (scalar == transfer::Scalar::float16 ? 2 : 4);
 }
 
 }  // namespace prt::compress

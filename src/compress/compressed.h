@@ -79,6 +79,11 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
 /// naming `what` if a glossy transfer records no BRDF.
 Metric transfer_metric(const transfer::TransferData& transfer, const MetricLighting& lighting, const std::string& what);
 
+/// Reconstruction of compressed point p (0 <= p < compressed.cluster.size()) into
+/// out[0, compressed.point_dimension()): the cluster's mean plus the weighted PCA directions, summed in
+/// double in a fixed order (the same bytes for any thread count).
+void reconstruct_point(const CompressedTransfer& compressed, std::size_t p, float* out);
+
 /// The reconstruction mu_k + sum_n w_pn b_kn of every point, as a float32 TransferData with the
 /// source header (and bounce_only from the model's second section, if it has one); a texel transfer
 /// gets its coverage mask back and zeros in its empty texels.
