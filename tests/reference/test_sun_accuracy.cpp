@@ -1,8 +1,8 @@
 // The headline of the sun/sky split: per-vertex `prt shade` with its default options (sun auto, window
 // auto) against the independent path tracer `prt reference` with the full environment and the same
-// bounce count, on the bundled lion under three CC0 maps with a sun, one without (courtyard, overcast)
-// and a studio lit by four soft boxes (docs/conventions.md,
-// "Sun and sky"). Tolerance 4% rel_rms; the reference's own Monte Carlo noise at these path counts is
+// bounce count, on the bundled lion under three CC0 maps with a sun, one without (courtyard, overcast:
+// 4% from a 6-band bake; 5 bands cannot hold its sky) and a studio lit by four soft boxes
+// (docs/conventions.md, "Sun and sky"). Tolerance 4% rel_rms; the reference's own Monte Carlo noise at these path counts is
 // about 1% rel_rms (it adds in quadrature). Also: no vertex has a negative channel, and on sunrise the
 // split beats the unsplit lighting (--sun none --window none) by more than a factor of two.
 #include <catch2/catch.hpp>
@@ -46,14 +46,15 @@ float smallest_channel(const std::string& path) {
   return smallest;
 }
 
-double shaded_error(const std::string& dir, const std::string& env, int spp, const std::string& options) {
-  const std::string tag = env + (options.empty() ? "" : "_none");
+double shaded_error(const std::string& dir, const std::string& env, int spp, const std::string& options,
+                    const std::string& transfer = "lion.prt") {
+  const std::string tag = env + (options.empty() ? "" : "_none") + "_" + transfer;
   const std::string map = kRoot + "/assets/env/" + env + ".exr";
   const std::string ref = dir + "/ref_" + env + ".ply";
   if (!std::ifstream(ref))
     REQUIRE(test::run_prt("reference " + kLion + " --env " + map + " --bounces 3 --samples " + std::to_string(spp) + " -q -o " + ref)
                 .exit_code == 0);
-  REQUIRE(test::run_prt("shade " + kLion + " " + dir + "/lion.prt --env " + map + " " + options + " -q -o " + dir + "/" + tag + ".ply")
+  REQUIRE(test::run_prt("shade " + kLion + " " + dir + "/" + transfer + " --env " + map + " " + options + " -q -o " + dir + "/" + tag + ".ply")
               .exit_code == 0);
   if (options.empty()) CHECK(smallest_channel(dir + "/" + tag + ".ply") >= 0.0f);
   const test::RunResult cmp = test::run_prt("compare " + dir + "/" + tag + ".ply " + ref);
@@ -74,10 +75,13 @@ TEST_CASE("default shading of the lion matches the path-traced truth within 4% u
   CHECK(sunrise < 0.5 * shaded_error(dir, "sunrise", 1024, "--sun none --window none"));
   CHECK(shaded_error(dir, "city", 512, "") <= 0.04);
   CHECK(shaded_error(dir, "sunset", 512, "") <= 0.04);
-  // No sun: nothing is held out, and the 5-band sky itself is the error (4.5% with a 2048-path
-  // reference, of which the band-limited path tracer accounts for all but the noise: shade is 1.0%
-  // from `prt reference --band-limit 5`; docs/conventions.md, "A sky without a compact source").
-  // Above the issue's 4%: the bound records what 5 bands achieve.
-  CHECK(shaded_error(dir, "courtyard", 512, "") <= 0.055);
   CHECK(shaded_error(dir, "studio", 512, "") <= 0.04);     // four soft boxes, held out as four discs
+  // No sun: nothing is held out, and the sky's own truncation is the error. At 5 bands it is 4.5% with
+  // a 2048-path reference, all of it the band limit (shade is 1.0% from `prt reference --band-limit 5`,
+  // the references' noise): no 5-band lighting reaches 4% on this detailed sky. The 4% holds from
+  // 6 bands, the band count docs/conventions.md ("A sky without a compact source") gives for such skies.
+  CHECK(shaded_error(dir, "courtyard", 512, "") <= 0.055);
+  REQUIRE(test::run_prt("bake " + kLion + " --transfer interreflected --bands 6 --samples 512 --bounces 3 -q -o " + dir + "/lion6.prt")
+              .exit_code == 0);
+  CHECK(shaded_error(dir, "courtyard", 512, "", "lion6.prt") <= 0.04);
 }
