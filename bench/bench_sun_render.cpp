@@ -1,7 +1,9 @@
 // Sun benchmarks (issue "Sun and sky"): the frame with one disc's shadow map (PCSS lookups per pixel,
 // maps not redrawn) against the PRT-only frame on the same mesh, camera and transfer, 1024x1024,
 // alternating frame by frame; and the frame right after a lighting rotation (shadow map redrawn and
-// the disc's bounce light recomputed inside it). Headless (EGL); on llvmpipe read the ratios.
+// the disc's bounce light recomputed inside it), each followed by the same frame again (nothing
+// redrawn, the same picture): their difference is the redraw's cost. Headless (EGL); on llvmpipe
+// read the ratios.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -46,10 +48,43 @@ transfer::TransferData synthetic_transfer(std::size_t vertices, int bands) {
 }
 
 struct Figures {
-  double prt_ms = 0.0, sun_ms = 0.0, rotated_ms = 0.0;
-  double prt_cpu_ms = 0.0, sun_cpu_ms = 0.0, rotated_cpu_ms = 0.0;
-  int redraws = 0, rotated_frames = 0;
+  double prt_ms = 0.0, sun_ms = 0.0, rotated_ms = 0.0, same_ms = 0.0;
+  double prt_cpu_ms = 0.0, sun_cpu_ms = 0.0, rotated_cpu_ms = 0.0, same_cpu_ms = 0.0;
+  int redraws = 0, same_redraws = 0, rotated_frames = 0;
 };
+
+// One frame, finished: wall and process CPU seconds, and how many shadow maps it redrew.
+struct TimedFrame {
+  double seconds = 0.0, cpu_seconds = 0.0;
+  int map_updates = 0;
+};
+TimedFrame timed_frame(render::Renderer& renderer, const render::FrameSettings& settings) {
+  const int before = renderer.shadow_map_updates();
+  const auto start = Clock::now();
+  const double cpu = cpu_seconds();
+  renderer.render(settings, kFrameSize, kFrameSize);
+  glFinish();
+  TimedFrame t;
+  t.seconds = seconds_since(start);
+  t.cpu_seconds = cpu_seconds() - cpu;
+  t.map_updates = renderer.shadow_map_updates() - before;
+  return t;
+}
+
+void print_summary(const Figures& f, std::size_t vertices) {
+  std::printf("\nSummary (machine shared and noisy: compare within this run)\n");
+  std::printf("lion (%zu vertices), 1024x1024, 5 bands RGB, one disc, shadow map %dx%d:\n", vertices,
+              render::kShadowMapSize, render::kShadowMapSize);
+  std::printf("  PRT-only frame %.2f ms, frame with the disc %.2f ms: x%.3f (target <= %.1f)\n", f.prt_ms, f.sun_ms,
+              f.sun_ms / f.prt_ms, kTargetSunRatio);
+  std::printf("  the same in process CPU time (all threads): %.2f ms and %.2f ms: x%.3f\n", f.prt_cpu_ms, f.sun_cpu_ms,
+              f.sun_cpu_ms / f.prt_cpu_ms);
+  std::printf("  frame right after a lighting rotation (map redrawn + bounce recomputed in it): %.2f ms, %d redraws in %d "
+              "frames; the same frame again: %.2f ms, %d redraws; the redraw itself %.2f ms\n",
+              f.rotated_ms, f.redraws, f.rotated_frames, f.same_ms, f.same_redraws, f.rotated_ms - f.same_ms);
+  std::printf("  in CPU time: %.2f ms and %.2f ms, the redraw itself %.2f ms\n", f.rotated_cpu_ms, f.same_cpu_ms,
+              f.rotated_cpu_ms - f.same_cpu_ms);
+}
 
 }  // namespace
 
@@ -85,21 +120,13 @@ int main(int argc, char** argv) {
     }
     double prt_seconds = 0.0, sun_seconds = 0.0, prt_cpu = 0.0, sun_cpu = 0.0;
     for (auto _ : state) {
-      auto start = Clock::now();
-      double cpu = cpu_seconds();
-      renderer.render(prt, kFrameSize, kFrameSize);
-      glFinish();
-      const double p = seconds_since(start);
-      prt_cpu += cpu_seconds() - cpu;
-      start = Clock::now();
-      cpu = cpu_seconds();
-      renderer.render(with_sun, kFrameSize, kFrameSize);
-      glFinish();
-      const double s = seconds_since(start);
-      sun_cpu += cpu_seconds() - cpu;
-      prt_seconds += p;
-      sun_seconds += s;
-      state.SetIterationTime(s);
+      const TimedFrame p = timed_frame(renderer, prt);
+      const TimedFrame s = timed_frame(renderer, with_sun);
+      prt_seconds += p.seconds;
+      prt_cpu += p.cpu_seconds;
+      sun_seconds += s.seconds;
+      sun_cpu += s.cpu_seconds;
+      state.SetIterationTime(s.seconds);
     }
     const double n = static_cast<double>(state.iterations());
     f.prt_ms = 1e3 * prt_seconds / n;
@@ -115,24 +142,29 @@ int main(int argc, char** argv) {
   double angle = 0.0;  // kept across the library's repeated runs, so every timed frame has a new rotation
   benchmark::RegisterBenchmark("frame_after_lighting_rotation/lion/1024x1024", [&](benchmark::State& state) {
     render::FrameSettings turning = with_sun;
-    double seconds = 0.0, cpu_total = 0.0;
-    const int before = renderer.shadow_map_updates();
+    double seconds = 0.0, cpu_total = 0.0, same_seconds = 0.0, same_cpu = 0.0;
+    int redraws = 0, same_redraws = 0;
     for (auto _ : state) {
       angle += 3.0;
       turning.environment_rotation = sh::rotation_from_yaw_pitch_roll(angle, 0.0, 0.0);
-      const auto start = Clock::now();
-      const double cpu = cpu_seconds();
-      renderer.render(turning, kFrameSize, kFrameSize);
-      glFinish();
-      const double s = seconds_since(start);
-      cpu_total += cpu_seconds() - cpu;
-      seconds += s;
-      state.SetIterationTime(s);
+      const TimedFrame rotated = timed_frame(renderer, turning);  // the map is redrawn inside this frame
+      const TimedFrame same = timed_frame(renderer, turning);     // the same picture, nothing redrawn
+      seconds += rotated.seconds;
+      cpu_total += rotated.cpu_seconds;
+      same_seconds += same.seconds;
+      same_cpu += same.cpu_seconds;
+      redraws += rotated.map_updates;
+      same_redraws += same.map_updates;
+      state.SetIterationTime(rotated.seconds);
     }
+    const double n = static_cast<double>(state.iterations());
     f.rotated_frames = static_cast<int>(state.iterations());
-    f.redraws = renderer.shadow_map_updates() - before;
-    f.rotated_ms = 1e3 * seconds / static_cast<double>(state.iterations());
-    f.rotated_cpu_ms = 1e3 * cpu_total / static_cast<double>(state.iterations());
+    f.redraws = redraws;
+    f.same_redraws = same_redraws;
+    f.rotated_ms = 1e3 * seconds / n;
+    f.rotated_cpu_ms = 1e3 * cpu_total / n;
+    f.same_ms = 1e3 * same_seconds / n;
+    f.same_cpu_ms = 1e3 * same_cpu / n;
     state.counters["ms"] = f.rotated_ms;
     state.counters["map_redraws_per_frame"] = static_cast<double>(f.redraws) / f.rotated_frames;
   })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(3.0);
@@ -140,16 +172,6 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
 
-  std::printf("\nSummary (machine shared and noisy: compare within this run)\n");
-  std::printf("lion (%zu vertices), 1024x1024, 5 bands RGB, one disc, shadow map %dx%d:\n", mesh.vertex_count(),
-              render::kShadowMapSize, render::kShadowMapSize);
-  std::printf("  PRT-only frame %.2f ms, frame with the disc %.2f ms: x%.3f (target <= %.1f)\n", f.prt_ms, f.sun_ms,
-              f.sun_ms / f.prt_ms, kTargetSunRatio);
-  std::printf("  the same in process CPU time (all threads): %.2f ms and %.2f ms: x%.3f\n", f.prt_cpu_ms, f.sun_cpu_ms,
-              f.sun_cpu_ms / f.prt_cpu_ms);
-  std::printf("  frame right after a lighting rotation (map redrawn + bounce recomputed in it): %.2f ms, %d redraws in %d "
-              "frames; the redraw itself %.2f ms\n",
-              f.rotated_ms, f.redraws, f.rotated_frames, f.rotated_ms - f.sun_ms);
-  std::printf("  in CPU time: %.2f ms, the redraw itself %.2f ms\n", f.rotated_cpu_ms, f.rotated_cpu_ms - f.sun_cpu_ms);
+  print_summary(f, mesh.vertex_count());
   return 0;
 }
