@@ -204,9 +204,10 @@ double sloan_scalar_ns(int bands) {
   return bands == 3 ? 2.1 : bands == 5 ? 6.4 : bands == 7 ? 13.6 : bands == 9 ? 23.2 : NAN;
 }
 
-// Directions per call of the fused benchmarks: one L1-sized call, the batch, and one far beyond L2.
+// Directions per call of the fused benchmarks: short calls (16 and 64 directions, where the per-call cost of
+// the bands^2 accumulators shows), 256, the batch, and one far beyond L2.
 std::vector<std::size_t> fused_counts(std::size_t batch) {
-  std::vector<std::size_t> counts = {64, batch, 65536};
+  std::vector<std::size_t> counts = {16, 64, 256, batch, 65536};
   std::sort(counts.begin(), counts.end());
   counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
   return counts;
