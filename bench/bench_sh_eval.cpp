@@ -7,7 +7,7 @@
 //
 // Batched runs write to a 64-byte aligned buffer with out_stride = sh::padded_stride(count, sizeof(T)), the
 // recommended layout; "batch_stride=count" repeats the float fast path with out_stride = count, which
-// for count = 1024 or 4096 is the cache-hostile 4 KiB-multiple stride (eval_batch's staged path).
+// for count = 1024 or 4096 is the cache-hostile 4 KiB-multiple stride (eval_batch's path for crowded strides).
 // "fill" writes the same bytes with std::fill: the write bound of a batch, measured in the run.
 // "fused_dirs=N" is sh::eval_accumulate over N directions per call (evaluation fused with weighted
 // accumulation into bands^2 sums, as projection uses it): the figure that does not depend on the cache.
@@ -96,19 +96,36 @@ void bench_fill(benchmark::State& state, int bands, std::size_t count, std::size
   state.counters["dirs"] = static_cast<double>(count);
 }
 
-// The bound of the staged path (out_stride = count): the same bytes written by std::fill in its order,
-// tile by tile, each row in runs of sh::detail::staged_tile_directions directions.
+// The bound of eval_batch's path for crowded strides (out_stride = count = 1024): the same bytes written by
+// std::fill in its order: tile by tile (sh::detail::staged_tile_directions), sh::detail::staged_pass_rows
+// rows at a time, a vector of directions (64 bytes) into each of them in turn along the tile.
 template <typename T>
 void bench_fill_tiled(benchmark::State& state, int bands, std::size_t count, std::size_t stride) {
   std::vector<T> storage(static_cast<std::size_t>(bands * bands) * stride + 64 / sizeof(T));
   T* out = storage.data();
   while (reinterpret_cast<std::uintptr_t>(out) % 64 != 0) ++out;
-  const std::size_t tile = sh::detail::staged_tile_directions(bands, sizeof(T));
+  constexpr std::size_t width = 64 / sizeof(T);
+  const std::size_t tile = sh::detail::staged_tile_directions(bands, count, sizeof(T));
+  const int rows = bands * bands, pass = sh::detail::staged_pass_rows(bands);
   T value = static_cast<T>(0.5);
   for (auto _ : state) {
+    T line[width];
+    std::fill(line, line + width, value);
     for (std::size_t j = 0; j < count; j += tile) {
       const std::size_t end = std::min(count, j + tile);
-      for (int k = 0; k < bands * bands; ++k) std::fill(out + k * stride + j, out + k * stride + end, value);
+      for (int k0 = 0; k0 < rows; k0 += pass) {
+        const int k1 = std::min(rows, k0 + pass);
+        if (pass == 1) {
+          std::fill(out + k0 * stride + j, out + k0 * stride + end, value);
+          continue;
+        }
+        T* const first = out + static_cast<std::size_t>(k0) * stride;
+        const std::size_t in_pass = static_cast<std::size_t>(k1 - k0) * stride;
+        std::size_t i = j;
+        for (; i + width <= end; i += width)
+          for (T* p = first + i; p < first + in_pass; p += stride) std::memcpy(p, line, sizeof line);
+        for (T* p = first; p < first + in_pass; p += stride) std::fill(p + i, p + end, value);
+      }
     }
     value += static_cast<T>(1e-7);
     benchmark::DoNotOptimize(out);
@@ -204,9 +221,10 @@ double sloan_scalar_ns(int bands) {
   return bands == 3 ? 2.1 : bands == 5 ? 6.4 : bands == 7 ? 13.6 : bands == 9 ? 23.2 : NAN;
 }
 
-// Directions per call of the fused benchmarks: one L1-sized call, the batch, and one far beyond L2.
+// Directions per call of the fused benchmarks: short calls (16 and 64 directions, where the per-call cost of
+// the bands^2 accumulators shows), 256, the batch, and one far beyond L2.
 std::vector<std::size_t> fused_counts(std::size_t batch) {
-  std::vector<std::size_t> counts = {64, batch, 65536};
+  std::vector<std::size_t> counts = {16, 64, 256, batch, 65536};
   std::sort(counts.begin(), counts.end());
   counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
   return counts;
@@ -258,7 +276,7 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
     std::printf("%5d %5d | %7.3f %8.4f  %-14s | %7.3f %5.2fx %-8s | %7.3f %6.0f %7.1f   | %7.3f %4zu %7.3f | %7.3f %6.2fx | %7.3f %8.4f | "
                 "%7.2f %7.2f %5.2fx %-7s | %7.2f %7.2f %5.2fx\n",
                 bands, bands * bands, ff, ff / n2, target, fc, fc / ff, fc <= 1.05 * ff ? "ok" : "SLOWER", fill,
-                n2 * sizeof(float), n2 * sizeof(float) / fill, fill_count, sh::detail::staged_tile_directions(bands, sizeof(float)),
+                n2 * sizeof(float), n2 * sizeof(float) / fill, fill_count, sh::detail::staged_tile_directions(bands, batch, sizeof(float)),
                 fill_tiled, fg, fg / ff, df, df / n2, of, og, og / of, scalar_peer,
                 odf, odg, odg / odf);
   }
@@ -266,11 +284,12 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
               "up to 16 bands.\n'stride=count /padded': the batch with out_stride = count, and its ratio to the padded "
               "figure ('ok' within 5%%). 'write bound': std::fill of the same output bytes (bands^2 x 4 B per "
               "direction, shown) in the padded layout, measured in this run, and the write bandwidth it reaches: a "
-              "batch cannot beat it; where the output outgrows L1 (32 KiB here: bands^2 x 4 B x %zu directions) the "
+              "batch cannot beat it; where the output outgrows the L1 data cache (bands^2 x 4 B x %zu directions) the "
               "batch figure is that bound plus a little, and the targets are bounds on memory, not on evaluation.\n"
               "'s=c bound': std::fill of the same bytes with out_stride = count, whole rows one after another ('rows'), "
-              "and in the staged path's order ('tiled': tile by tile, each row in runs of the shown number of "
-              "directions, the most a 16 KiB L1 scratch tile holds): the staged path cannot beat 'tiled'.\n"
+              "and in the order of eval_batch's path for crowded strides ('tiled': tiles of the shown number of "
+              "directions, up to 16 bands 4 rows at a time, a vector of directions into each in turn; beyond, "
+              "whole rows of the tile): that path cannot beat 'tiled'.\n"
               "Peer figures in parentheses are CONSTANTS (Sloan, JCGT 2013, SSE x4 0.61 / 1.58 / 3.35 / 6.0 ns and "
               "scalar 2.1 / 6.4 / 13.6 / 23.2 ns for 3 / 5 / 7 / 9 bands, measured once on this machine kind), not "
               "measured in this run.\n", batch);

@@ -4,11 +4,11 @@
 // Memory layout matters as much as arithmetic here. Every kernel call stores one vector into each of
 // the bands^2 output rows, rows out_stride apart. When out_stride * sizeof(T) is a multiple of 4 KiB
 // (count = 1024 or 4096 with out_stride = count, the natural choice), all those stores fall into the
-// same L1 cache set, and beyond its 8-12 ways every store misses: 6-15x slower, measured. Such strides
-// take a staged path instead (staged_tile below) whose stores run along each row, about 2x slower
-// than the direct path with a good stride; padded_stride() gives one.
+// same L1 cache set, a burst of bands^2 lines into one set of 8-12 ways: 2-3.5x slower than with a good
+// stride, measured (Zen 3, Xeon). Such strides take a path that writes the same bytes in another order
+// (batch_pieces: a few rows at a time along long runs of directions); padded_stride() gives a stride
+// that needs none of it.
 #include <array>
-#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -35,30 +35,20 @@ struct StridedStore {
 constexpr std::size_t kCacheLine = 64;
 constexpr std::size_t kPage = 4096;  // L1 data caches of x86 (and most others) index sets within 4 KiB
 
-std::size_t gcd(std::size_t a, std::size_t b) {
-  while (b != 0) {
-    std::size_t t = a % b;
-    a = b;
-    b = t;
-  }
-  return a;
-}
-
-// True when `rows` rows out_stride apart crowd into few cache sets: the row starts fall on at most 2
-// distinct 64-byte set positions of a 4 KiB page, with more than 12 rows per position. Measured on a
-// 12-way L1 (float, direct stores, against the best stride): 1 position: 9 rows cost nothing, 25 rows
-// 6x, 81 rows 10x; 2 positions: 81 rows 7x; 4 positions: 81 rows 2.5x, as slow as the staged path;
-// 8 positions: 81 rows 1.1x, 1024 rows 1.3x.
-// Rows per set position beyond which stores thrash: half the ways of an 8-way L1 (Zen 3; measured with
-// bench_sh_eval: 9 rows on one position, stride = count = 1024 floats, 3.5x the padded figure).
-constexpr std::size_t kRowsPerSet = 4;
-
+// True when `rows` rows out_stride apart crowd into few cache sets, so that one vector of directions stored
+// into every row is a burst of lines into one set. The row starts fall on `positions` distinct 64-byte set
+// positions of a 4 KiB page (a power of two: 4 KiB over the largest power of two dividing the stride's
+// bytes, at least a line). Crowded: more than 4 rows per position when they fall on 1 or 2 positions (Zen 3,
+// 8-way L1: 9 rows on one position, stride = count = 1024 floats, 3.5x the padded figure; Xeon, 12-way:
+// 9 rows 1.3x), or more than 16 per position on more (Xeon: 16 bands at stride 512 bytes, 32 rows per
+// position, 1.4x; 9 bands there, 10 per position, as fast as padded).
 template <typename T>
 bool rows_share_cache_sets(int rows, std::size_t stride) {
-  std::size_t offset = (stride * sizeof(T)) % kPage;
-  std::size_t step = gcd(offset == 0 ? kPage : offset, kPage);
-  std::size_t sets = kPage / (step > kCacheLine ? step : kCacheLine);
-  return sets <= 2 && static_cast<std::size_t>(rows) > kRowsPerSet * sets;
+  const std::size_t offset = (stride * sizeof(T)) % kPage;
+  const std::size_t step = offset == 0 ? kPage : offset & (~offset + 1);  // lowest set bit
+  const std::size_t positions = kPage / (step > kCacheLine ? step : kCacheLine);
+  const std::size_t per_position = positions <= 2 ? 4 : 16;
+  return static_cast<std::size_t>(rows) > per_position * positions;
 }
 
 // Directions to skip so that out + j is `alignment`-byte aligned (0 if out is not even T-aligned).
@@ -87,7 +77,8 @@ PRT_SH_INLINE void for_each_block(std::size_t count, std::size_t width, std::siz
   }
 }
 
-// Staged path for crowded strides. A tile of kStageBytes worth of consecutive directions is evaluated
+// Crowded strides beyond kMaxFastBands bands (the generic recurrence). A tile of kStageBytes worth of
+// consecutive directions is evaluated
 // column group by column group (columns m, all l, at most kStageRows rows per group) into a small
 // scratch block in L1, and each scratch row is then copied to its output row: the output stores run
 // along rows (8 cache lines at a time) instead of down the crowded column of rows. The recurrence is
@@ -162,68 +153,129 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
   }
 }
 
-// Staged path for crowded strides, with the band count's own kernel (up to kMaxFastBands bands): a
-// tile of directions, as many as keep its bands^2 rows within kKernelStageBytes, is evaluated vector by
-// vector into an L1 scratch block whose rows are padded off one another's cache sets, and each scratch
-// row is then copied to its output row, whole cache lines along the row. The arithmetic is the fast
-// path's; only the copy is added. The copy is bounded by its own write pattern: output rows 4 KiB apart
-// written in runs of `tile` directions cost more the shorter the runs (bench_sh_eval's 'tiled' bound:
-// 1.5x a plain fill at 48-direction runs, 3x at 16). So the tile is as long as a scratch of the whole
-// L1 size allows: kKernelStageBytes = 32 KiB instead of 16 made stride == count 1.25x faster at 9 bands
-// (20.5 -> 16.4 ns, Zen 3, two runs each, alternated) and changed nothing measurable at 3 and 5 bands.
-constexpr std::size_t kKernelStageBytes = 32768;
+// Crowded strides with the band count's own kernel (up to kMaxFastBands bands): the kernel cut into pieces.
+// At such strides what is slow is the order of the stores, not their number: the direct path writes bands^2
+// lines into one cache set per vector of directions, while the same bytes written a few rows at a time
+// along runs of a whole row of directions cost about what a plain fill costs (bench_sh_eval's fill bounds;
+// 1-4 rows at a time: within 10% of writing whole rows one after another, 8 rows 1.3-1.4x, all rows 2.5x;
+// Xeon, 9 bands, count 1024). So the kernel's steps (eval_kernels.h) are cut into pieces of at most kPieceRows
+// output rows, and each piece runs over a tile of up to kPieceTileBytes of directions, one vector after
+// another, storing straight into the output, before the next piece starts. A piece resumes the kernel from
+// (C_m, S_m) of its column and the column's last two F. Both are recomputed (recompute_cs, resume_column:
+// the kernel's own arithmetic, the same bits) rather than stored: extra stores cost about as much as the
+// output's own (a stored F state made 9 bands 1.3-1.4x slower than its recomputation). From kPieceCsFrom bands
+// on, where the chain for (C_m, S_m) grows long, (C_m, S_m) is kept per vector instead (2 stores per column).
+// Staging the output through an L1 tile, the path this replaced, wrote every value twice and was 1.5-2.5x
+// slower than the padded stride (Xeon); this one is 1.0x at 3-5 bands and 1.1-1.25x at 9-16 (notes in
+// docs/conventions.md).
+constexpr int kPieceRows = 4;
+constexpr std::size_t kPieceTileBytes = 4096;
+constexpr int kPieceCsFrom = 14;
 
+// Output rows of one kernel step: Y_l,0, or Y_l,m and Y_l,-m.
+constexpr int step_rows(const KernelStep& step) { return step.m == 0 ? 1 : 2; }
+
+// The pieces of the N-band kernel: steps [begin[p], begin[p + 1]), at most kPieceRows rows each.
+template <int N>
+struct Pieces {
+  int count = 0;
+  int begin[kKernelSteps<N> + 1] = {};
+};
+template <int N>
+constexpr Pieces<N> make_pieces() {
+  Pieces<N> p{};
+  int e = 0;
+  while (e < kKernelSteps<N>) {
+    p.begin[p.count++] = e;
+    int rows = 0;
+    do {
+      rows += step_rows(kernel_step<N>(e));
+      ++e;
+    } while (e < kKernelSteps<N> && rows + step_rows(kernel_step<N>(e)) <= kPieceRows);
+  }
+  p.begin[p.count] = kKernelSteps<N>;
+  return p;
+}
+template <int N>
+inline constexpr Pieces<N> kPieces = make_pieces<N>();
+
+// Piece P over the n directions of one tile (kLanes <= n), vectors of directions at the starts of
+// for_each_block(n, kLanes, peel). cs[2 i], cs[2 i + 1]: (C, S) of vector i as the pieces before left it
+// (used from kPieceCsFrom bands on).
+template <int N, int P, typename T>
+PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const T* x, const T* y, const T* z, T* out,
+                              std::size_t stride, Vec<T>* cs) {
+  using V = Vec<T>;
+  constexpr int e0 = kPieces<N>.begin[P], e1 = kPieces<N>.begin[P + 1];
+  constexpr KernelStep first = kernel_step<N>(e0), last = kernel_step<N>(e1 - 1);
+  // (C, S) read: by a piece that starts inside column m >= 1, or at the start of column m >= 2 (advanced
+  // from m - 1); changed: by a piece that starts column m >= 1 or crosses into a new column.
+  constexpr bool reads_cs = first.l > first.m ? first.m >= 1 : first.m >= 2;
+  constexpr bool changes_cs = (first.l == first.m && first.m >= 1) || last.m > first.m;
+  constexpr bool keep_cs = N >= kPieceCsFrom;
+  V* next_cs = cs;
+  for_each_block(n, kLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+    const V vx = load<V>(x + j), vy = load<V>(y + j), vz = load<V>(z + j);
+    KernelState<V> st{vx, vy, vx, vy};  // what the steps read before writing is set below
+    if constexpr (reads_cs && keep_cs) {
+      st.c = next_cs[0];
+      st.s = next_cs[1];
+    } else if constexpr (reads_cs) {
+      recompute_cs<(first.l > first.m ? first.m : first.m - 1)>(vx, vy, st);
+    }
+    resume_column<N, e0, T>(vz, st);
+    StridedStore<T> put{out + j, stride};
+    eval_steps<N, e0, e1, T>(vx, vy, vz, st, put);
+    if constexpr (changes_cs && keep_cs && P + 1 < kPieces<N>.count) {
+      next_cs[0] = st.c;
+      next_cs[1] = st.s;
+    }
+    next_cs += 2;
+  });
+}
+
+template <int N, typename T, int... P>
+PRT_SH_INLINE void pieces_tile(std::size_t n, std::size_t peel, const T* x, const T* y, const T* z, T* out,
+                               std::size_t stride, std::integer_sequence<int, P...>) {
+  // One (C, S) pair per vector of the tile, plus the vector an unaligned start adds.
+  Vec<T> cs[2 * (kPieceTileBytes / sizeof(Vec<T>) + 1)];
+  (piece_pass<N, P, T>(n, peel, x, y, z, out, stride, cs), ...);
+}
+
+// Directions per tile for count >= kLanes: the fewest tiles of at most kPieceTileBytes of directions, of
+// equal length in whole vectors (the last one ends at count, overlapping the one before by less than a
+// vector per tile).
 template <typename T>
-std::size_t kernel_tile(int bands) {
-  const std::size_t lanes = kLanes<T>, rows = static_cast<std::size_t>(bands) * bands;
-  std::size_t tile = kKernelStageBytes / (rows * sizeof(T)) / lanes * lanes;
-  const std::size_t most = kStageBytes / sizeof(T);
-  return tile < lanes ? lanes : tile > most ? most : tile;
+std::size_t pieces_tile_length(std::size_t count) {
+  constexpr std::size_t lanes = kLanes<T>, most = kPieceTileBytes / sizeof(T);
+  const std::size_t tiles = (count + most - 1) / most;
+  std::size_t tile = (count + tiles - 1) / tiles;
+  tile = (tile + lanes - 1) / lanes * lanes;
+  return tile < count ? tile : count;
 }
 
-template <typename T, typename Kernel>
-PRT_SH_INLINE void staged_kernel_tile(int rows, std::size_t tile, const T* x, const T* y, const T* z, T* out,
-                                      std::size_t stride, T* scratch, std::size_t scratch_stride, Kernel& kernel) {
-  using V = Vec<T>;
-  for (std::size_t b = 0; b < tile; b += kLanes<T>) {
-    StridedStore<T> put{scratch + b, scratch_stride};
-    kernel(load<V>(x + b), load<V>(y + b), load<V>(z + b), put);
-  }
-  // Inline vector copies: a memcpy call per row costs more than the row at small tiles.
-  for (int row = 0; row < rows; ++row) {
-    T* dst = out + static_cast<std::size_t>(row) * stride;
-    const T* src = scratch + static_cast<std::size_t>(row) * scratch_stride;
-    for (std::size_t b = 0; b < tile; b += kLanes<T>) store(dst + b, load<V>(src + b));
+// eval_batch for crowded strides, count >= kLanes, tile by tile. Not inlined into batch_fixed: there it made
+// the direct path's loop 1.6x slower (9 bands, 128 directions, padded stride; GCC 12).
+template <int N, typename T>
+PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
+  constexpr auto pieces = std::make_integer_sequence<int, kPieces<N>.count>{};
+  const std::size_t tile = pieces_tile_length<T>(count), tiles = (count + tile - 1) / tile;
+  for (std::size_t t = 0; t < tiles; ++t) {
+    const std::size_t j = t * tile < count - tile ? t * tile : count - tile;
+    pieces_tile<N, T>(tile, alignment_peel(out + j, kCacheLine), x + j, y + j, z + j, out + j, stride, pieces);
   }
 }
 
-// The batch driver shared by every band count: `kernel(x, y, z, put)` evaluates one vector (or one
-// scalar) of directions.
+// The direct path shared by every band count: `kernel(x, y, z, put)` evaluates one vector (or one scalar)
+// of directions and stores into every row.
 template <typename T, typename Kernel>
-PRT_SH_INLINE void run_batch(int bands, std::size_t count, const T* x, const T* y, const T* z, T* out,
-                             std::size_t stride, Kernel&& kernel) {
+PRT_SH_INLINE void run_batch(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride,
+                             Kernel&& kernel) {
   using V = Vec<T>;
-  constexpr std::size_t lanes = kLanes<T>, tile = kStageBytes / sizeof(T);
-  const bool crowded = rows_share_cache_sets<T>(bands * bands, stride);
-  const std::size_t small_tile = bands <= kMaxFastBands ? kernel_tile<T>(bands) : 0;
-  if (crowded && small_tile > 0 && count >= small_tile) {
-    // rows * (tile + one line) * sizeof(T) <= 2 kKernelStageBytes for every band count up to kMaxFastBands
-    alignas(64) T scratch[2 * kKernelStageBytes / sizeof(T)];
-    const std::size_t scratch_stride = padded_stride(small_tile, sizeof(T));
-    assert(static_cast<std::size_t>(bands * bands) * scratch_stride <= sizeof(scratch) / sizeof(T));
-    const std::size_t peel = alignment_peel(out, kCacheLine);
-    for_each_block(count, small_tile, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
-      staged_kernel_tile<T>(bands * bands, small_tile, x + j, y + j, z + j, out + j, stride, scratch, scratch_stride, kernel);
-    });
-  } else if (count >= tile && crowded) {
-    const std::size_t peel = alignment_peel(out, kCacheLine);
-    for_each_block(count, tile, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
-      staged_tile<T>(bands, x + j, y + j, z + j, out + j, stride);
-    });
-  } else if (count >= lanes) {
+  if (count >= kLanes<T>) {
     // Line-aligned stores when the rows are (stride a multiple of the vector): no store splits.
     const std::size_t peel = alignment_peel(out, sizeof(V));
-    for_each_block(count, lanes, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+    for_each_block(count, kLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
       StridedStore<T> put{out + j, stride};
       kernel(load<V>(x + j), load<V>(y + j), load<V>(z + j), put);
     });
@@ -237,15 +289,25 @@ PRT_SH_INLINE void run_batch(int bands, std::size_t count, const T* x, const T* 
 
 template <int N, typename T>
 void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
-  run_batch<T>(N, count, x, y, z, out, stride,
-               [](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
-                 eval_fixed<N, T>(vx, vy, vz, put);
-               });
+  if (count >= kLanes<T> && rows_share_cache_sets<T>(N * N, stride)) {
+    batch_pieces<N, T>(count, x, y, z, out, stride);
+    return;
+  }
+  run_batch<T>(count, x, y, z, out, stride, [](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
+    eval_fixed<N, T>(vx, vy, vz, put);
+  });
 }
 
 template <typename T>
 void batch_generic(int bands, std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
-  run_batch<T>(bands, count, x, y, z, out, stride,
+  constexpr std::size_t tile = kStageBytes / sizeof(T);
+  if (count >= tile && rows_share_cache_sets<T>(bands * bands, stride)) {
+    for_each_block(count, tile, alignment_peel(out, kCacheLine), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+      staged_tile<T>(bands, x + j, y + j, z + j, out + j, stride);
+    });
+    return;
+  }
+  run_batch<T>(count, x, y, z, out, stride,
                [bands](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
                  eval_generic<T>(bands, vx, vy, vz, put);
                });
@@ -282,12 +344,12 @@ void eval_batch_generic(int bands, std::size_t count, const double* x, const dou
   batch_generic<double>(bands, count, x, y, z, out, out_stride);
 }
 
-std::size_t staged_tile_directions(int bands, std::size_t element_bytes) {
-  if (element_bytes == sizeof(double)) {
-    return bands <= kMaxFastBands ? kernel_tile<double>(bands) : kStageBytes / sizeof(double);
-  }
-  return bands <= kMaxFastBands ? kernel_tile<float>(bands) : kStageBytes / sizeof(float);
+std::size_t staged_tile_directions(int bands, std::size_t count, std::size_t element_bytes) {
+  if (bands > kMaxFastBands) return kStageBytes / element_bytes;
+  return element_bytes == sizeof(double) ? pieces_tile_length<double>(count) : pieces_tile_length<float>(count);
 }
+
+int staged_pass_rows(int bands) { return bands <= kMaxFastBands ? kPieceRows : 1; }
 
 void eval_one_generic(int bands, float x, float y, float z, float* out) {
   auto put = [out](int k, float v) { out[k] = v; };

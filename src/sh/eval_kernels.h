@@ -16,7 +16,9 @@
 // Two kernels share that recurrence:
 // - eval_fixed<N>: the band count is a template parameter, every loop is unrolled into straight-line
 //   code with compile-time constants (Sloan's generated code, built by the compiler from templates
-//   instead of by a script). Used for 1 <= bands <= kMaxFastBands.
+//   instead of by a script). Used for 1 <= bands <= kMaxFastBands. It is a sequence of steps, one per
+//   (l, m >= 0), that can stop after any step and resume later (eval_steps, resume_column, recompute_cs)
+//   with the same bits: eval_batch runs it in pieces at crowded strides.
 // - eval_generic: runtime loops over the same tables; for any band count up to kMaxBands.
 // Both are written over a value type V that is either a scalar (float, double) or a GCC/Clang vector
 // extension type holding several directions (one per lane), so one source gives the single-direction
@@ -29,6 +31,7 @@
 // measured (3.4e-6 at 16 bands, 7.3e-6 at 32), from the float recurrence and the float input.
 #include <cstddef>
 #include <cstring>
+#include <utility>
 
 #include "core/constants.h"
 #include "sh/basis.h"
@@ -40,6 +43,11 @@
 #else
 #define PRT_SH_INLINE inline
 #define PRT_SH_LAMBDA_INLINE
+#endif
+#if defined(__GNUC__)
+#define PRT_SH_NOINLINE __attribute__((noinline))
+#else
+#define PRT_SH_NOINLINE
 #endif
 
 namespace prt::sh::detail {
@@ -166,6 +174,32 @@ inline constexpr RecurrenceTables kRecurrence = make_recurrence_tables();
 // ---------------------------------------------------------------------------------------------
 // Fixed band count: straight-line code. `put(k, value)` receives coefficient k (a constant after
 // inlining) for every k < N^2, each exactly once.
+//
+// The kernel is a sequence of N (N + 1) / 2 steps, one per (l, m) with 0 <= m <= l < N in column order
+// (m ascending, then l ascending); step (l, m) computes F_l^m and emits Y_l,m (and Y_l,-m). The state
+// carried from step to step is (C_m, S_m) and the column's last two F, so a run of steps can stop and
+// resume later from a saved KernelState (eval_steps): eval_batch's path for crowded strides evaluates
+// a few rows at a time for many directions that way.
+
+/// Step e of the N-band kernel as (l, m).
+struct KernelStep {
+  int l, m;
+};
+template <int N>
+constexpr KernelStep kernel_step(int e) {
+  int m = 0;
+  while (e >= N - m) e -= N - m++;
+  return {m + e, m};
+}
+/// Steps of the N-band kernel: one per (l, m >= 0).
+template <int N>
+inline constexpr int kKernelSteps = N * (N + 1) / 2;
+
+/// What one step hands to the next: (C_m, S_m) of the current column, F_{l-1}^m and F_{l-2}^m.
+template <typename V>
+struct KernelState {
+  V c, s, f1, f2;
+};
 
 // Emits Y_l,+-m (or Y_l,0) from F_l^m.
 template <int L, int M, typename V, typename Put>
@@ -178,54 +212,101 @@ PRT_SH_INLINE void emit(V f, V c, V s, Put& put) {
   }
 }
 
-// F_L^M for L = L..N-1 by the three-term recurrence; f1 = F_{L-1}^M, f2 = F_{L-2}^M.
-template <int N, int M, int L, typename T, typename V, typename Put>
-PRT_SH_INLINE void column_tail(V z, V c, V s, V f1, V f2, Put& put) {
-  if constexpr (L < N) {
+// F_L^M from the column's start values or the three-term recurrence; f1 = F_{L-1}^M, f2 = F_{L-2}^M (read
+// only where L >= M + 3).
+template <int L, int M, typename T, typename V>
+PRT_SH_INLINE V column_value(V z, V z2, V f1, V f2) {
+  if constexpr (L == M) {
+    return splat<V>(static_cast<T>(kRecurrence.f_mm[M]));
+  } else if constexpr (L == M + 1) {
+    return static_cast<T>(kRecurrence.f_m1[M]) * z;
+  } else if constexpr (L == M + 2) {
+    // F_{M+2}^M = a z (f_m1 z) + b f_mm, a polynomial in z^2: one multiply-add.
+    constexpr T p2 = static_cast<T>(kRecurrence.a[M + 2][M] * kRecurrence.f_m1[M]);
+    constexpr T p0 = static_cast<T>(kRecurrence.b[M + 2][M] * kRecurrence.f_mm[M]);
+    return p2 * z2 + p0;
+  } else {
     constexpr T a = static_cast<T>(kRecurrence.a[L][M]);
     constexpr T b = static_cast<T>(kRecurrence.b[L][M]);
-    V f = (a * z) * f1 + b * f2;
-    emit<L, M>(f, c, s, put);
-    column_tail<N, M, L + 1, T>(z, c, s, f, f1, put);
+    return (a * z) * f1 + b * f2;
   }
 }
 
-// Column M (all l in [M, N)), then the next column with (C, S) advanced by one power of (x + i y).
-template <int N, int M, typename T, typename V, typename Put>
-PRT_SH_INLINE void columns_from(V x, V y, V z, V z2, V c, V s, Put& put) {
-  if constexpr (M < N) {
-    constexpr T f_mm = static_cast<T>(kRecurrence.f_mm[M]);
-    emit<M, M>(splat<V>(f_mm), c, s, put);
-    if constexpr (M + 1 < N) {
-      constexpr T f_m1 = static_cast<T>(kRecurrence.f_m1[M]);
-      V f1 = f_m1 * z;
-      emit<M + 1, M>(f1, c, s, put);
-      if constexpr (M + 2 < N) {
-        // F_{M+2}^M = a z (f_m1 z) + b f_mm, a polynomial in z^2: one multiply-add.
-        constexpr T p2 = static_cast<T>(kRecurrence.a[M + 2][M] * kRecurrence.f_m1[M]);
-        constexpr T p0 = static_cast<T>(kRecurrence.b[M + 2][M] * kRecurrence.f_mm[M]);
-        V f2 = p2 * z2 + p0;
-        emit<M + 2, M>(f2, c, s, put);
-        column_tail<N, M, M + 3, T>(z, c, s, f2, f1, put);
-      }
-    }
-    if constexpr (M == 0 && 1 < N) {
-      columns_from<N, 1, T>(x, y, z, z2, x, y, put);  // (C_1, S_1) = (x, y)
-    } else if constexpr (M + 1 < N) {
-      V c_next = x * c - y * s;
-      V s_next = x * s + y * c;
-      columns_from<N, M + 1, T>(x, y, z, z2, c_next, s_next, put);
-    }
+// (C_m, S_m) -> (C_{m+1}, S_{m+1}): one complex multiplication by (x + i y).
+template <typename V>
+PRT_SH_INLINE void advance_cs(V x, V y, KernelState<V>& st) {
+  V c_next = x * st.c - y * st.s;
+  V s_next = x * st.s + y * st.c;
+  st.c = c_next;
+  st.s = s_next;
+}
+
+// Step E: F_L^M, with (C, S) advanced by one power of (x + i y) at the start of each column m >= 1
+// ((C_1, S_1) = (x, y)).
+template <int N, int E, typename T, typename V, typename Put>
+PRT_SH_INLINE void kernel_step_at(V x, V y, V z, V z2, KernelState<V>& st, Put& put) {
+  constexpr KernelStep step = kernel_step<N>(E);
+  constexpr int L = step.l, M = step.m;
+  if constexpr (L == M && M == 1) {
+    st.c = x;
+    st.s = y;
+  } else if constexpr (L == M && M > 1) {
+    advance_cs(x, y, st);
   }
+  const V f = column_value<L, M, T>(z, z2, st.f1, st.f2);
+  st.f2 = st.f1;
+  st.f1 = f;
+  emit<L, M>(f, st.c, st.s, put);
+}
+
+template <int M, int L, int L1, typename T, typename V>
+PRT_SH_INLINE void replay_column(V z, V z2, KernelState<V>& st) {
+  if constexpr (L < L1) {
+    const V f = column_value<L, M, T>(z, z2, st.f1, st.f2);
+    st.f2 = st.f1;
+    st.f1 = f;
+    replay_column<M, L + 1, L1, T>(z, z2, st);
+  }
+}
+
+template <int N, int E0, typename T, typename V, typename Put, int... I>
+PRT_SH_INLINE void kernel_steps(V x, V y, V z, V z2, KernelState<V>& st, Put& put,
+                                std::integer_sequence<int, I...>) {
+  (kernel_step_at<N, E0 + I, T>(x, y, z, z2, st, put), ...);
+}
+
+/// Steps E0 <= e < E1 of the N-band kernel at the direction(s) (x, y, z): `put` receives the coefficients
+/// of those steps, each once. `st` holds the state after step E0 - 1 on entry (nothing is read from it
+/// for E0 = 0) and the state after step E1 - 1 on return. 0 <= E0 < E1 <= kKernelSteps<N>.
+template <int N, int E0, int E1, typename T, typename V, typename Put>
+PRT_SH_INLINE void eval_steps(V x, V y, V z, KernelState<V>& st, Put& put) {
+  static_assert(1 <= N && N <= kMaxBands && 0 <= E0 && E0 < E1 && E1 <= kKernelSteps<N>, "steps out of range");
+  kernel_steps<N, E0, T>(x, y, z, z * z, st, put, std::make_integer_sequence<int, E1 - E0>{});
+}
+
+/// Resuming step E0 of the N-band kernel in the middle of its column m: st.f1 and st.f2 are set to the F of
+/// the column's steps before E0, recomputed by the same arithmetic as eval_steps (so the values resumed
+/// from are the bits eval_steps would have carried); st.c and st.s are left as they are and must hold
+/// (C_m, S_m). Nothing is done when E0 starts a column.
+template <int N, int E0, typename T, typename V>
+PRT_SH_INLINE void resume_column(V z, KernelState<V>& st) {
+  constexpr KernelStep step = kernel_step<N>(E0);
+  if constexpr (step.l > step.m) replay_column<step.m, step.m, step.l, T>(z, z * z, st);
+}
+
+/// (C_M, S_M) into st.c, st.s by the kernel's own chain from (C_1, S_1) = (x, y) (the same bits). M >= 1.
+template <int M, typename V>
+PRT_SH_INLINE void recompute_cs(V x, V y, KernelState<V>& st) {
+  st.c = x;
+  st.s = y;
+  for (int m = 1; m < M; ++m) advance_cs(x, y, st);
 }
 
 /// All N^2 basis functions at the direction(s) (x, y, z), N a compile-time band count.
 template <int N, typename T, typename V, typename Put>
 PRT_SH_INLINE void eval_fixed(V x, V y, V z, Put& put) {
-  static_assert(1 <= N && N <= kMaxBands, "band count out of range");
-  const V z2 = z * z;
-  // Column 0 has no (C, S) factor (the x, y passed for it are unused).
-  columns_from<N, 0, T>(x, y, z, z2, x, y, put);
+  KernelState<V> st{x, y, x, y};  // nothing of it is read before it is written
+  eval_steps<N, 0, kKernelSteps<N>, T>(x, y, z, st, put);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -281,9 +362,12 @@ void eval_accumulate_generic(int bands, std::size_t count, const float* x, const
 void eval_accumulate_generic(int bands, std::size_t count, const double* x, const double* y, const double* z,
                              const double* w, double* sums);
 
-/// Directions per tile of eval_batch's staged path (crowded strides such as out_stride = count = 1024)
-/// for `bands` and elements of element_bytes (4 or 8): each output row is written in runs of this many.
-std::size_t staged_tile_directions(int bands, std::size_t element_bytes);
+/// The write order of eval_batch at crowded strides (such as out_stride = count = 1024 floats), for the
+/// benchmark's bound: directions per tile for `count` directions (count >= the vector width) of
+/// element_bytes (4 or 8), and how many rows are written together along a tile, a vector of directions
+/// into each in turn, before the next rows (1: each row's run of the tile at once).
+std::size_t staged_tile_directions(int bands, std::size_t count, std::size_t element_bytes);
+int staged_pass_rows(int bands);
 
 /// One direction through eval_generic (scalar runtime loops); same contract as sh::eval.
 void eval_one_generic(int bands, float x, float y, float z, float* out);

@@ -82,10 +82,14 @@ void generic(int b, std::size_t n, const T* x, const T* y, const T* z, const T* 
 }  // namespace
 
 TEST_CASE("eval_accumulate adds the weighted basis sums of the reference, any count", "[sh][eval]") {
-  // Counts around the 2 x lanes directions the kernel takes at once (partial last groups padded with zero
-  // weights), and the sums start at 0.25 (they are added to, not overwritten).
-  const std::size_t lanes = sh::detail::kLanes<float>;
-  const std::vector<std::size_t> counts = {0, 1, 2 * lanes - 1, 2 * lanes, 2 * lanes + 1, 5 * lanes + 3, 200};
+  // Counts around the vectors of directions the kernel takes (kLanes of float and of double): fewer than one
+  // (copied into a zero-padded vector), odd and even numbers of vectors (the first step takes one or two),
+  // whole or with a partial last vector (overlapping the one before, its overlapped lanes weighted zero).
+  // The sums start at 0.25 (they are added to, not overwritten).
+  const std::size_t lanes = sh::detail::kLanes<float>, dlanes = sh::detail::kLanes<double>;
+  const std::vector<std::size_t> counts = {0,         1,         lanes - 1,     lanes,     lanes + 1, 2 * lanes - 1,
+                                           2 * lanes, 2 * lanes + 1, 3 * lanes, 5 * lanes + 3, dlanes + 1, 3 * dlanes - 1,
+                                           200};
   // Relative to band_scale(l) sum_j |w_j|: double, rounding of 31 recurrence steps and of the sums;
   // float, the float recurrence (about 2.3e-7 per band, as eval_batch) plus the float sums.
   // Measured worst (GCC 12, AVX2): double 2.5e-15, float 0.22 of its bound.
