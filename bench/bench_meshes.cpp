@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "core/parallel.h"
+#include "sh/sampling.h"
 
 namespace prt::bench {
 namespace {
@@ -259,7 +260,8 @@ namespace {
 // which returns how many rays of the batch count.
 template <typename Trace>
 PassResult run_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std::vector<std::uint32_t>& order,
-                    const std::vector<glm::vec3>& directions, int threads, std::size_t batch_size, Trace trace) {
+                    const std::vector<glm::vec3>& directions, int threads, std::size_t batch_size, const PassFrames& frames,
+                    Trace trace) {
   PassResult result;
   result.counts.assign(mesh.positions.size(), 0);
   batch_size = std::max<std::size_t>(1, std::min(batch_size, directions.size()));
@@ -271,7 +273,13 @@ PassResult run_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std
       const std::uint32_t v = order[k];
       const glm::vec3 n = mesh.normals[v];
       glm::vec3 t, b;
-      orthonormal_frame(n, t, b);
+      if (frames.bake) {
+        const glm::mat3 f = sh::vertex_frame(n, frames.seed, v);
+        t = f[0];
+        b = f[1];
+      } else {
+        orthonormal_frame(n, t, b);
+      }
       const glm::vec3 origin = scene.offset_origin(mesh.positions[v], n);
       std::size_t count = 0;
       for (std::size_t d0 = 0; d0 < directions.size(); d0 += batch_size) {
@@ -298,16 +306,18 @@ PassResult run_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std
 }  // namespace
 
 PassResult occlusion_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std::vector<std::uint32_t>& order,
-                          const std::vector<glm::vec3>& directions, int threads, std::size_t batch_size) {
-  return run_pass(scene, mesh, order, directions, threads, batch_size, [&](trace::RayBatch& batch) {
+                          const std::vector<glm::vec3>& directions, int threads, std::size_t batch_size,
+                          const PassFrames& frames) {
+  return run_pass(scene, mesh, order, directions, threads, batch_size, frames, [&](trace::RayBatch& batch) {
     scene.occluded(batch);
     return batch.size() - batch.occluded_count();
   });
 }
 
 PassResult closest_hit_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std::vector<std::uint32_t>& order,
-                            const std::vector<glm::vec3>& directions, int threads, std::size_t batch_size) {
-  return run_pass(scene, mesh, order, directions, threads, batch_size, [&](trace::RayBatch& batch) {
+                            const std::vector<glm::vec3>& directions, int threads, std::size_t batch_size,
+                            const PassFrames& frames) {
+  return run_pass(scene, mesh, order, directions, threads, batch_size, frames, [&](trace::RayBatch& batch) {
     scene.intersect(batch);
     std::size_t hits = 0;
     for (std::size_t i = 0; i < batch.size(); ++i) hits += batch.hit(i).hit() ? 1 : 0;

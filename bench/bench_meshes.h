@@ -78,18 +78,27 @@ struct PassResult {
   std::uint64_t checksum = 0;         ///< sum over vertices of counts[v] * (v + 1), to compare runs
 };
 
+/// The frame in which a bare pass turns the local directions into vertex v's rays.
+struct PassFrames {
+  /// false: orthonormal_frame(n_v), the same for every vertex of a given normal. true: the bake's own,
+  /// sh::vertex_frame(n_v, seed, v), turned about n_v by a hashed angle per vertex (bake/, trace/vertex_rays.h):
+  /// the bake's rays exactly. On a mesh of large flat walls the two differ in cost: neighbouring vertices
+  /// of a wall trace nearly the same rays in the first (Cornell box, 82k vertices: 1.10x faster).
+  bool bake = false;
+  std::uint32_t seed = 1;  ///< of sh::vertex_frame (BakeOptions::seed); used when bake is true
+};
+
 /// The bare Embree occlusion pass: for every vertex v in `order`, the rays from
-/// scene.offset_origin(p_v, n_v) along `directions` (about +Z) rotated into v's frame (directions
-/// transformed by orthonormal_frame(n_v)), traced with Scene::occluded in batches of `batch_size` rays,
-/// vertices split over `threads` workers by prt::parallel_for (chunks of 64 vertices). counts[v] =
-/// unoccluded rays. directions.size() <= 65535.
+/// scene.offset_origin(p_v, n_v) along `directions` (about +Z) rotated into v's frame (`frames`),
+/// traced with Scene::occluded in batches of `batch_size` rays, vertices split over `threads` workers by
+/// prt::parallel_for (chunks of 64 vertices). counts[v] = unoccluded rays. directions.size() <= 65535.
 PassResult occlusion_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std::vector<std::uint32_t>& order,
                           const std::vector<glm::vec3>& directions, int threads,
-                          std::size_t batch_size = trace::kDefaultBatchCapacity);
+                          std::size_t batch_size = trace::kDefaultBatchCapacity, const PassFrames& frames = {});
 
 /// The same rays through Scene::intersect (closest hit); counts[v] = rays that hit a triangle.
 PassResult closest_hit_pass(const trace::Scene& scene, const mesh::Mesh& mesh, const std::vector<std::uint32_t>& order,
                             const std::vector<glm::vec3>& directions, int threads,
-                            std::size_t batch_size = trace::kDefaultBatchCapacity);
+                            std::size_t batch_size = trace::kDefaultBatchCapacity, const PassFrames& frames = {});
 
 }  // namespace prt::bench

@@ -10,22 +10,26 @@ namespace {
 
 // Per chunk: sums the local basis rows of v's occluded rays, then writes the unshadowed transfer minus
 // that sum rotated to the world (the control variate of bake.h).
-class ShadowedWorker : public OccludedSamples<ShadowedWorker> {
+class ShadowedWorker {
  public:
-  ShadowedWorker(const PassContext& ctx, const std::vector<double>& factors, std::vector<float>& out)
-      : OccludedSamples(*ctx.samples), ctx_(ctx), factors_(factors), out_(out), n_(ctx.samples->bands * ctx.samples->bands),
-        local_sum_(n_), world_sum_(n_) {}
+  ShadowedWorker(const PassContext& ctx, const std::vector<double>& factors, const OccludedRowSums& rows, std::vector<float>& out)
+      : ctx_(ctx), factors_(factors), rows_(rows), out_(out), n_(ctx.samples->bands * ctx.samples->bands),
+        local_sum_(static_cast<std::size_t>(rows.width())), world_sum_(n_) {}
 
-  void clear() { std::fill(local_sum_.begin(), local_sum_.end(), 0.0f); }
-  void add_occluded(const float* y) {
-    for (int c = 0; c < n_; ++c) local_sum_[c] += y[c];
+  void start(std::uint32_t, const glm::mat3&) {
+    std::fill(local_sum_.begin(), local_sum_.end(), 0.0f);
+    any_occluded_ = false;
+  }
+
+  void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t first) {
+    if (rows_.add(batch, first, local_sum_.data()) > 0) any_occluded_ = true;
   }
 
   void finish(std::uint32_t v, const glm::mat3& frame) {
     const int bands = ctx_.samples->bands;
     float* o = out_.data() + static_cast<std::size_t>(v) * n_;
     unshadowed_vertex(bands, factors_, ctx_.point_normals()[v], o);
-    if (!any_occluded()) return;
+    if (!any_occluded_) return;
     const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
     sh::rotate(bands, frame, local_sum_.data(), world_sum_.data());
     for (int c = 0; c < n_; ++c) o[c] -= inv_samples * world_sum_[c];
@@ -34,9 +38,11 @@ class ShadowedWorker : public OccludedSamples<ShadowedWorker> {
  private:
   const PassContext& ctx_;
   const std::vector<double>& factors_;
+  const OccludedRowSums& rows_;
   std::vector<float>& out_;
   int n_;
-  std::vector<float> local_sum_, world_sum_;
+  std::vector<float> local_sum_, world_sum_;  // local_sum_: rows_.width() floats, the first n_ used
+  bool any_occluded_ = false;
 };
 
 }  // namespace
@@ -44,10 +50,11 @@ class ShadowedWorker : public OccludedSamples<ShadowedWorker> {
 std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out) {
   const std::size_t n = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands;
   const std::vector<double> factors = unshadowed_factors(ctx.samples->bands);
+  const OccludedRowSums rows(*ctx.samples);
   out.assign(ctx.point_count() * n, 0.0f);
   Progress progress("bake shadowed", ctx.point_unit(), ctx.point_count(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::occluded), progress,
-                                  [&] { return ShadowedWorker(ctx, factors, out); });
+                                  [&] { return ShadowedWorker(ctx, factors, rows, out); });
 }
 
 }  // namespace prt::bake

@@ -1,5 +1,6 @@
 #pragma once
 // The hemisphere sample set every vertex traces and per-vertex frames: internal to prt_bake.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,9 +18,10 @@ struct LocalSampleSet {
   std::vector<float> basis;           ///< S x bands^2, sample-major: basis[s * bands^2 + i] = Y_i(directions[s])
 };
 
-/// The part every visibility worker of trace::trace_vertex_rays shares: per vertex, hands the basis row
-/// of each occluded sample to Derived::add_occluded(const float* y) (after Derived::clear() at the start)
-/// and remembers whether any ray was occluded. Derived adds finish(v, frame).
+/// A visibility worker of trace::trace_vertex_rays that sums per occluded ray (the glossy direct pass's
+/// outer products): per vertex, hands the basis row of each occluded sample to
+/// Derived::add_occluded(const float* y) (after Derived::clear() at the start) and remembers whether any
+/// ray was occluded. Derived adds finish(v, frame). The shadowed pass sums rows with OccludedRowSums.
 template <class Derived>
 class OccludedSamples {
  public:
@@ -45,6 +47,31 @@ class OccludedSamples {
   const LocalSampleSet& set_;
   int n_;
   bool any_occluded_ = false;
+};
+
+/// The sum of the local basis rows of a vertex's occluded rays: the inner loop of the shadowed pass (S
+/// rows of bands^2 floats per vertex; in a closed room 3/4 of the rays are occluded, in no predictable
+/// order, and the rays are cheap). Per batch it first lists the occluded rays (no branch per ray), then
+/// adds their rows in ray order, the sums held in vector registers for up to 8 bands. Holds a copy of
+/// the set's rows, each padded with zeros to width() floats. Read-only after construction: one may
+/// serve every thread.
+class OccludedRowSums {
+ public:
+  /// Copies set.basis (set.bands in 1..sh::kMaxBands).
+  explicit OccludedRowSums(const LocalSampleSet& set);
+
+  /// Floats of a sum buffer: bands^2 rounded up to a multiple of 8 (the padding stays 0).
+  int width() const { return width_; }
+
+  /// sum[0, width()) += the rows first .. first + batch.size() - 1 of the rays `batch` reports occluded
+  /// (RayBatch::is_occluded, after Scene::occluded); returns how many were. The float additions are
+  /// exactly those of adding each occluded ray's row in turn, in ray order, so the sums are
+  /// bit-identical to that loop's. Precondition: first + batch.size() <= S.
+  std::size_t add(const trace::RayBatch& batch, std::size_t first, float* sum) const;
+
+ private:
+  int width_ = 0;
+  std::vector<float> rows_;  // S x width_, sample-major
 };
 
 /// Builds the set for (samples, seed): sh::hemisphere_directions_cosine, basis in float.

@@ -105,6 +105,15 @@
 // slower. A baker with 1024 rays per vertex makes 4 calls per vertex. The COHERENT flag and ray packets gain nothing
 // (measured once on this machine). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
 // array.
+// Contact batches (RayBatch::set_robust in a scene built without robust mode: the points of the contact
+// rule, ROBUST MODE) are traced by occluded() with one rtcOccluded1 per ray. In robust mode rtcOccluded1M
+// is pathologically slow on rays that start in a surface, as those points' rays do (each finds that
+// surface at t = 0), and the more so the more triangles share the plane: the Cornell box's 24 contact
+// vertices, 1024 bake rays each, CPU us per ray at 2.7k / 41k / 164k / 870k triangles (bench::cornell_box
+// 16 / 64 / 128 / 295): rtcOccluded1M 0.47 / 3.1 / 14 / 68, rtcOccluded1 0.12 / 0.15 / 0.19 / 0.24, the
+// other vertices' rays without robust mode 0.07 / 0.09 / 0.14 / 0.24 (Xeon, Embree 3.13.5; bench_bake prints
+// the first two). The answers are the same (tests/trace/test_robust.cpp); closest hit
+// (rtcIntersect1M) shows no such cost.
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -293,8 +302,9 @@ class Scene {
   Scene(Scene&&) noexcept;
   Scene& operator=(Scene&&) noexcept;
 
-  /// Any-hit query for batch rays [0, size()) with one rtcOccluded1M call (INCOHERENT; see BatchCall):
-  /// afterwards batch.is_occluded(i) tells whether ray i meets a triangle (either side) within
+  /// Any-hit query for batch rays [0, size()) with one rtcOccluded1M call (INCOHERENT; see BatchCall; a
+  /// contact batch, robust in a scene without robust mode: one rtcOccluded1 per ray, BATCH SIZE AND
+  /// CALLS): afterwards batch.is_occluded(i) tells whether ray i meets a triangle (either side) within
   /// [tnear, tfar].
   void occluded(RayBatch& batch) const;
 

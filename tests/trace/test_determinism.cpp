@@ -10,6 +10,7 @@
 #include "bench_meshes.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "sh/sampling.h"
 #include "trace/scene.h"
 #include "trace/vertex_rays.h"
 
@@ -163,6 +164,25 @@ TEST_CASE("without robust mode the per-vertex loop is identical for any thread c
   std::size_t count = 0;
   for (std::uint8_t o : reference) count += o;
   CHECK(count > reference.size() / 4);  // the room (open at +Z) and the blocks shadow
+  {
+    // The loop's rays are each vertex's own: from its spawn point, in its frame (traced here one
+    // vertex at a time).
+    trace::SceneOptions options;
+    options.robust = false;
+    const trace::Scene scene(m, options);
+    trace::RayBatch batch(local.size());
+    std::size_t differ = 0;
+    for (std::uint32_t v = 0; v < m.positions.size(); ++v) {
+      const trace::SpawnPoint spawn = scene.spawn_point(m.positions[v], m.normals[v]);
+      const glm::mat3 frame = sh::vertex_frame(m.normals[v], 7u, v);
+      batch.clear();
+      batch.set_robust(spawn.robust);
+      for (const glm::vec3& d : local) batch.push(spawn.origin, frame * d);
+      scene.occluded(batch);
+      for (std::size_t k = 0; k < local.size(); ++k) differ += reference[v * local.size() + k] != batch.is_occluded(k);
+    }
+    CHECK(differ == 0);
+  }
   CHECK(trace_with(2, 2) == reference);
   CHECK(trace_with(0, 5) == reference);
 }

@@ -128,6 +128,48 @@ TEST_CASE("without robust mode, the contact rule keeps the exact answers where a
   }
 }
 
+TEST_CASE("a contact point's batches, traced ray by ray, give a robust scene's answers", "[trace]") {
+  // Scene::occluded traces a robust batch of a scene without robust mode (a contact point's) with one
+  // rtcOccluded1 per ray: rtcOccluded1M is pathologically slow for rays that start in a surface. The
+  // answers must be those of a robust scene's stream and single calls, ray for ray. The Cornell box's
+  // 24 contact vertices start in the floor's plane: robust mode finds the floor at t = 0 for every ray.
+  const std::vector<glm::vec3> dirs = trace::testing::test_directions(248);  // + 8 grazing: 256 rays
+  for (const glm::vec3 shift : {glm::vec3(0.0f), glm::vec3(3.0f, 5.0f, -7.0f)}) {
+    mesh::Mesh m = bench::cornell_box(12);
+    for (glm::vec3& p : m.positions) p += shift;
+    INFO("shifted by " << shift.x << ", " << shift.y << ", " << shift.z);
+    const trace::Scene fast = make_scene(m, false), robust = make_scene(m, true);
+    trace::SceneOptions single_options;
+    single_options.batch_call = trace::BatchCall::single;
+    const trace::Scene robust_single(m, single_options);
+    trace::RayBatch contact(dirs.size()), stream(dirs.size()), single(dirs.size()), not_robust(dirs.size());
+    std::size_t contacts = 0, occluded = 0, differ_from_fast = 0;
+    for (std::size_t v = 0; v < m.positions.size(); ++v) {
+      const trace::SpawnPoint s = fast.spawn_point(m.positions[v], m.normals[v]);
+      if (!s.robust) continue;
+      ++contacts;
+      for (trace::RayBatch* b : {&contact, &stream, &single, &not_robust}) {
+        b->clear();
+        for (const glm::vec3& d : dirs) b->push(s.origin, trace::testing::vertex_direction(m, v, d));
+      }
+      contact.set_robust(true);
+      fast.occluded(contact);
+      robust.occluded(stream);
+      robust_single.occluded(single);
+      fast.occluded(not_robust);
+      for (std::size_t i = 0; i < dirs.size(); ++i) {
+        REQUIRE(contact.is_occluded(i) == stream.is_occluded(i));
+        REQUIRE(contact.is_occluded(i) == single.is_occluded(i));
+        occluded += contact.is_occluded(i);
+        differ_from_fast += contact.is_occluded(i) != not_robust.is_occluded(i);
+      }
+    }
+    CHECK(contacts == 24);
+    CHECK(occluded == contacts * dirs.size());
+    CHECK(differ_from_fast > contacts * dirs.size() / 4);  // robust mode changes these answers
+  }
+}
+
 TEST_CASE("the contact rule flags few vertices of meshes without contacts and loses nothing to robust mode", "[trace]") {
   // On meshes without contacts (nearly) every vertex is traced without robust mode (the lion: 4 of
   // 10,000 vertices flagged, at folds where the normal grazes a face of its own); the answers must be no
