@@ -10,6 +10,7 @@
 // The "vertices" may be other surface sample points (a lightmap's texel samples): VertexRays::positions
 // and ::normals then replace the mesh's, and the index v names a sample point.
 #include <algorithm>
+#include <cassert>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -78,6 +79,7 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     RayBatch batch(std::max<std::size_t>(1, std::min<std::size_t>(samples, kDefaultBatchCapacity)));
     auto worker = make_worker();
     const std::size_t begin = share_begin + chunk_begin, end = share_begin + chunk_end;
+    assert(end - begin <= kVerticesPerChunk);  // parallel_for: chunks of at most the grain
     // The chunk's spawn points first (at most kVerticesPerChunk): point queries in a row, in Morton
     // order, find the BVH nodes they share in the cache; between two vertices' rays they miss it.
     SpawnPoint spawns[kVerticesPerChunk];
