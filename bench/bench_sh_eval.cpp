@@ -11,6 +11,8 @@
 // "fill" writes the same bytes with std::fill: the write bound of a batch, measured in the run.
 // "fused_dirs=N" is sh::eval_accumulate over N directions per call (evaluation fused with weighted
 // accumulation into bands^2 sums, as projection uses it): the figure that does not depend on the cache.
+// "stream_dirs=N" is sh::Accumulator fed N directions per call, the batch's directions in all, reduced once:
+// the fused path for directions that arrive in short calls.
 // Figures in the summary are medians over repetitions of CPU time per direction (the machine is
 // shared: CPU time excludes time the process spent descheduled). Usage:
 //   bench_sh_eval [--batch=N] [--reps=R] [google benchmark flags, e.g. --benchmark_filter=float]
@@ -29,6 +31,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/vec3.hpp>
 
+#include "sh/accumulator.h"
 #include "sh/basis.h"
 #include "sh/eval_kernels.h"
 
@@ -158,6 +161,30 @@ void bench_fused(benchmark::State& state, int bands, Path path, std::size_t coun
   state.counters["dirs"] = static_cast<double>(count);
 }
 
+// sh::Accumulator fed `call` directions per add, `total` directions in all, then its totals: the
+// fused path for short calls (the partial sums stay in the object between calls, reduced once).
+template <typename T>
+void bench_stream(benchmark::State& state, int bands, std::size_t call, std::size_t total) {
+  Directions<T> d = random_directions<T>(total);
+  std::vector<T> weight(total);
+  for (std::size_t j = 0; j < total; ++j) weight[j] = static_cast<T>(0.5 + 0.25 * d.x[j]);
+  std::vector<T> sums(static_cast<std::size_t>(bands * bands));
+  sh::Accumulator<T> acc(bands);
+  for (auto _ : state) {
+    acc.clear();
+    for (std::size_t j = 0; j < total; j += call) {
+      const std::size_t n = std::min(call, total - j);
+      acc.add(n, d.x.data() + j, d.y.data() + j, d.z.data() + j, weight.data() + j);
+    }
+    std::fill(sums.begin(), sums.end(), T(0));
+    acc.add_to(sums.data());
+    benchmark::DoNotOptimize(sums.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * total));
+  state.counters["dirs"] = static_cast<double>(call);
+}
+
 // One direction at a time, writing each result over the last (as a caller consuming it would).
 template <typename T>
 void bench_one(benchmark::State& state, int bands, Path path, std::size_t count) {
@@ -231,6 +258,10 @@ std::vector<std::size_t> fused_counts(std::size_t batch) {
 }
 
 std::string fused_kind(std::size_t count) { return "fused_dirs=" + std::to_string(count); }
+
+// Directions per add call of the sh::Accumulator benchmarks (the batch's directions in all).
+const std::vector<std::size_t> kStreamCalls = {16, 64};
+std::string stream_kind(std::size_t call) { return "stream_dirs=" + std::to_string(call); }
 
 std::string verdict(double value, double target) {
   if (std::isnan(target) || std::isnan(value)) return "";
@@ -318,6 +349,22 @@ void print_fused_table(const SummaryReporter& r, std::size_t batch) {
   }
   std::printf("input bandwidth at the largest count: 16 B per direction / ns per direction (the inputs of 65536 "
               "directions, 1 MiB, come from L3).\n");
+  std::printf("\nsh::Accumulator (partial sums kept between calls, reduced once), %zu directions in calls of:\n", batch);
+  std::printf("%5s |", "bands");
+  for (std::size_t call : kStreamCalls) std::printf(" %7zu dirs      |", call);
+  std::printf("\n");
+  for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
+    const double t = target_ns(bands);
+    if (std::isnan(r.median(name_of(stream_kind(kStreamCalls[0]).c_str(), "float", Path::kFast, bands)))) continue;
+    std::printf("%5d |", bands);
+    for (std::size_t call : kStreamCalls) {
+      double v = r.median(name_of(stream_kind(call).c_str(), "float", Path::kFast, bands));
+      char target[32] = "";
+      if (!std::isnan(t)) std::snprintf(target, sizeof target, "<=%.1f %s", t, verdict(v, t).c_str());
+      std::printf(" %7.3f %-9s |", v, target);
+    }
+    std::printf("\n");
+  }
 }
 
 // Removes "--name=value" from argv and returns value (or fallback).
@@ -362,6 +409,10 @@ int main(int argc, char** argv) {
         add(name_of(fused_kind(count).c_str(), "float", path, bands),
             [=](benchmark::State& s) { bench_fused<float>(s, bands, path, count); });
       }
+      if (path == Path::kFast)
+        for (std::size_t call : kStreamCalls)
+          add(name_of(stream_kind(call).c_str(), "float", path, bands),
+              [=](benchmark::State& s) { bench_stream<float>(s, bands, call, batch); });
       // Beyond kMaxFastBands eval_batch is the generic path: measure that once.
       if (bands > sh::kMaxFastBands && path == Path::kFast) continue;
       add(name_of("batch", "float", path, bands),

@@ -71,7 +71,9 @@ void eval_batch(int bands, std::size_t count, const double* x, const double* y, 
 /// The fast path (bands <= kMaxFastBands) is specialised per band count and vectorised across directions.
 /// Rounding: the sum runs in T in kLanes-wide partial sums, so a float sum of many terms carries float
 /// accumulation error (relative ~ count / lanes x 6e-8 of sum_j |w_j Y_k|); use double for long sums.
-/// Deterministic: the same inputs give the same bits.
+/// Deterministic: the same inputs give the same bits. Each call reduces its partial sums to bands^2
+/// totals, which at a few dozen directions per call costs about what the evaluation does; for directions
+/// arriving in short calls use sh::Accumulator (sh/accumulator.h), which reduces once.
 void eval_accumulate(int bands, std::size_t count, const float* x, const float* y, const float* z, const float* w,
                      float* sums);
 void eval_accumulate(int bands, std::size_t count, const double* x, const double* y, const double* z,

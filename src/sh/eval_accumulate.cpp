@@ -29,6 +29,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "sh/accumulator.h"
 #include "sh/basis.h"
 #include "sh/eval_kernels.h"
 
@@ -61,7 +62,19 @@ inline constexpr ScaledTables kScaled = make_scaled_tables();
 // loaded and stored once per 2 kLanes directions (the bands^2 accumulators do not fit in registers; their
 // memory traffic, not the arithmetic, bounded a one-vector loop at 9 bands: 5.9 against 4.0 ns).
 // Accumulators<kSet, A>: the kernel's sink, acc[k] = v (the first step of a call) or acc[k] += v.
-template <bool kSet, typename A>
+// A compiler barrier on the accumulators: they stay in memory between kernel steps. Without it GCC keeps
+// all bands^2 of them in registers across the loop and spills most (9 bands: 81 copies in and out per call
+// and stack traffic in every step).
+template <typename V>
+PRT_SH_INLINE void keep_in_memory(V* acc) {
+#if defined(__GNUC__)
+  asm volatile("" : : "r"(acc) : "memory");
+#else
+  (void)acc;
+#endif
+}
+
+template <bool kSet, typename A, bool kInMemory = false>
 struct Accumulators {
   A* acc;
   PRT_SH_INLINE void add(int k, A v) const {
@@ -70,6 +83,7 @@ struct Accumulators {
     } else {
       acc[k] += v;
     }
+    if constexpr (kInMemory) keep_in_memory(acc);
   }
   PRT_SH_INLINE void add(int k, Pair<A> v) const {
     if constexpr (kSet) {
@@ -78,6 +92,7 @@ struct Accumulators {
       acc[k] += v.a;
       acc[k] += v.b;
     }
+    if constexpr (kInMemory) keep_in_memory(acc);
   }
 };
 
@@ -357,6 +372,74 @@ void accumulate_dispatch(int bands, std::size_t count, const T* x, const T* y, c
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// sh::Accumulator: the same kernels adding into partial sums kept between calls (no set step, no
+// reduction per call).
+
+// acc[k] += the lane-wise weighted values of count directions: every step adds, including the first.
+template <int N, typename T>
+void accumulate_stream(std::size_t count, const T* x, const T* y, const T* z, const T* w, Vec<T>* acc) {
+  using V = Vec<T>;
+  if (count == 0) return;
+  const Accumulators<false, V, true> add{acc};
+  auto one = [&add](V vx, V vy, V vz, V vw) PRT_SH_LAMBDA_INLINE { accumulate_fixed<N, T>(vx, vy, vz, vw, add); };
+  auto pair = [&add](Pair<V> vx, Pair<V> vy, Pair<V> vz, Pair<V> vw)
+                  PRT_SH_LAMBDA_INLINE { accumulate_fixed<N, T>(vx, vy, vz, vw, add); };
+  for_each_step(count, x, y, z, w, one, pair, pair);
+}
+
+template <typename T>
+void accumulate_stream_generic(int bands, std::size_t count, const T* x, const T* y, const T* z, const T* w,
+                               Vec<T>* acc) {
+  if (count == 0) return;
+  const Accumulators<false, Vec<T>> add{acc};
+  auto step = [bands, &add](auto vx, auto vy, auto vz, auto vw) {
+    auto put = [&add, vw](int k, decltype(vw) value) PRT_SH_LAMBDA_INLINE { add.add(k, vw * value); };
+    eval_generic<T>(bands, vx, vy, vz, put);
+  };
+  for_each_step(count, x, y, z, w, step, step, step);
+}
+
+template <int N, typename T>
+void finish_stream(const Vec<T>* acc, T* sums) {
+  finish<true, T, N * N>(acc, sums);
+}
+
+template <typename T>
+using StreamFunction = void (*)(std::size_t, const T*, const T*, const T*, const T*, Vec<T>*);
+template <typename T>
+using FinishFunction = void (*)(const Vec<T>*, T*);
+
+template <typename T, int... I>
+constexpr auto make_stream_table(std::integer_sequence<int, I...>) {
+  return std::array<StreamFunction<T>, sizeof...(I)>{&accumulate_stream<I + 1, T>...};
+}
+template <typename T, int... I>
+constexpr auto make_finish_table(std::integer_sequence<int, I...>) {
+  return std::array<FinishFunction<T>, sizeof...(I)>{&finish_stream<I + 1, T>...};
+}
+
+template <typename T>
+void stream_dispatch(int bands, std::size_t count, const T* x, const T* y, const T* z, const T* w, Vec<T>* acc) {
+  static constexpr auto kFixed = make_stream_table<T>(std::make_integer_sequence<int, kMaxFastBands>{});
+  if (bands <= kMaxFastBands) {
+    kFixed[static_cast<std::size_t>(bands - 1)](count, x, y, z, w, acc);
+  } else {
+    accumulate_stream_generic<T>(bands, count, x, y, z, w, acc);
+  }
+}
+
+// The fixed kernels accumulate the rescaled G (sums scaled by s_lm at the end), the generic one Y itself.
+template <typename T>
+void finish_dispatch(int bands, const Vec<T>* acc, T* sums) {
+  static constexpr auto kFixed = make_finish_table<T>(std::make_integer_sequence<int, kMaxFastBands>{});
+  if (bands <= kMaxFastBands) {
+    kFixed[static_cast<std::size_t>(bands - 1)](acc, sums);
+  } else {
+    finish_unscaled<T>(static_cast<std::size_t>(bands * bands), acc, sums);
+  }
+}
+
 }  // namespace
 
 void eval_accumulate_generic(int bands, std::size_t count, const float* x, const float* y, const float* z,
@@ -380,5 +463,41 @@ void eval_accumulate(int bands, std::size_t count, const double* x, const double
                      const double* w, double* sums) {
   detail::accumulate_dispatch<double>(bands, count, x, y, z, w, sums);
 }
+
+template <typename T>
+Accumulator<T>::Accumulator(int bands) : bands_(bands) {
+  constexpr std::size_t alignment = 64;
+  static_assert(alignment % alignof(detail::Vec<T>) == 0, "the partial sums' vectors need at most 64-byte alignment");
+  const std::size_t bytes = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands) * sizeof(detail::Vec<T>);
+  storage_.reset(new unsigned char[bytes + alignment]);
+  const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(storage_.get());
+  lanes_ = reinterpret_cast<T*>(storage_.get() + (alignment - start % alignment) % alignment);
+  clear();
+}
+
+template <typename T>
+Accumulator<T>::~Accumulator() = default;
+template <typename T>
+Accumulator<T>::Accumulator(Accumulator&&) noexcept = default;
+template <typename T>
+Accumulator<T>& Accumulator<T>::operator=(Accumulator&&) noexcept = default;
+
+template <typename T>
+void Accumulator<T>::add(std::size_t count, const T* x, const T* y, const T* z, const T* w) {
+  detail::stream_dispatch<T>(bands_, count, x, y, z, w, reinterpret_cast<detail::Vec<T>*>(lanes_));
+}
+
+template <typename T>
+void Accumulator<T>::add_to(T* sums) const {
+  detail::finish_dispatch<T>(bands_, reinterpret_cast<const detail::Vec<T>*>(lanes_), sums);
+}
+
+template <typename T>
+void Accumulator<T>::clear() {
+  std::memset(lanes_, 0, static_cast<std::size_t>(bands_) * static_cast<std::size_t>(bands_) * sizeof(detail::Vec<T>));
+}
+
+template class Accumulator<float>;
+template class Accumulator<double>;
 
 }  // namespace prt::sh

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <random>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "sh/accumulator.h"
 #include "sh/basis.h"
 #include "sh/eval_kernels.h"
 #include "sh/quadrature.h"
@@ -73,6 +75,18 @@ double worst_error(Accumulate accumulate, int bands, const Samples& s, double st
 template <typename T>
 void fast(int b, std::size_t n, const T* x, const T* y, const T* z, const T* w, T* s) {
   sh::eval_accumulate(b, n, x, y, z, w, s);
+}
+// sh::Accumulator fed the directions in calls of the sizes `calls` (cycled), then its totals added to s.
+std::vector<std::size_t> g_calls;
+template <typename T>
+void streamed(int b, std::size_t n, const T* x, const T* y, const T* z, const T* w, T* s) {
+  sh::Accumulator<T> acc(b);
+  for (std::size_t j = 0, c = 0; j < n; ++c) {
+    const std::size_t size = std::min(g_calls[c % g_calls.size()], n - j);
+    acc.add(size, x + j, y + j, z + j, w + j);
+    j += size;
+  }
+  acc.add_to(s);
 }
 template <typename T>
 void generic(int b, std::size_t n, const T* x, const T* y, const T* z, const T* w, T* s) {
@@ -137,4 +151,61 @@ TEST_CASE("eval_accumulate projects the basis onto itself: the identity under an
       }
     }
   }
+}
+
+TEST_CASE("Accumulator: many short calls give the reference's weighted basis sums", "[sh][eval]") {
+  // The same truth and tolerances as eval_accumulate's test: sums over eval_reference in double. Call sizes
+  // around a vector of directions (partial, whole, one and two vectors with a partial one) and empty calls.
+  const std::size_t lanes = sh::detail::kLanes<float>;
+  const std::vector<std::vector<std::size_t>> call_sets = {
+      {1}, {16}, {lanes - 1, 0, lanes + 1, 3, 2 * lanes + 5}, {64, 7}};
+  for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
+    const double float_tolerance = 3e-7 * bands + 1e-7;
+    const Samples s = random_samples(333, 700 + static_cast<unsigned>(bands));
+    for (const std::vector<std::size_t>& calls : call_sets) {
+      INFO("bands " << bands << ", first call " << calls[0]);
+      g_calls = calls;
+      REQUIRE(worst_error<float>(streamed<float>, bands, s, 0.25) <= float_tolerance);
+      REQUIRE(worst_error<double>(streamed<double>, bands, s, 0.25) <= 1e-14);
+    }
+  }
+}
+
+TEST_CASE("Accumulator: totals kept across add_to, cleared by clear, the same bits for the same calls", "[sh][eval]") {
+  const int bands = 9, n = bands * bands;
+  const Samples s = random_samples(100, 5);
+  std::vector<float> x, y, z, w;
+  for (std::size_t j = 0; j < s.dirs.size(); ++j) {
+    x.push_back(static_cast<float>(s.dirs[j].x));
+    y.push_back(static_cast<float>(s.dirs[j].y));
+    z.push_back(static_cast<float>(s.dirs[j].z));
+    w.push_back(static_cast<float>(s.weights[j]));
+  }
+  auto run = [&](sh::Accumulator<float>& acc) {
+    for (std::size_t j = 0; j < x.size(); j += 10) acc.add(10, &x[j], &y[j], &z[j], &w[j]);
+  };
+  sh::Accumulator<float> a(bands), b(bands);
+  run(a);
+  run(b);
+  std::vector<float> once(n, 0.0f), twice(n, 0.0f), again(n, 0.0f);
+  a.add_to(once.data());
+  a.add_to(twice.data());
+  a.add_to(twice.data());
+  b.add_to(again.data());
+  for (int k = 0; k < n; ++k) {
+    REQUIRE(twice[k] == once[k] + once[k]);  // add_to adds, and leaves the partial sums as they were
+    REQUIRE(std::memcmp(&again[k], &once[k], sizeof(float)) == 0);
+  }
+  // The totals are eval_accumulate's over the same directions, to float rounding of a 100-term sum.
+  std::vector<float> direct(n, 0.0f);
+  sh::eval_accumulate(bands, x.size(), x.data(), y.data(), z.data(), w.data(), direct.data());
+  for (int k = 0; k < n; ++k) REQUIRE(std::abs(once[k] - direct[k]) <= 1e-5f * 100);
+  a.clear();
+  std::vector<float> cleared(n, 1.0f);
+  a.add_to(cleared.data());
+  for (int k = 0; k < n; ++k) REQUIRE(cleared[k] == 1.0f);
+  sh::Accumulator<float> moved(std::move(b));
+  std::vector<float> after_move(n, 0.0f);
+  moved.add_to(after_move.data());
+  REQUIRE(after_move == once);
 }
