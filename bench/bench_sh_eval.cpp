@@ -182,7 +182,7 @@ void bench_stream(benchmark::State& state, int bands, std::size_t call, std::siz
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * total));
-  state.counters["dirs"] = static_cast<double>(call);
+  state.counters["dirs"] = static_cast<double>(total);
 }
 
 // One direction at a time, writing each result over the last (as a caller consuming it would).
