@@ -326,43 +326,46 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
               "measured in this run.\n", batch);
 }
 
+// The header of a table whose columns are direction counts.
+void print_count_header(const std::vector<std::size_t>& counts) {
+  std::printf("%5s |", "bands");
+  for (std::size_t count : counts) std::printf(" %7zu dirs      |", count);
+}
+
+// One row's cells: the float fast-path median of kind(count) for each count, with the target verdict.
+template <typename Kind>
+void print_count_cells(const SummaryReporter& r, int bands, const std::vector<std::size_t>& counts, Kind kind) {
+  const double t = target_ns(bands);
+  std::printf("%5d |", bands);
+  for (std::size_t count : counts) {
+    double v = r.median(name_of(kind(count).c_str(), "float", Path::kFast, bands));
+    char target[32] = "";
+    if (!std::isnan(t)) std::snprintf(target, sizeof target, "<=%.1f %s", t, verdict(v, t).c_str());
+    std::printf(" %7.3f %-9s |", v, target);
+  }
+}
+
 void print_fused_table(const SummaryReporter& r, std::size_t batch) {
   const std::vector<std::size_t> counts = fused_counts(batch);
   std::printf("\nFused evaluate-and-accumulate (sh::eval_accumulate: sums[k] += sum_j w_j Y_k(d_j), nothing per "
               "direction stored; 16 B per direction read), float, CPU ns per direction, one call per batch of:\n");
-  std::printf("%5s |", "bands");
-  for (std::size_t count : counts) std::printf(" %7zu dirs      |", count);
+  print_count_header(counts);
   std::printf(" generic (%zu)    x\n", batch);
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
-    const double t = target_ns(bands);
     double fast_batch = r.median(name_of(fused_kind(batch).c_str(), "float", Path::kFast, bands));
     double generic = r.median(name_of(fused_kind(batch).c_str(), "float", Path::kGeneric, bands));
     if (std::isnan(fast_batch) && std::isnan(generic)) continue;
-    std::printf("%5d |", bands);
-    for (std::size_t count : counts) {
-      double v = r.median(name_of(fused_kind(count).c_str(), "float", Path::kFast, bands));
-      char target[32] = "";
-      if (!std::isnan(t)) std::snprintf(target, sizeof target, "<=%.1f %s", t, verdict(v, t).c_str());
-      std::printf(" %7.3f %-9s |", v, target);
-    }
+    print_count_cells(r, bands, counts, fused_kind);
     std::printf(" %7.3f %6.2fx\n", generic, generic / fast_batch);
   }
   std::printf("input bandwidth at the largest count: 16 B per direction / ns per direction (the inputs of 65536 "
               "directions, 1 MiB, come from L3).\n");
   std::printf("\nsh::Accumulator (partial sums kept between calls, reduced once), %zu directions in calls of:\n", batch);
-  std::printf("%5s |", "bands");
-  for (std::size_t call : kStreamCalls) std::printf(" %7zu dirs      |", call);
+  print_count_header(kStreamCalls);
   std::printf("\n");
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
-    const double t = target_ns(bands);
     if (std::isnan(r.median(name_of(stream_kind(kStreamCalls[0]).c_str(), "float", Path::kFast, bands)))) continue;
-    std::printf("%5d |", bands);
-    for (std::size_t call : kStreamCalls) {
-      double v = r.median(name_of(stream_kind(call).c_str(), "float", Path::kFast, bands));
-      char target[32] = "";
-      if (!std::isnan(t)) std::snprintf(target, sizeof target, "<=%.1f %s", t, verdict(v, t).c_str());
-      std::printf(" %7.3f %-9s |", v, target);
-    }
+    print_count_cells(r, bands, kStreamCalls, stream_kind);
     std::printf("\n");
   }
 }
