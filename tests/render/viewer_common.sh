@@ -1,8 +1,9 @@
-# Sourced by the viewer smoke tests: exits 77 (ctest: skipped) without xvfb-run, then makes the
+# Sourced by the viewer smoke tests: fails without xvfb-run (scripts/setup.sh --tests installs it, so a
+# missing one is a broken setup, not a reason to skip), then makes the
 # fixture folder $dir (removed on exit) and fills it with make_render_fixtures ($1 of the caller: $make_fixtures).
 if ! command -v xvfb-run >/dev/null 2>&1; then
-  echo "SKIPPED: xvfb-run is not installed (scripts/setup.sh installs xvfb); the viewer needs an X display"
-  exit 77
+  echo "FAILED: xvfb-run is not installed (scripts/setup.sh --tests installs xvfb); the viewer needs an X display"
+  exit 1
 fi
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT

@@ -3,7 +3,7 @@
 # transfer for the fixture mesh, compresses it with prt compress, opens the viewer under a virtual X
 # server with the .cprt and the uncompressed .prt, saves an EXR screenshot of the compressed one, and
 # checks it against `prt render` of the .cprt (the same renderer: rel_rms < 1e-5).
-# Usage: viewer_cpca_smoke.sh PRT MAKE_FIXTURES. Exit 77 (ctest: skipped) if xvfb-run is not installed.
+# Usage: viewer_cpca_smoke.sh PRT MAKE_FIXTURES. Fails if xvfb-run is not installed.
 set -eu
 prt="$1"
 make_fixtures="$2"

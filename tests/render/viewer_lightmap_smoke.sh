@@ -3,7 +3,7 @@
 # per-vertex transfer for a small OBJ with lightmap UVs (a floor of two triangles and a wall standing on
 # it), opens the viewer under a virtual X server with both and a disc (sun), saves an EXR screenshot of
 # the lightmap, and checks it against `prt render` of the same (the same renderer: rel_rms < 1e-5).
-# Usage: viewer_lightmap_smoke.sh PRT MAKE_FIXTURES. Exit 77 (ctest: skipped) if xvfb-run is not installed.
+# Usage: viewer_lightmap_smoke.sh PRT MAKE_FIXTURES. Fails if xvfb-run is not installed.
 set -eu
 prt="$1"
 make_fixtures="$2"
