@@ -165,9 +165,10 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // the kernel's own arithmetic, the same bits) rather than stored: extra stores cost about as much as the
 // output's own (a stored F state made 9 bands 1.3-1.4x slower than its recomputation). From kPieceCsFrom bands
 // on, where the chain for (C_m, S_m) grows long, (C_m, S_m) is kept per vector instead (2 stores per column).
+// The pieces read their inputs from copies placed off the output rows' page offset (kInputShift).
 // Staging the output through an L1 tile, the path this replaced, wrote every value twice and was 1.5-2.5x
-// slower than the padded stride (Xeon); this one is 1.0x at 3-5 bands and 1.1-1.25x at 9-16 (notes in
-// docs/conventions.md).
+// slower than the padded stride (Xeon); this one is 1.0-1.1x at 3-5 bands, 1.1x at 9 and 1.1-1.2x at 16
+// (notes in docs/conventions.md).
 constexpr int kPieceRows = 4;
 constexpr std::size_t kPieceTileBytes = 4096;
 constexpr int kPieceCsFrom = 14;
