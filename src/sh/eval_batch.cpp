@@ -165,12 +165,24 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // the kernel's own arithmetic, the same bits) rather than stored: extra stores cost about as much as the
 // output's own (a stored F state made 9 bands 1.3-1.4x slower than its recomputation). From kPieceCsFrom bands
 // on, where the chain for (C_m, S_m) grows long, (C_m, S_m) is kept per vector instead (2 stores per column).
+// The pieces read their inputs from copies placed off the output rows' page offset (kInputShift).
 // Staging the output through an L1 tile, the path this replaced, wrote every value twice and was 1.5-2.5x
-// slower than the padded stride (Xeon); this one is 1.0x at 3-5 bands and 1.1-1.25x at 9-16 (notes in
-// docs/conventions.md).
+// slower than the padded stride (Xeon); this one is 1.0-1.1x at 3-5 bands, 1.1x at 9 and 1.1-1.2x at 16
+// (notes in docs/conventions.md).
 constexpr int kPieceRows = 4;
 constexpr std::size_t kPieceTileBytes = 4096;
 constexpr int kPieceCsFrom = 14;
+// The pieces read their inputs from copies kInputShift bytes past the output rows' page offset: loads whose
+// address matches a pending store's in the low 12 bits wait for it ("4K aliasing"), and a crowded stride's
+// stores are pending long (slow to reach L2). Inputs at 64 bytes below the rows' offset (each load aliases
+// the stores of the vector before) made 9 / 16 bands 1.2 / 1.4x the padded figure, at 0 1.2 / 1.3x, at
+// 1024 1.1 / 1.2x (Xeon, count 1024); the bench's own inputs (std::vector, 32-48 bytes below) 1.2 / 1.25x.
+constexpr std::size_t kInputShift = 1024;
+// Up to 3 bands a tile's output rows and inputs fit in L1 together (9 rows of 4 KiB and 12 KiB of inputs,
+// 48 KiB of L1 on the Xeon), the stores do not wait, and the copies would push it all out to L2: 3 bands
+// with them took 1.14 ns per direction instead of 0.46.
+template <int N>
+inline constexpr bool kCopyInputs = N >= 4;
 
 // Output rows of one kernel step: Y_l,0, or Y_l,m and Y_l,-m.
 constexpr int step_rows(const KernelStep& step) { return step.m == 0 ? 1 : 2; }
@@ -199,12 +211,20 @@ constexpr Pieces<N> make_pieces() {
 template <int N>
 inline constexpr Pieces<N> kPieces = make_pieces<N>();
 
+// A tile's inputs as the pieces read them: copies of x, y, z, one page each, and (C, S) kept per vector of
+// directions (from kPieceCsFrom bands on; by vector, not by direction: the blocks of for_each_block overlap),
+// all at a page offset away from the output rows' (see kInputShift).
+template <typename T>
+struct TileInputs {
+  const T *x, *y, *z;
+  T *c, *s;
+};
+
 // Piece P over the n directions of one tile (kLanes <= n), vectors of directions at the starts of
-// for_each_block(n, kLanes, peel). cs[2 i], cs[2 i + 1]: (C, S) of vector i as the pieces before left it
-// (used from kPieceCsFrom bands on).
+// for_each_block(n, kLanes, peel). in.c, in.s: (C, S) of each vector as the pieces before left it (used
+// from kPieceCsFrom bands on).
 template <int N, int P, typename T>
-PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const T* x, const T* y, const T* z, T* out,
-                              std::size_t stride, Vec<T>* cs) {
+PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride) {
   using V = Vec<T>;
   constexpr int e0 = kPieces<N>.begin[P], e1 = kPieces<N>.begin[P + 1];
   constexpr KernelStep first = kernel_step<N>(e0), last = kernel_step<N>(e1 - 1);
@@ -213,13 +233,13 @@ PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const T* x, const
   constexpr bool reads_cs = first.l > first.m ? first.m >= 1 : first.m >= 2;
   constexpr bool changes_cs = (first.l == first.m && first.m >= 1) || last.m > first.m;
   constexpr bool keep_cs = N >= kPieceCsFrom;
-  V* next_cs = cs;
+  std::size_t kept = 0;  // where in in.c, in.s this vector's (C, S) is
   for_each_block(n, kLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
-    const V vx = load<V>(x + j), vy = load<V>(y + j), vz = load<V>(z + j);
+    const V vx = load<V>(in.x + j), vy = load<V>(in.y + j), vz = load<V>(in.z + j);
     KernelState<V> st{vx, vy, vx, vy};  // what the steps read before writing is set below
     if constexpr (reads_cs && keep_cs) {
-      st.c = next_cs[0];
-      st.s = next_cs[1];
+      st.c = load<V>(in.c + kept);
+      st.s = load<V>(in.s + kept);
     } else if constexpr (reads_cs) {
       recompute_cs<(first.l > first.m ? first.m : first.m - 1)>(vx, vy, st);
     }
@@ -227,19 +247,17 @@ PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const T* x, const
     StridedStore<T> put{out + j, stride};
     eval_steps<N, e0, e1, T>(vx, vy, vz, st, put);
     if constexpr (changes_cs && keep_cs && P + 1 < kPieces<N>.count) {
-      next_cs[0] = st.c;
-      next_cs[1] = st.s;
+      store(in.c + kept, st.c);
+      store(in.s + kept, st.s);
     }
-    next_cs += 2;
+    kept += kLanes<T>;
   });
 }
 
 template <int N, typename T, int... P>
-PRT_SH_INLINE void pieces_tile(std::size_t n, std::size_t peel, const T* x, const T* y, const T* z, T* out,
-                               std::size_t stride, std::integer_sequence<int, P...>) {
-  // One (C, S) pair per vector of the tile, plus the vector an unaligned start adds.
-  Vec<T> cs[2 * (kPieceTileBytes / sizeof(Vec<T>) + 1)];
-  (piece_pass<N, P, T>(n, peel, x, y, z, out, stride, cs), ...);
+PRT_SH_INLINE void pieces_tile(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride,
+                               std::integer_sequence<int, P...>) {
+  (piece_pass<N, P, T>(n, peel, in, out, stride), ...);
 }
 
 // Directions per tile for count >= kLanes: the fewest tiles of at most kPieceTileBytes of directions, of
@@ -260,9 +278,26 @@ template <int N, typename T>
 PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
   constexpr auto pieces = std::make_integer_sequence<int, kPieces<N>.count>{};
   const std::size_t tile = pieces_tile_length<T>(count), tiles = (count + tile - 1) / tile;
+  // x, y, z of a tile, one page each at the page offset of the output rows plus kInputShift, then C and S,
+  // a page and a vector each (a tile of a whole page has a vector more when unaligned), two pages apart.
+  constexpr std::size_t streams = N >= kPieceCsFrom ? 7 : kCopyInputs<N> ? 3 : 0, page = kPage / sizeof(T);
+  alignas(kPage) unsigned char buffer[(streams + 1) * kPage];
   for (std::size_t t = 0; t < tiles; ++t) {
     const std::size_t j = t * tile < count - tile ? t * tile : count - tile;
-    pieces_tile<N, T>(tile, alignment_peel(out + j, kCacheLine), x + j, y + j, z + j, out + j, stride, pieces);
+    const std::size_t offset = (reinterpret_cast<std::uintptr_t>(out + j) + kInputShift) % kPage / sizeof(T);
+    T* first = reinterpret_cast<T*>(buffer) + offset;
+    TileInputs<T> in{x + j, y + j, z + j, nullptr, nullptr};
+    if constexpr (kCopyInputs<N>) {
+      std::memcpy(first, x + j, tile * sizeof(T));
+      std::memcpy(first + page, y + j, tile * sizeof(T));
+      std::memcpy(first + 2 * page, z + j, tile * sizeof(T));
+      in = {first, first + page, first + 2 * page, nullptr, nullptr};
+    }
+    if constexpr (N >= kPieceCsFrom) {
+      in.c = first + 3 * page;
+      in.s = first + 5 * page;
+    }
+    pieces_tile<N, T>(tile, alignment_peel(out + j, kCacheLine), in, out + j, stride, pieces);
   }
 }
 
