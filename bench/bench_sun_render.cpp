@@ -47,17 +47,21 @@ transfer::TransferData synthetic_transfer(std::size_t vertices, int bands) {
   return data;
 }
 
-struct Figures {
-  double prt_ms = 0.0, sun_ms = 0.0, rotated_ms = 0.0, same_ms = 0.0;
-  double prt_cpu_ms = 0.0, sun_cpu_ms = 0.0, rotated_cpu_ms = 0.0, same_cpu_ms = 0.0;
-  int redraws = 0, same_redraws = 0, rotated_frames = 0;
-};
-
-// One frame, finished: wall and process CPU seconds, and how many shadow maps it redrew.
+// What one or more finished frames took: wall and process CPU seconds, shadow maps redrawn.
 struct TimedFrame {
   double seconds = 0.0, cpu_seconds = 0.0;
   int map_updates = 0;
+  TimedFrame& operator+=(const TimedFrame& o) {
+    seconds += o.seconds;
+    cpu_seconds += o.cpu_seconds;
+    map_updates += o.map_updates;
+    return *this;
+  }
+  double ms(int frames) const { return 1e3 * seconds / frames; }
+  double cpu_ms(int frames) const { return 1e3 * cpu_seconds / frames; }
 };
+
+// One frame, rendered and finished.
 TimedFrame timed_frame(render::Renderer& renderer, const render::FrameSettings& settings) {
   const int before = renderer.shadow_map_updates();
   const auto start = Clock::now();
@@ -71,19 +75,47 @@ TimedFrame timed_frame(render::Renderer& renderer, const render::FrameSettings& 
   return t;
 }
 
+// Totals over the timed frames of both benchmarks: PRT-only and with the disc, frame by frame; a frame
+// after a lighting rotation and the same frame again.
+struct Figures {
+  TimedFrame prt, sun, rotated, same;
+  int frames = 0, rotated_frames = 0;
+};
+
+// Times `first` then `second` state.iterations() times, adding them to *a and *b; the manual time is
+// `first`'s wall time when time_first, else `second`'s. Returns the iteration count. `before_each` runs
+// before each pair.
+template <typename BeforeEach>
+int time_pairs(benchmark::State& state, render::Renderer& renderer, const render::FrameSettings& first,
+               const render::FrameSettings& second, bool time_first, TimedFrame* a, TimedFrame* b,
+               BeforeEach before_each) {
+  *a = {};
+  *b = {};
+  for (auto _ : state) {
+    before_each();
+    const TimedFrame x = timed_frame(renderer, first);
+    const TimedFrame y = timed_frame(renderer, second);
+    *a += x;
+    *b += y;
+    state.SetIterationTime(time_first ? x.seconds : y.seconds);
+  }
+  return static_cast<int>(state.iterations());
+}
+
 void print_summary(const Figures& f, std::size_t vertices) {
+  const int n = f.frames, r = f.rotated_frames;
   std::printf("\nSummary (machine shared and noisy: compare within this run)\n");
   std::printf("lion (%zu vertices), 1024x1024, 5 bands RGB, one disc, shadow map %dx%d:\n", vertices,
               render::kShadowMapSize, render::kShadowMapSize);
-  std::printf("  PRT-only frame %.2f ms, frame with the disc %.2f ms: x%.3f (target <= %.1f)\n", f.prt_ms, f.sun_ms,
-              f.sun_ms / f.prt_ms, kTargetSunRatio);
-  std::printf("  the same in process CPU time (all threads): %.2f ms and %.2f ms: x%.3f\n", f.prt_cpu_ms, f.sun_cpu_ms,
-              f.sun_cpu_ms / f.prt_cpu_ms);
+  std::printf("  PRT-only frame %.2f ms, frame with the disc %.2f ms: x%.3f (target <= %.1f)\n", f.prt.ms(n), f.sun.ms(n),
+              f.sun.ms(n) / f.prt.ms(n), kTargetSunRatio);
+  std::printf("  the same in process CPU time (all threads): %.2f ms and %.2f ms: x%.3f\n", f.prt.cpu_ms(n),
+              f.sun.cpu_ms(n), f.sun.cpu_ms(n) / f.prt.cpu_ms(n));
   std::printf("  frame right after a lighting rotation (map redrawn + bounce recomputed in it): %.2f ms, %d redraws in %d "
               "frames; the same frame again: %.2f ms, %d redraws; the redraw itself %.2f ms\n",
-              f.rotated_ms, f.redraws, f.rotated_frames, f.same_ms, f.same_redraws, f.rotated_ms - f.same_ms);
-  std::printf("  in CPU time: %.2f ms and %.2f ms, the redraw itself %.2f ms\n", f.rotated_cpu_ms, f.same_cpu_ms,
-              f.rotated_cpu_ms - f.same_cpu_ms);
+              f.rotated.ms(r), f.rotated.map_updates, r, f.same.ms(r), f.same.map_updates, f.rotated.ms(r) - f.same.ms(r));
+  std::printf("  in CPU time: %.2f ms and %.2f ms, the redraw itself %.2f ms\n", f.rotated.cpu_ms(r), f.same.cpu_ms(r),
+              f.rotated.cpu_ms(r) - f.same.cpu_ms(r));
 }
 
 }  // namespace
@@ -118,55 +150,23 @@ int main(int argc, char** argv) {
       renderer.render(*settings, kFrameSize, kFrameSize);
       glFinish();
     }
-    double prt_seconds = 0.0, sun_seconds = 0.0, prt_cpu = 0.0, sun_cpu = 0.0;
-    for (auto _ : state) {
-      const TimedFrame p = timed_frame(renderer, prt);
-      const TimedFrame s = timed_frame(renderer, with_sun);
-      prt_seconds += p.seconds;
-      prt_cpu += p.cpu_seconds;
-      sun_seconds += s.seconds;
-      sun_cpu += s.cpu_seconds;
-      state.SetIterationTime(s.seconds);
-    }
-    const double n = static_cast<double>(state.iterations());
-    f.prt_ms = 1e3 * prt_seconds / n;
-    f.sun_ms = 1e3 * sun_seconds / n;
-    f.prt_cpu_ms = 1e3 * prt_cpu / n;
-    f.sun_cpu_ms = 1e3 * sun_cpu / n;
-    state.counters["prt_ms"] = f.prt_ms;
-    state.counters["sun_ms"] = f.sun_ms;
-    state.counters["sun/prt"] = f.sun_ms / f.prt_ms;
+    f.frames = time_pairs(state, renderer, prt, with_sun, false, &f.prt, &f.sun, [] {});
+    state.counters["prt_ms"] = f.prt.ms(f.frames);
+    state.counters["sun_ms"] = f.sun.ms(f.frames);
+    state.counters["sun/prt"] = f.sun.ms(f.frames) / f.prt.ms(f.frames);
     state.counters["target_ratio"] = kTargetSunRatio;
   })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
   double angle = 0.0;  // kept across the library's repeated runs, so every timed frame has a new rotation
   benchmark::RegisterBenchmark("frame_after_lighting_rotation/lion/1024x1024", [&](benchmark::State& state) {
     render::FrameSettings turning = with_sun;
-    double seconds = 0.0, cpu_total = 0.0, same_seconds = 0.0, same_cpu = 0.0;
-    int redraws = 0, same_redraws = 0;
-    for (auto _ : state) {
+    // The map is redrawn inside the first frame of each pair; the second is the same picture, nothing redrawn.
+    f.rotated_frames = time_pairs(state, renderer, turning, turning, true, &f.rotated, &f.same, [&] {
       angle += 3.0;
       turning.environment_rotation = sh::rotation_from_yaw_pitch_roll(angle, 0.0, 0.0);
-      const TimedFrame rotated = timed_frame(renderer, turning);  // the map is redrawn inside this frame
-      const TimedFrame same = timed_frame(renderer, turning);     // the same picture, nothing redrawn
-      seconds += rotated.seconds;
-      cpu_total += rotated.cpu_seconds;
-      same_seconds += same.seconds;
-      same_cpu += same.cpu_seconds;
-      redraws += rotated.map_updates;
-      same_redraws += same.map_updates;
-      state.SetIterationTime(rotated.seconds);
-    }
-    const double n = static_cast<double>(state.iterations());
-    f.rotated_frames = static_cast<int>(state.iterations());
-    f.redraws = redraws;
-    f.same_redraws = same_redraws;
-    f.rotated_ms = 1e3 * seconds / n;
-    f.rotated_cpu_ms = 1e3 * cpu_total / n;
-    f.same_ms = 1e3 * same_seconds / n;
-    f.same_cpu_ms = 1e3 * same_cpu / n;
-    state.counters["ms"] = f.rotated_ms;
-    state.counters["map_redraws_per_frame"] = static_cast<double>(f.redraws) / f.rotated_frames;
+    });
+    state.counters["ms"] = f.rotated.ms(f.rotated_frames);
+    state.counters["map_redraws_per_frame"] = static_cast<double>(f.rotated.map_updates) / f.rotated_frames;
   })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
   benchmark::RunSpecifiedBenchmarks();
