@@ -15,7 +15,8 @@ namespace prt::sh {
 /// Values: the same recurrence as eval_accumulate, with the same accuracy (docs/conventions.md,
 /// Evaluation). Which lane a direction lands in depends on how the directions are split into calls,
 /// so the totals' last bits do too: the same sequence of calls gives the same bits.
-/// T is float or double. Not thread-safe; use one per thread and add their totals in a fixed order.
+/// T is float or double. Not thread-safe; use one per thread and add their totals in a fixed order. A
+/// moved-from Accumulator may only be assigned to or destroyed.
 template <typename T>
 class Accumulator {
  public:
@@ -41,9 +42,10 @@ class Accumulator {
   void clear();
 
  private:
+  T* lanes() const;  // the partial sums: the 64-byte aligned start within storage_
+
   int bands_ = 0;
   std::unique_ptr<unsigned char[]> storage_;  // bands^2 partial-sum vectors, plus alignment slack
-  T* lanes_ = nullptr;                         // 64-byte aligned start within storage_
 };
 
 extern template class Accumulator<float>;

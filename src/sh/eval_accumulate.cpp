@@ -464,14 +464,14 @@ void eval_accumulate(int bands, std::size_t count, const double* x, const double
   detail::accumulate_dispatch<double>(bands, count, x, y, z, w, sums);
 }
 
+// The partial sums' vectors start at a 64-byte boundary of storage_ (alignof of the widest vector).
+constexpr std::size_t kAccumulatorAlignment = 64;
+
 template <typename T>
 Accumulator<T>::Accumulator(int bands) : bands_(bands) {
-  constexpr std::size_t alignment = 64;
-  static_assert(alignment % alignof(detail::Vec<T>) == 0, "the partial sums' vectors need at most 64-byte alignment");
+  static_assert(kAccumulatorAlignment % alignof(detail::Vec<T>) == 0, "the partial sums' vectors need at most 64-byte alignment");
   const std::size_t bytes = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands) * sizeof(detail::Vec<T>);
-  storage_.reset(new unsigned char[bytes + alignment]);
-  const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(storage_.get());
-  lanes_ = reinterpret_cast<T*>(storage_.get() + (alignment - start % alignment) % alignment);
+  storage_.reset(new unsigned char[bytes + kAccumulatorAlignment]);
   clear();
 }
 
@@ -483,18 +483,24 @@ template <typename T>
 Accumulator<T>& Accumulator<T>::operator=(Accumulator&&) noexcept = default;
 
 template <typename T>
+T* Accumulator<T>::lanes() const {
+  const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(storage_.get());
+  return reinterpret_cast<T*>(storage_.get() + (kAccumulatorAlignment - start % kAccumulatorAlignment) % kAccumulatorAlignment);
+}
+
+template <typename T>
 void Accumulator<T>::add(std::size_t count, const T* x, const T* y, const T* z, const T* w) {
-  detail::stream_dispatch<T>(bands_, count, x, y, z, w, reinterpret_cast<detail::Vec<T>*>(lanes_));
+  detail::stream_dispatch<T>(bands_, count, x, y, z, w, reinterpret_cast<detail::Vec<T>*>(lanes()));
 }
 
 template <typename T>
 void Accumulator<T>::add_to(T* sums) const {
-  detail::finish_dispatch<T>(bands_, reinterpret_cast<const detail::Vec<T>*>(lanes_), sums);
+  detail::finish_dispatch<T>(bands_, reinterpret_cast<const detail::Vec<T>*>(lanes()), sums);
 }
 
 template <typename T>
 void Accumulator<T>::clear() {
-  std::memset(lanes_, 0, static_cast<std::size_t>(bands_) * static_cast<std::size_t>(bands_) * sizeof(detail::Vec<T>));
+  std::memset(lanes(), 0, static_cast<std::size_t>(bands_) * static_cast<std::size_t>(bands_) * sizeof(detail::Vec<T>));
 }
 
 template class Accumulator<float>;
