@@ -1,5 +1,6 @@
 // Batched SH evaluation over a structure of arrays of directions: the kernels of eval_kernels.h
-// applied to one vector of directions at a time (kLanes<T> directions per kernel call).
+// applied to one block of directions at a time (kBlockLanes<T> per kernel call: a vector, or two where a
+// vector is shorter than a cache line).
 //
 // Memory layout matters as much as arithmetic here. Every kernel call stores one vector into each of
 // the bands^2 output rows, rows out_stride apart. When out_stride * sizeof(T) is a multiple of 4 KiB
@@ -12,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include "sh/basis.h"
@@ -34,6 +36,14 @@ struct StridedStore {
 
 constexpr std::size_t kCacheLine = 64;
 constexpr std::size_t kPage = 4096;  // L1 data caches of x86 (and most others) index sets within 4 KiB
+
+// What one kernel call evaluates: one vector of directions, or two (a Pair, eval_kernels.h) where a vector is
+// shorter than a cache line, so that every store fills a whole line of its row. Half-line stores into
+// bands^2 rows cost 1.4x whole-line ones in a plain fill (Zen 3, AVX2, 81 rows, padded stride).
+template <typename T>
+using Block = std::conditional_t<(sizeof(Vec<T>) < kCacheLine), Pair<Vec<T>>, Vec<T>>;
+template <typename T>
+inline constexpr std::size_t kBlockLanes = sizeof(Block<T>) / sizeof(T);
 
 // True when `rows` rows out_stride apart crowd into few cache sets, so that one vector of directions stored
 // into every row is a burst of lines into one set. The row starts fall on `positions` distinct 64-byte set
@@ -168,7 +178,8 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // The pieces read their inputs from copies placed off the output rows' page offset (kInputShift).
 // Staging the output through an L1 tile, the path this replaced, wrote every value twice and was 1.5-2.5x
 // slower than the padded stride (Xeon); this one is 1.0-1.1x at 3-5 bands, 1.1x at 9 and 1.1-1.2x at 16
-// (notes in docs/conventions.md).
+// there. On Zen 3 (8-way L1) filling 4 rows at a time is itself 1.25-1.85x the padded batch and the pieces
+// run 1.4-1.9x (notes in docs/conventions.md).
 constexpr int kPieceRows = 4;
 constexpr std::size_t kPieceTileBytes = 4096;
 constexpr int kPieceCsFrom = 14;
@@ -222,7 +233,8 @@ struct TileInputs {
 
 // Piece P over the n directions of one tile (kLanes <= n), vectors of directions at the starts of
 // for_each_block(n, kLanes, peel). in.c, in.s: (C, S) of each vector as the pieces before left it (used
-// from kPieceCsFrom bands on).
+// from kPieceCsFrom bands on). One vector, not a Block, per kernel call: on AVX2 (Zen 3) a Pair made the
+// pieces no faster (9 bands: 11.2-13.9 against 10.2-11.2 ns per direction).
 template <int N, int P, typename T>
 PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride) {
   using V = Vec<T>;
@@ -301,12 +313,23 @@ PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, con
   }
 }
 
-// The direct path shared by every band count: `kernel(x, y, z, put)` evaluates one vector (or one scalar)
-// of directions and stores into every row.
-template <typename T, typename Kernel>
+// The direct path shared by every band count: `kernel(x, y, z, put)` evaluates one Block (kLines), vector or
+// scalar of directions and stores into every row. Without kLines (the generic kernel, whose runtime loops
+// lose more to a Pair's register pressure than its whole-line stores gain) it takes vectors only.
+template <typename T, bool kLines, typename Kernel>
 PRT_SH_INLINE void run_batch(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride,
                              Kernel&& kernel) {
   using V = Vec<T>;
+  if constexpr (kLines && kBlockLanes<T> > kLanes<T>) {
+    using B = Block<T>;
+    if (count >= kBlockLanes<T>) {
+      for_each_block(count, kBlockLanes<T>, alignment_peel(out, sizeof(B)), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+        StridedStore<T> put{out + j, stride};
+        kernel(load<B>(x + j), load<B>(y + j), load<B>(z + j), put);
+      });
+      return;
+    }
+  }
   if (count >= kLanes<T>) {
     // Line-aligned stores when the rows are (stride a multiple of the vector): no store splits.
     const std::size_t peel = alignment_peel(out, sizeof(V));
@@ -328,7 +351,7 @@ void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, 
     batch_pieces<N, T>(count, x, y, z, out, stride);
     return;
   }
-  run_batch<T>(count, x, y, z, out, stride, [](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
+  run_batch<T, true>(count, x, y, z, out, stride, [](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
     eval_fixed<N, T>(vx, vy, vz, put);
   });
 }
@@ -342,7 +365,7 @@ void batch_generic(int bands, std::size_t count, const T* x, const T* y, const T
     });
     return;
   }
-  run_batch<T>(count, x, y, z, out, stride,
+  run_batch<T, false>(count, x, y, z, out, stride,
                [bands](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
                  eval_generic<T>(bands, vx, vy, vz, put);
                });

@@ -31,6 +31,7 @@
 // measured (3.4e-6 at 16 bands, 7.3e-6 at 32), from the float recurrence and the float input.
 #include <cstddef>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include "core/constants.h"
@@ -90,16 +91,34 @@ using Vec = typename VectorOf<T>::type;
 template <typename T>
 inline constexpr std::size_t kLanes = sizeof(Vec<T>) / sizeof(T);
 
-/// Unaligned load / store of one vector (or scalar) V from / to T values.
+template <typename V>
+struct Pair;
+template <typename V>
+struct IsPair : std::false_type {};
+template <typename V>
+struct IsPair<Pair<V>> : std::true_type {};
+
+/// Unaligned load / store of one vector (or scalar, or Pair of vectors) V from / to T values. A Pair moves
+/// as its two vectors: one memcpy of the whole struct made GCC assemble it on the stack.
 template <typename V, typename T>
 PRT_SH_INLINE V load(const T* p) {
-  V v;
-  std::memcpy(&v, p, sizeof(V));
-  return v;
+  if constexpr (IsPair<V>::value) {
+    using H = decltype(V::a);
+    return V{load<H>(p), load<H>(p + sizeof(H) / sizeof(T))};
+  } else {
+    V v;
+    std::memcpy(&v, p, sizeof(V));
+    return v;
+  }
 }
 template <typename V, typename T>
 PRT_SH_INLINE void store(T* p, V v) {
-  std::memcpy(p, &v, sizeof(V));
+  if constexpr (IsPair<V>::value) {
+    store(p, v.a);
+    store(p + sizeof(v.a) / sizeof(T), v.b);
+  } else {
+    std::memcpy(p, &v, sizeof(V));
+  }
 }
 /// V with every lane equal to s (s already of V's element type).
 template <typename V, typename T>
