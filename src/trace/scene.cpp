@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "trace/hit_refine.h"
 
 namespace prt::trace {
 
@@ -228,7 +229,8 @@ Scene::Scene(const mesh::Mesh& mesh, const SceneOptions& options) : impl_(std::m
   im.batch_call = options.batch_call;
   im.positions = &positions;
   im.indices = &indices;
-  const std::string config = "threads=" + std::to_string(std::max(options.build_threads, 0));
+  std::string config = "threads=" + std::to_string(std::max(options.build_threads, 0));
+  if (!options.device_config.empty()) config += "," + options.device_config;
   im.device = rtcNewDevice(config.c_str());
   if (!im.device) im.check("device creation");
   rtcSetDeviceErrorFunction(im.device, record_error, &im.errors);
@@ -296,6 +298,7 @@ void Scene::intersect(RayBatch& batch) const {
     for (std::size_t i = 0; i < batch.size(); ++i)
       rtcIntersect1(target, &context, reinterpret_cast<RTCRayHit*>(&rays[i]));
   }
+  refine_hits(rays, batch.size(), *impl_->positions, *impl_->indices);
 }
 
 namespace {

@@ -121,6 +121,7 @@
 #include <glm/vec3.hpp>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -272,6 +273,9 @@ struct SceneOptions {
   /// another surface through robust mode (a second BVH, built on first use; ROBUST MODE at the top of
   /// this header). Off only to measure what the rule buys (tests/trace/test_robust.cpp).
   bool contact_rule = true;
+  /// More Embree device configuration, appended to "threads=N," as is (e.g. "isa=sse4.2" pins the code
+  /// path Embree would otherwise pick for the CPU; the tests compare paths with it). Empty: none.
+  std::string device_config;
 };
 
 /// What building the scene measured.
@@ -309,7 +313,9 @@ class Scene {
   void occluded(RayBatch& batch) const;
 
   /// Closest-hit query for batch rays [0, size()) with one rtcIntersect1M call (INCOHERENT; see
-  /// BatchCall): afterwards batch.hit(i) gives the nearest triangle in [tnear, tfar] (either side).
+  /// BatchCall): afterwards batch.hit(i) gives the nearest triangle in [tnear, tfar] (either side), its
+  /// distance, barycentrics and normal recomputed in double from the triangle (trace/hit_refine.h: the
+  /// same bits whatever ISA Embree runs).
   void intersect(RayBatch& batch) const;
 
   /// eps of the ray offset rule (see the top of this header), in mesh units.
