@@ -231,13 +231,14 @@ struct TileInputs {
   T *c, *s;
 };
 
-// Piece P over the n directions of one tile (kLanes <= n), vectors of directions at the starts of
-// for_each_block(n, kLanes, peel). in.c, in.s: (C, S) of each vector as the pieces before left it (used
-// from kPieceCsFrom bands on). One vector, not a Block, per kernel call: on AVX2 (Zen 3) a Pair made the
-// pieces no faster (9 bands: 11.2-13.9 against 10.2-11.2 ns per direction).
+// Piece P over the n directions of one tile (kBlockLanes <= n), blocks of directions at the starts of
+// for_each_block(n, kBlockLanes, peel). in.c, in.s: (C, S) of each block as the pieces before left it (used
+// from kPieceCsFrom bands on). Blocks, as the direct path: with one vector per call instead, GCC fused the
+// a * b - c * d of (C_2, S_2) the other way round than in the direct path's Pair code (3 bands, AVX2), and
+// the crowded stride's bits differed from the padded stride's; speed was the same within noise (Zen 3).
 template <int N, int P, typename T>
 PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride) {
-  using V = Vec<T>;
+  using V = Block<T>;
   constexpr int e0 = kPieces<N>.begin[P], e1 = kPieces<N>.begin[P + 1];
   constexpr KernelStep first = kernel_step<N>(e0), last = kernel_step<N>(e1 - 1);
   // (C, S) read: by a piece that starts inside column m >= 1, or at the start of column m >= 2 (advanced
@@ -246,7 +247,7 @@ PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<
   constexpr bool changes_cs = (first.l == first.m && first.m >= 1) || last.m > first.m;
   constexpr bool keep_cs = N >= kPieceCsFrom;
   std::size_t kept = 0;  // where in in.c, in.s this vector's (C, S) is
-  for_each_block(n, kLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+  for_each_block(n, kBlockLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
     const V vx = load<V>(in.x + j), vy = load<V>(in.y + j), vz = load<V>(in.z + j);
     KernelState<V> st{vx, vy, vx, vy};  // what the steps read before writing is set below
     if constexpr (reads_cs && keep_cs) {
@@ -262,7 +263,7 @@ PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<
       store(in.c + kept, st.c);
       store(in.s + kept, st.s);
     }
-    kept += kLanes<T>;
+    kept += kBlockLanes<T>;
   });
 }
 
@@ -272,26 +273,26 @@ PRT_SH_INLINE void pieces_tile(std::size_t n, std::size_t peel, const TileInputs
   (piece_pass<N, P, T>(n, peel, in, out, stride), ...);
 }
 
-// Directions per tile for count >= kLanes: the fewest tiles of at most kPieceTileBytes of directions, of
-// equal length in whole vectors (the last one ends at count, overlapping the one before by less than a
-// vector per tile).
+// Directions per tile for count >= kBlockLanes: the fewest tiles of at most kPieceTileBytes of directions, of
+// equal length in whole blocks (the last one ends at count, overlapping the one before by less than a
+// block per tile).
 template <typename T>
 std::size_t pieces_tile_length(std::size_t count) {
-  constexpr std::size_t lanes = kLanes<T>, most = kPieceTileBytes / sizeof(T);
+  constexpr std::size_t lanes = kBlockLanes<T>, most = kPieceTileBytes / sizeof(T);
   const std::size_t tiles = (count + most - 1) / most;
   std::size_t tile = (count + tiles - 1) / tiles;
   tile = (tile + lanes - 1) / lanes * lanes;
   return tile < count ? tile : count;
 }
 
-// eval_batch for crowded strides, count >= kLanes, tile by tile. Not inlined into batch_fixed: there it made
+// eval_batch for crowded strides, count >= kBlockLanes, tile by tile. Not inlined into batch_fixed: there it made
 // the direct path's loop 1.6x slower (9 bands, 128 directions, padded stride; GCC 12).
 template <int N, typename T>
 PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
   constexpr auto pieces = std::make_integer_sequence<int, kPieces<N>.count>{};
   const std::size_t tile = pieces_tile_length<T>(count), tiles = (count + tile - 1) / tile;
   // x, y, z of a tile, one page each at the page offset of the output rows plus kInputShift, then C and S,
-  // a page and a vector each (a tile of a whole page has a vector more when unaligned), two pages apart.
+  // a page and a block each (a tile of a whole page has a block more when unaligned), two pages apart.
   constexpr std::size_t streams = N >= kPieceCsFrom ? 7 : kCopyInputs<N> ? 3 : 0, page = kPage / sizeof(T);
   alignas(kPage) unsigned char buffer[(streams + 1) * kPage];
   for (std::size_t t = 0; t < tiles; ++t) {
@@ -314,8 +315,7 @@ PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, con
 }
 
 // The direct path shared by every band count: `kernel(x, y, z, put)` evaluates one Block (kLines), vector or
-// scalar of directions and stores into every row. Without kLines (the generic kernel, whose runtime loops
-// lose more to a Pair's register pressure than its whole-line stores gain) it takes vectors only.
+// scalar of directions and stores into every row. Without kLines (the generic kernel) it takes vectors only.
 template <typename T, bool kLines, typename Kernel>
 PRT_SH_INLINE void run_batch(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride,
                              Kernel&& kernel) {
@@ -347,7 +347,7 @@ PRT_SH_INLINE void run_batch(std::size_t count, const T* x, const T* y, const T*
 
 template <int N, typename T>
 void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
-  if (count >= kLanes<T> && rows_share_cache_sets<T>(N * N, stride)) {
+  if (count >= kBlockLanes<T> && rows_share_cache_sets<T>(N * N, stride)) {
     batch_pieces<N, T>(count, x, y, z, out, stride);
     return;
   }
