@@ -178,8 +178,8 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // The pieces read their inputs from copies placed off the output rows' page offset (kInputShift).
 // Staging the output through an L1 tile, the path this replaced, wrote every value twice and was 1.5-2.5x
 // slower than the padded stride (Xeon); this one is 1.0-1.1x at 3-5 bands, 1.1x at 9 and 1.1-1.2x at 16
-// there. On Zen 3 (8-way L1) filling 4 rows at a time is itself 1.25-1.85x the padded batch and the pieces
-// run 1.4-1.9x (notes in docs/conventions.md).
+// there. On Zen 3 (8-way L1) they run 1.1-1.9x, although filling 4 rows at a time costs about what the
+// padded batch does and the pieces' arithmetic alone is 1.05x the direct path's (docs/conventions.md).
 constexpr int kPieceRows = 4;
 constexpr std::size_t kPieceTileBytes = 4096;
 constexpr int kPieceCsFrom = 14;
