@@ -259,7 +259,8 @@ sh::RgbCoefficients project_cube(const std::array<image::Image, 6>& faces, int b
   std::vector<glm::dvec3> partial(blocks * count, glm::dvec3(0.0));
   parallel_for(blocks, 1, threads, [&](std::size_t begin, std::size_t end) {
     std::vector<double> x(n), y(n), z(n), weighted(static_cast<std::size_t>(3) * n);
-    std::vector<double> basis(static_cast<std::size_t>(count) * n);
+    const std::size_t stride = sh::padded_stride(static_cast<std::size_t>(n), sizeof(double));
+    std::vector<double> basis(static_cast<std::size_t>(count) * stride);
     for (std::size_t block = begin; block < end; ++block) {
       const int face = static_cast<int>(block / blocks_per_face);
       const int row_begin = static_cast<int>(block % blocks_per_face) * kCubeRowsPerBlock;
@@ -275,13 +276,12 @@ sh::RgbCoefficients project_cube(const std::array<image::Image, 6>& faces, int b
           const double w = cube_texel_solid_angle(i, j, n);
           for (int c = 0; c < 3; ++c) weighted[static_cast<std::size_t>(c) * n + i] = im.at(i, j, c) * w;
         }
-        sh::eval_batch(bands, static_cast<std::size_t>(n), x.data(), y.data(), z.data(), basis.data(),
-                       static_cast<std::size_t>(n));
+        sh::eval_batch(bands, static_cast<std::size_t>(n), x.data(), y.data(), z.data(), basis.data(), stride);
         for (int k = 0; k < count; ++k) {
           glm::dvec3 row_sum;
           for (int c = 0; c < 3; ++c) {
             double acc[kLanes] = {};
-            accumulate_lanes(&weighted[static_cast<std::size_t>(c) * n], &basis[static_cast<std::size_t>(k) * n], n, acc);
+            accumulate_lanes(&weighted[static_cast<std::size_t>(c) * n], &basis[static_cast<std::size_t>(k) * stride], n, acc);
             row_sum[c] = sum_lanes(acc);
           }
           sums[k] += row_sum;
@@ -307,7 +307,8 @@ image::Image render_equirect(const sh::RgbCoefficients& coefficients, int width,
   const int count = coefficients.bands * coefficients.bands;
   image::Image out(width, height, 3);
   parallel_for(static_cast<std::size_t>(height), 4, threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<double> x(width), y(width), z(width), basis(static_cast<std::size_t>(count) * width);
+    const std::size_t stride = sh::padded_stride(static_cast<std::size_t>(width), sizeof(double));
+    std::vector<double> x(width), y(width), z(width), basis(static_cast<std::size_t>(count) * stride);
     for (std::size_t row = begin; row < end; ++row) {
       for (int col = 0; col < width; ++col) {
         const glm::dvec3 d = equirect_direction((col + 0.5) / width, (row + 0.5) / height);
@@ -316,10 +317,10 @@ image::Image render_equirect(const sh::RgbCoefficients& coefficients, int width,
         z[col] = d.z;
       }
       sh::eval_batch(coefficients.bands, static_cast<std::size_t>(width), x.data(), y.data(), z.data(), basis.data(),
-                     static_cast<std::size_t>(width));
+                     stride);
       for (int col = 0; col < width; ++col) {
         glm::dvec3 radiance(0.0);
-        for (int k = 0; k < count; ++k) radiance += coefficients.values[k] * basis[static_cast<std::size_t>(k) * width + col];
+        for (int k = 0; k < count; ++k) radiance += coefficients.values[k] * basis[static_cast<std::size_t>(k) * stride + col];
         for (int c = 0; c < 3; ++c) out.at(col, static_cast<int>(row), c) = static_cast<float>(radiance[c]);
       }
     }
