@@ -275,7 +275,7 @@ struct SceneOptions {
   bool contact_rule = true;
   /// More Embree device configuration, appended to "threads=N," as is (e.g. "isa=sse4.2" pins the code
   /// path Embree would otherwise pick for the CPU; the tests compare paths with it). Empty: none.
-  std::string device_config;
+  std::string device_config = {};
 };
 
 /// What building the scene measured.
