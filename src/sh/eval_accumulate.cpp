@@ -316,7 +316,7 @@ PRT_SH_INLINE void for_each_step(std::size_t count, const T* x, const T* y, cons
     set_pair(pair(x), pair(y), pair(z), Pair<V>{load<V>(w + paired), last_w});
   }
   for (std::size_t j = 0; j < paired; j += 2 * lanes)
-    add_pair(load_pair<V>(x + j), load_pair<V>(y + j), load_pair<V>(z + j), load_pair<V>(w + j));
+    add_pair(load<Pair<V>>(x + j), load<Pair<V>>(y + j), load<Pair<V>>(z + j), load<Pair<V>>(w + j));
 }
 
 template <int N, typename T>

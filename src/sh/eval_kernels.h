@@ -142,11 +142,6 @@ template <typename V, typename T>
 PRT_SH_INLINE Pair<V> operator*(T t, Pair<V> p) { return {t * p.a, t * p.b}; }
 template <typename V, typename T>
 PRT_SH_INLINE Pair<V> operator+(Pair<V> p, T t) { return {p.a + t, p.b + t}; }
-/// Loads two consecutive vectors of T values.
-template <typename V, typename T>
-PRT_SH_INLINE Pair<V> load_pair(const T* p) {
-  return {load<V>(p), load<V>(p + sizeof(V) / sizeof(T))};
-}
 
 // ---------------------------------------------------------------------------------------------
 // Recurrence constants (double; the float kernels round each to float once).

@@ -11,13 +11,11 @@
 namespace prt::trace {
 namespace {
 
-glm::dvec3 to_double(const glm::vec3& p) { return glm::dvec3(p); }
-
 void refine_one(RayHit& r, const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices) {
   const std::size_t first = 3 * static_cast<std::size_t>(r.hit.prim_id);
-  const glm::dvec3 p0 = to_double(positions[indices[first]]);
-  const glm::dvec3 e1 = to_double(positions[indices[first + 1]]) - p0;
-  const glm::dvec3 e2 = to_double(positions[indices[first + 2]]) - p0;
+  const glm::dvec3 p0 = glm::dvec3(positions[indices[first]]);
+  const glm::dvec3 e1 = glm::dvec3(positions[indices[first + 1]]) - p0;
+  const glm::dvec3 e2 = glm::dvec3(positions[indices[first + 2]]) - p0;
   const glm::dvec3 origin(r.ray.org_x, r.ray.org_y, r.ray.org_z), dir(r.ray.dir_x, r.ray.dir_y, r.ray.dir_z);
   const glm::dvec3 p = glm::cross(dir, e2);
   const double det = glm::dot(e1, p);
