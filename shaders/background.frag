@@ -1,4 +1,5 @@
-// pass: background; mirrors prt::light::Environment::radiance (mode 1) and prt::sh::eval summed with the lighting (mode 2).
+// pass: background; mirrors prt::light::Environment::radiance (mode 1) and prt::sh::eval summed with the lighting (mode 2),
+// plus the discs the frame shades (light/disc.h: uniform radiance within the angular radius).
 #version 450 core
 
 in vec2 ndc;
@@ -14,6 +15,13 @@ uniform vec2 tan_half_fov;          // tan of the half horizontal and vertical f
 uniform mat3 world_to_environment;  // inverse of the environment's active rotation
 uniform int mode;                   // 1: equirect image, 2: SH reconstruction
 uniform int sh_bands;               // bands of the SH reconstruction
+
+// The discs (Renderer::set_discs, when the frame shades them; the sky above holds none of them).
+const int max_discs = 4;
+uniform int disc_count;
+uniform vec3 disc_direction[max_discs];  // unit, toward the light, environment frame
+uniform vec3 disc_radiance[max_discs];   // L = E / (pi sin^2 a) per channel
+uniform float disc_radius[max_discs];    // angular radius a, radians
 
 const float kPi = 3.14159265358979323846;
 
@@ -68,10 +76,22 @@ vec3 sh_radiance(vec3 d) {
   return sum;
 }
 
+// The discs' radiance toward d, each weighted by the part of the pixel inside it: the pixel's angular
+// distance from the rim over its angular size (the angle's screen gradient), clamped to [0, 1].
+vec3 discs_radiance(vec3 d) {
+  vec3 sum = vec3(0.0);
+  for (int k = 0; k < disc_count; ++k) {
+    float angle = atan(length(cross(d, disc_direction[k])), dot(d, disc_direction[k]));
+    float pixel = max(length(vec2(dFdx(angle), dFdy(angle))), 1e-7);
+    sum += clamp((disc_radius[k] - angle) / pixel + 0.5, 0.0, 1.0) * disc_radiance[k];
+  }
+  return sum;
+}
+
 void main() {
   vec3 world = normalize(camera_to_world * vec3(ndc.x * tan_half_fov.x, ndc.y * tan_half_fov.y, -1.0));
   vec3 d = normalize(world_to_environment * world);
-  vec3 radiance = mode == 1 ? image_radiance(d) : sh_radiance(d);
+  vec3 radiance = (mode == 1 ? image_radiance(d) : sh_radiance(d)) + discs_radiance(d);
   radiance_out = vec4(radiance, 0.0);
   triangle_out = 0xFFFFFFFFu;
 }

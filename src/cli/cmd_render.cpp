@@ -54,7 +54,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", options->view.exposure, "Exposure in stops (PNG only)")->capture_default_str();
   cmd->add_option("--tone-map", options->tone_map, "aces (Narkowicz 2015) or clamp (PNG only)")->capture_default_str();
   cmd->add_option("--background", options->view.background,
-                  "env (the image), sh (its SH reconstruction) or black; default env, sh for a .json");
+                  "env (the image), sh (its SH reconstruction) or black, the first two with the shaded discs drawn in place of the map's own; default env, sh for a .json");
   cmd->add_option("--bands", options->view.bands, "Use only the first K bands of the transfer (0 = all)");
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfer: the BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");

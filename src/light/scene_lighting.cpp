@@ -59,13 +59,14 @@ void rotate_and_window(SceneLighting& out, int bands, const glm::dvec3& ypr, con
 }  // namespace
 
 SceneLighting split_environment(const Environment& environment, int bands, const glm::dvec3& ypr, const SunRequest& sun,
-                                const WindowRequest& window, int threads) {
+                                const WindowRequest& window, int threads, Environment* sky_map) {
   SceneLighting out;
   if (sun.mode == SunRequest::Mode::automatic) {
     ExtractionResult extracted = extract_discs(environment, threads);
     out.discs = std::move(extracted.discs);
     out.sky_level = extracted.sky_level;
     out.sky = project(out.discs.empty() ? environment : extracted.residual, bands, threads);
+    if (sky_map != nullptr && !out.discs.empty()) *sky_map = std::move(extracted.residual);
   } else {
     out.sky = project(environment, bands, threads);
     if (sun.mode == SunRequest::Mode::given) out.discs.push_back(sun.disc);

@@ -51,9 +51,13 @@ SceneLighting load_scene_lighting(const std::string& spec, int bands, const glm:
 
 struct Environment;
 
-/// As load_scene_lighting, for an environment already loaded.
+/// As load_scene_lighting, for an environment already loaded. When `sky_map` is not null and discs were
+/// found in the map and removed (sun auto), it receives the map the sky SH was projected from: the map
+/// without them (extract_discs's residual, equirect, unrotated); otherwise it is left as it was (the map
+/// itself is the sky).
 SceneLighting split_environment(const Environment& environment, int bands, const glm::dvec3& yaw_pitch_roll,
-                                const SunRequest& sun, const WindowRequest& window, int threads = 0);
+                                const SunRequest& sun, const WindowRequest& window, int threads = 0,
+                                Environment* sky_map = nullptr);
 
 /// One line for a command's summary: "sun: <n> disc(s) (dir (x,y,z), radius a deg, E (r,g,b)); window W".
 std::string describe_lighting(const SceneLighting& lighting);

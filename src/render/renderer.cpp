@@ -360,6 +360,7 @@ void Renderer::draw_background(const FrameSettings& settings, int bands) {
               static_cast<float>(view_.tan_half_fov_y));
   glUniform1i(background_.uniform("mode"), settings.background == Background::environment ? 1 : 2);
   glUniform1i(background_.uniform("sh_bands"), bands);
+  bind_background_discs(settings);
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 

@@ -5,7 +5,10 @@
 // PASSES (shaders/ names; see shader_program.h for how sources are found):
 //   background  fullscreen.vert + background.frag: the environment behind the mesh, per pixel along the
 //               view direction: the equirect image (bilinear, as Environment::radiance), its SH
-//               reconstruction (the first k bands, as prt::sh::eval), or black.
+//               reconstruction (the first k bands, as prt::sh::eval), or black; the first two with the
+//               discs the frame shades drawn over them (uniform radiance L = E / (pi sin^2 a) inside the
+//               angular radius, the rim pixels weighted by how much of them it covers), so that the sky
+//               behind the mesh is the lighting it is shaded with (load_lighting: the image without them).
 //   prt_diffuse prt_diffuse.vert + surface.frag (one program per channel count, transfer bands and
 //               truncation, compiled on first use): per-vertex diffuse PRT. The transfer is uploaded once
 //               into a buffer, vertex-major exactly as in the file (channels x bands^2 floats per vertex),
@@ -253,6 +256,8 @@ class Renderer {
  private:
   void resize(int width, int height);
   void draw_background(const FrameSettings& settings, int bands);
+  /// The background pass's disc uniforms: the discs of set_discs when settings.sun, else none.
+  void bind_background_discs(const FrameSettings& settings);
   void draw_mesh(const FrameSettings& settings, int bands, bool sun);
 
   /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks), compiled

@@ -56,8 +56,10 @@ Lighting load_lighting(const std::string& spec, int bands, const light::SunReque
   light::Environment environment;
   const bool image = !is_json(spec);
   if (image) environment = light::load_environment(spec);  // once: split and background share it
-  light::SceneLighting split = image ? light::split_environment(environment, bands, glm::dvec3(0.0), sun, window)
+  light::Environment residual;  // the map less its discs, when discs are found in it
+  light::SceneLighting split = image ? light::split_environment(environment, bands, glm::dvec3(0.0), sun, window, 0, &residual)
                                      : light::load_scene_lighting(spec, bands, glm::dvec3(0.0), sun, window);
+  if (!residual.equirect.pixels.empty()) environment = std::move(residual);
   lighting.description = light::describe_lighting(split);
   lighting.window = split.window.description;
   lighting.coefficients = std::move(split.sky);

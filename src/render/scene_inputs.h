@@ -40,14 +40,18 @@ struct Lighting {
   std::string description;          ///< light::describe_lighting: the discs and the window
   std::string window;               ///< the window applied to the sky, e.g. "laplacian(0.0012)"
   bool has_image = false;           ///< an environment image was given (not an SH lighting file)
-  image::Image equirect;            ///< when has_image: the environment as an equirect image
+  /// When has_image: the sky as an equirect image, what the "env" background shows. Discs found in the
+  /// map (sun auto) are not in it: their texels are refilled from the surrounding sky, as for the SH,
+  /// and the renderer draws each disc it shades instead (Renderer::set_discs).
+  image::Image equirect;
 };
 
 /// Loads `spec` split into discs and sky as light::load_scene_lighting does (unrotated: the renderer
 /// rotates per frame; `sun` and `window` as --sun and --window): a .json SH lighting file, or an
 /// environment (light::load_environment: equirect, cross or six faces) projected to `bands` bands. The
-/// environment image (with its sun) is kept for the background; cube environments are resampled to an
-/// equirect image of 4 x 2 face widths (bilinear, Environment::radiance at each pixel centre). With
+/// environment image, less the discs found in it, is kept for the background; cube environments are
+/// resampled to an equirect image of 4 x 2 face widths (bilinear, Environment::radiance at each pixel
+/// centre; with discs found, the residual is already equirect: light/sun_extraction.h). With
 /// sun none and window none the coefficients are exactly light::project's (or the file's).
 /// Throws prt::Error("<file>: <problem>").
 Lighting load_lighting(const std::string& spec, int bands, const light::SunRequest& sun = {},

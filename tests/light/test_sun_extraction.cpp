@@ -156,3 +156,29 @@ TEST_CASE("rotating the lighting rotates its discs as rotating the map does", "[
   CHECK(angle_degrees(rotated.discs[0].direction, reference.discs[0].direction) < 0.05);
   CHECK(test::max_difference(rotated.sky, reference.sky) < 1e-3 * reference.sky.values[0].x);
 }
+
+TEST_CASE("split_environment hands back the sky without its discs: the map's own sky where the sun was", "[light][sun]") {
+  const SyntheticDisc sun{glm::normalize(glm::dvec3(-0.4, 0.6, 0.5)), 0.6 * kPi / 180.0, {40000.0, 38000.0, 30000.0}};
+  const light::Environment map = as_environment(synthetic_map(512, 256, {sun}));
+  const light::WindowRequest no_window = light::parse_window_request("none");
+  light::Environment sky_map;
+  const light::SceneLighting split = light::split_environment(map, 3, {0.0, 0.0, 0.0}, light::SunRequest{}, no_window, 0, &sky_map);
+  REQUIRE(split.discs.size() == 1);
+  REQUIRE(sky_map.equirect.width == 512);
+  REQUIRE(sky_map.equirect.height == 256);
+  double worst = 0.0;  // against the analytic sky, relative
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 512; ++x) {
+      const glm::dvec3 expected = sky(direction_at((x + 0.5) / 512, (y + 0.5) / 256));
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(sky_map.equirect.at(x, y, c) - expected[c]) / expected[c]);
+    }
+  INFO("largest relative difference from the sky without the sun: " << worst);
+  CHECK(worst < 0.02);  // the refilled texels interpolate the sky around them; the sun is 1e5 x the sky
+
+  // No disc found (sun none): nothing is handed back.
+  light::Environment untouched;
+  light::SunRequest none;
+  none.mode = light::SunRequest::Mode::none;
+  light::split_environment(map, 3, {0.0, 0.0, 0.0}, none, no_window, 0, &untouched);
+  CHECK(untouched.equirect.pixels.empty());
+}
