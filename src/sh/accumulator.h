@@ -42,8 +42,8 @@ class Accumulator {
   void clear();
 
  private:
-  // The band count's kernel, chosen once (a call of 16 directions costs a few dozen ns: a dispatch per call
-  // showed).
+  // The band count's kernel, chosen at construction rather than per call: a call of 16 directions at 3
+  // bands takes about 7 ns, in which a dispatch shows.
   using AddFunction = void (*)(std::size_t, const T*, const T*, const T*, const T*, T*);
 
   int bands_ = 0;
