@@ -16,12 +16,14 @@ uniform mat3 world_to_environment;  // inverse of the environment's active rotat
 uniform int mode;                   // 1: equirect image, 2: SH reconstruction
 uniform int sh_bands;               // bands of the SH reconstruction
 
-// The discs (Renderer::set_discs, when the frame shades them; the sky above holds none of them).
+#ifdef DISCS
+// The discs (Renderer::set_discs; the program without DISCS serves frames that shade none).
 const int max_discs = 4;
 uniform int disc_count;
 uniform vec3 disc_direction[max_discs];  // unit, toward the light, environment frame
 uniform vec3 disc_radiance[max_discs];   // L = E / (pi sin^2 a) per channel
-uniform float disc_radius[max_discs];    // angular radius a, radians
+uniform float disc_chord[max_discs];     // 2 sin(a / 2): the distance from the centre to the rim on the unit sphere
+#endif
 
 const float kPi = 3.14159265358979323846;
 
@@ -76,22 +78,28 @@ vec3 sh_radiance(vec3 d) {
   return sum;
 }
 
-// The discs' radiance toward d, each weighted by the part of the pixel inside it: the pixel's angular
-// distance from the rim over its angular size (the angle's screen gradient), clamped to [0, 1].
+#ifdef DISCS
+// The discs' radiance toward d, each weighted by the part of the pixel inside it: the pixel's distance
+// from the rim over its size (the screen gradient of the chord |d - centre|, which grows with the angle
+// and equals the rim's chord exactly on the rim), clamped to [0, 1].
 vec3 discs_radiance(vec3 d) {
   vec3 sum = vec3(0.0);
   for (int k = 0; k < disc_count; ++k) {
-    float angle = atan(length(cross(d, disc_direction[k])), dot(d, disc_direction[k]));
-    float pixel = max(length(vec2(dFdx(angle), dFdy(angle))), 1e-7);
-    sum += clamp((disc_radius[k] - angle) / pixel + 0.5, 0.0, 1.0) * disc_radiance[k];
+    float chord = length(d - disc_direction[k]);
+    float pixel = max(length(vec2(dFdx(chord), dFdy(chord))), 1e-7);
+    sum += clamp((disc_chord[k] - chord) / pixel + 0.5, 0.0, 1.0) * disc_radiance[k];
   }
   return sum;
 }
+#endif
 
 void main() {
   vec3 world = normalize(camera_to_world * vec3(ndc.x * tan_half_fov.x, ndc.y * tan_half_fov.y, -1.0));
   vec3 d = normalize(world_to_environment * world);
-  vec3 radiance = (mode == 1 ? image_radiance(d) : sh_radiance(d)) + discs_radiance(d);
+  vec3 radiance = mode == 1 ? image_radiance(d) : sh_radiance(d);
+#ifdef DISCS
+  radiance += discs_radiance(d);
+#endif
   radiance_out = vec4(radiance, 0.0);
   triangle_out = 0xFFFFFFFFu;
 }

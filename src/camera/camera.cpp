@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -103,6 +104,42 @@ PixelRay pixel_ray(const ViewMatrices& view, int x, int y, int width, int height
   const glm::dvec3 forward = -view.camera_to_world[2];
   ray.origin = view.eye + ray.direction * (view.near_plane / glm::dot(ray.direction, forward));
   return ray;
+}
+
+// The cap's rim sampled at kRimPoints directions on a wider cone: a central projection maps great circles
+// to lines, so the image of the spherical polygon through the samples is the polygon through their images,
+// and a regular spherical N-gon of circumradius R holds the cap of radius r where tan r = tan R cos(pi / N).
+std::optional<PixelRect> cap_pixel_rect(const ViewMatrices& view, int width, int height, const glm::dvec3& direction,
+                                        double angular_radius) {
+  constexpr int kRimPoints = 32;
+  constexpr double kPi = 3.14159265358979323846;
+  const double widened = std::atan(std::tan(angular_radius) / std::cos(kPi / kRimPoints));
+  const glm::dvec3 helper = std::fabs(direction.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
+  const glm::dvec3 u = glm::normalize(glm::cross(direction, helper)), v = glm::cross(direction, u);
+  const glm::dmat3 world_to_camera = glm::transpose(view.camera_to_world);
+  const PixelRect whole{0, 0, width, height};
+  double lo_x = std::numeric_limits<double>::infinity(), lo_y = lo_x, hi_x = -lo_x, hi_y = -lo_x;
+  int behind = 0;  // rim samples behind (or in) the camera's plane
+  for (int i = 0; i < kRimPoints; ++i) {
+    const double phi = 2.0 * kPi * i / kRimPoints;
+    const glm::dvec3 rim = std::cos(widened) * direction + std::sin(widened) * (std::cos(phi) * u + std::sin(phi) * v);
+    const glm::dvec3 c = world_to_camera * rim;
+    if (c.z > -1e-6) {
+      ++behind;
+      continue;
+    }
+    const double x = (c.x / -c.z / view.tan_half_fov_x + 1.0) * 0.5 * width - 0.5;   // pixel index units
+    const double y = (c.y / -c.z / view.tan_half_fov_y + 1.0) * 0.5 * height - 0.5;  // from the bottom row
+    lo_x = std::min(lo_x, x), hi_x = std::max(hi_x, x), lo_y = std::min(lo_y, y), hi_y = std::max(hi_y, y);
+  }
+  // A cap under a hemisphere lies in the cone of its rim: all of it behind, or part of it (no bounded image).
+  if (behind == kRimPoints) return std::nullopt;
+  if (behind > 0) return whole;
+  auto clamp_to = [](double value, int limit) { return static_cast<int>(std::clamp(value, 0.0, static_cast<double>(limit))); };
+  const PixelRect rect{clamp_to(std::floor(lo_x) - 2.0, width), clamp_to(std::floor(lo_y) - 2.0, height),
+                       clamp_to(std::ceil(hi_x) + 3.0, width), clamp_to(std::ceil(hi_y) + 3.0, height)};
+  if (rect.x0 >= rect.x1 || rect.y0 >= rect.y1) return std::nullopt;
+  return rect;
 }
 
 }  // namespace prt::camera

@@ -16,6 +16,7 @@
 //   (depth -1..1), pixel (x, y) of a W x H image (y down from the top row) has its centre at
 //   NDC ((x + 0.5) / W * 2 - 1, 1 - (y + 0.5) / H * 2).
 // The object rotation turns the mesh about c: world = c + R_object (p - c).
+#include <optional>
 #include <string>
 
 #include <glm/mat3x3.hpp>
@@ -74,5 +75,19 @@ struct PixelRay {
   glm::dvec3 direction{0.0, 0.0, -1.0};  ///< unit
 };
 PixelRay pixel_ray(const ViewMatrices& view, int x, int y, int width, int height);
+
+/// A rectangle of pixels, x in [x0, x1) and y in [y0, y1), y counted UP from the bottom row (as
+/// glScissor takes it).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+/// Pixels whose view direction (pixel_ray's, at the pixel centre) can lie within `angular_radius`
+/// radians (0 < a < pi / 2) of the unit world direction `direction`: a rectangle holding them all with a
+/// margin of 2 pixels, clipped to the image; the whole image when part of that cap is behind the
+/// camera's plane; nothing when none of it is in the image. For drawing a distant disc (a sun) over a
+/// part of the frame only. Preconditions: width, height >= 1, view from orbit_view().
+std::optional<PixelRect> cap_pixel_rect(const ViewMatrices& view, int width, int height, const glm::dvec3& direction,
+                                        double angular_radius);
 
 }  // namespace prt::camera

@@ -127,6 +127,7 @@ TransferBuffer::~TransferBuffer() {
 // ---------------------------------------------------------------------------------------------------
 Renderer::Renderer()
     : background_({"fullscreen.vert", "background.frag"}),
+      background_discs_({"fullscreen.vert", "background.frag"}, "#define DISCS 1\n"),
       lambert_({"lambert.vert", "surface.frag"}),
       tonemap_({"fullscreen.vert", "tonemap.frag"}),
       lighting_(kMaxCoefficients, glm::vec3(0.0f)),
@@ -347,20 +348,34 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
 void Renderer::draw_background(const FrameSettings& settings, int bands) {
   if (settings.background == Background::black) return;  // the clear colour is black
   glDisable(GL_DEPTH_TEST);
-  glUseProgram(background_.id());
+  draw_background_pass(background_, settings, bands);
+  if (!settings.sun || disc_count() == 0) return;
+  // The sky again with the discs, over each disc's rectangle only (the disc program costs per pixel).
+  glEnable(GL_SCISSOR_TEST);
+  for (const light::Disc& disc : sun_->discs) {
+    const auto rect = camera::cap_pixel_rect(view_, width_, height_, settings.environment_rotation * disc.direction,
+                                             disc.angular_radius);
+    if (!rect) continue;
+    glScissor(rect->x0, rect->y0, rect->x1 - rect->x0, rect->y1 - rect->y0);
+    draw_background_pass(background_discs_, settings, bands);
+  }
+  glDisable(GL_SCISSOR_TEST);
+}
+
+void Renderer::draw_background_pass(const Program& program, const FrameSettings& settings, int bands) {
+  glUseProgram(program.id());
   glBindVertexArray(empty_vao_);
   glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentLightingBinding, environment_lighting_);
   if (environment_texture_ != 0) glBindTextureUnit(0, environment_texture_);
   const glm::mat3 camera_to_world = to_float(view_.camera_to_world);
   const glm::mat3 world_to_environment = to_float(glm::transpose(settings.environment_rotation));
-  glUniformMatrix3fv(background_.uniform("camera_to_world"), 1, GL_FALSE, glm::value_ptr(camera_to_world));
-  glUniformMatrix3fv(background_.uniform("world_to_environment"), 1, GL_FALSE,
-                     glm::value_ptr(world_to_environment));
-  glUniform2f(background_.uniform("tan_half_fov"), static_cast<float>(view_.tan_half_fov_x),
+  glUniformMatrix3fv(program.uniform("camera_to_world"), 1, GL_FALSE, glm::value_ptr(camera_to_world));
+  glUniformMatrix3fv(program.uniform("world_to_environment"), 1, GL_FALSE, glm::value_ptr(world_to_environment));
+  glUniform2f(program.uniform("tan_half_fov"), static_cast<float>(view_.tan_half_fov_x),
               static_cast<float>(view_.tan_half_fov_y));
-  glUniform1i(background_.uniform("mode"), settings.background == Background::environment ? 1 : 2);
-  glUniform1i(background_.uniform("sh_bands"), bands);
-  bind_background_discs(settings);
+  glUniform1i(program.uniform("mode"), settings.background == Background::environment ? 1 : 2);
+  glUniform1i(program.uniform("sh_bands"), bands);
+  if (&program == &background_discs_) bind_background_discs();
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 

@@ -7,8 +7,9 @@
 //               view direction: the equirect image (bilinear, as Environment::radiance), its SH
 //               reconstruction (the first k bands, as prt::sh::eval), or black; the first two with the
 //               discs the frame shades drawn over them (uniform radiance L = E / (pi sin^2 a) inside the
-//               angular radius, the rim pixels weighted by how much of them it covers), so that the sky
-//               behind the mesh is the lighting it is shaded with (load_lighting: the image without them).
+//               angular radius, the rim pixels weighted by how much of them it covers; a second draw with
+//               DISCS over each disc's screen rectangle, camera::cap_pixel_rect), so that the sky behind
+//               the mesh is the lighting it is shaded with (load_lighting: the image without them).
 //   prt_diffuse prt_diffuse.vert + surface.frag (one program per channel count, transfer bands and
 //               truncation, compiled on first use): per-vertex diffuse PRT. The transfer is uploaded once
 //               into a buffer, vertex-major exactly as in the file (channels x bands^2 floats per vertex),
@@ -256,8 +257,10 @@ class Renderer {
  private:
   void resize(int width, int height);
   void draw_background(const FrameSettings& settings, int bands);
-  /// The background pass's disc uniforms: the discs of set_discs when settings.sun, else none.
-  void bind_background_discs(const FrameSettings& settings);
+  /// One full-viewport draw of `program` (background_ or background_discs_) with the frame's uniforms.
+  void draw_background_pass(const Program& program, const FrameSettings& settings, int bands);
+  /// The disc uniforms of background_discs_ (the discs of set_discs).
+  void bind_background_discs();
   void draw_mesh(const FrameSettings& settings, int bands, bool sun);
 
   /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks), compiled
@@ -300,7 +303,8 @@ class Renderer {
   void upload_lightmap_disc_lighting(const FrameSettings& settings, int bands);
   void draw_lightmap(const FrameSettings& settings, int bands, bool sun, bool texel_space);
 
-  Program background_, lambert_, tonemap_;
+  // background_discs_: background.frag with DISCS, drawn over each shaded disc's rectangle (draw_background).
+  Program background_, background_discs_, lambert_, tonemap_;
   std::map<std::tuple<int, int, int, int, bool>, Program> prt_programs_;
   std::map<std::tuple<int, int, int, int, int, bool>, Program> glossy_compute_programs_;
   std::map<std::pair<int, bool>, Program> glossy_draw_programs_;

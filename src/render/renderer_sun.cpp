@@ -174,25 +174,24 @@ void Renderer::set_discs(const std::vector<light::Disc>& discs) {
 }
 
 int Renderer::disc_count() const { return static_cast<int>(sun_->discs.size()); }
+int Renderer::shadow_map_updates() const { return sun_->updates; }
 
-void Renderer::bind_background_discs(const FrameSettings& settings) {
+void Renderer::bind_background_discs() {
   const std::vector<light::Disc>& discs = sun_->discs;
-  const int n = settings.sun ? static_cast<int>(discs.size()) : 0;
+  const int n = static_cast<int>(discs.size());
   glm::vec3 direction[kMaxDiscs], radiance[kMaxDiscs];
-  float radius[kMaxDiscs];
+  float chord[kMaxDiscs];
   for (int k = 0; k < n; ++k) {
     const light::Disc& disc = discs[static_cast<std::size_t>(k)];
     direction[k] = glm::vec3(disc.direction);
     radiance[k] = glm::vec3(disc.radiance());
-    radius[k] = static_cast<float>(disc.angular_radius);
+    chord[k] = static_cast<float>(2.0 * std::sin(0.5 * disc.angular_radius));
   }
-  glUniform1i(background_.uniform("disc_count"), n);
-  if (n == 0) return;
-  glUniform3fv(background_.uniform("disc_direction"), n, glm::value_ptr(direction[0]));
-  glUniform3fv(background_.uniform("disc_radiance"), n, glm::value_ptr(radiance[0]));
-  glUniform1fv(background_.uniform("disc_radius"), n, radius);
+  glUniform1i(background_discs_.uniform("disc_count"), n);
+  glUniform3fv(background_discs_.uniform("disc_direction"), n, glm::value_ptr(direction[0]));
+  glUniform3fv(background_discs_.uniform("disc_radiance"), n, glm::value_ptr(radiance[0]));
+  glUniform1fv(background_discs_.uniform("disc_chord"), n, chord);
 }
-int Renderer::shadow_map_updates() const { return sun_->updates; }
 
 void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& albedo) {
   transfer_header(transfer);  // checks the index

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -126,6 +128,58 @@ TEST_CASE("a transfer needing more than 8 buffer-texture views is refused", "[re
                     Catch::StartsWith("big.prt: transfer is 0.2 MiB; the renderer reads at most 8 buffer textures of 0.0 MiB"));
 }
 
+TEST_CASE("cap_pixel_rect holds every pixel whose view direction is in the cap, and little more", "[render]") {
+  const mesh::Bounds bounds = mesh::bounds(bumpy_sphere(4, 8));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int w = 96, h = 64;
+  int bounded = 0, whole = 0, none = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const render::ViewMatrices view =
+        render::orbit_view(render::Camera{360.0 * unit(rng), 160.0 * unit(rng) - 80.0, 2.0 + 5.0 * unit(rng)}, bounds, w, h);
+    // Half the caps about the view's centre line (forward, jittered), half anywhere.
+    glm::dvec3 d = trial % 2 == 0 ? -view.camera_to_world[2] * 3.0 : glm::dvec3(0.0);
+    d += glm::dvec3(2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0);
+    d = glm::normalize(d);
+    const double radius = glm::radians(0.3 + 40.0 * unit(rng) * unit(rng));
+    // Brute force: the bounding box (rows up from the bottom) of the pixels whose centre ray is in the cap.
+    int lo_x = w, lo_y = h, hi_x = -1, hi_y = -1;
+    for (int py = 0; py < h; ++py)
+      for (int px = 0; px < w; ++px) {
+        const double nx = (px + 0.5) / w * 2.0 - 1.0, ny = 1.0 - (py + 0.5) / h * 2.0;
+        const glm::dvec3 ray = glm::normalize(view.camera_to_world * glm::dvec3(nx * view.tan_half_fov_x, ny * view.tan_half_fov_y, -1.0));
+        if (glm::dot(ray, d) < std::cos(radius)) continue;
+        const int up = h - 1 - py;
+        lo_x = std::min(lo_x, px), hi_x = std::max(hi_x, px), lo_y = std::min(lo_y, up), hi_y = std::max(hi_y, up);
+      }
+    const std::optional<camera::PixelRect> rect = camera::cap_pixel_rect(view, w, h, d, radius);
+    INFO("trial " << trial << ": pixels in the cap x " << lo_x << ".." << hi_x << ", y " << lo_y << ".." << hi_y);
+    if (hi_x < 0) {  // no pixel in the cap: nothing, or (part of the cap behind the camera) the whole image
+      none += !rect;
+      continue;
+    }
+    REQUIRE(rect);
+    CHECK(rect->x0 <= lo_x);
+    CHECK(rect->y0 <= lo_y);
+    CHECK(rect->x1 > hi_x);
+    CHECK(rect->y1 > hi_y);
+    const bool is_whole = rect->x0 == 0 && rect->y0 == 0 && rect->x1 == w && rect->y1 == h;
+    whole += is_whole;
+    // Tight where the cap is wholly in the image (a clipped cap's visible part can be narrower than its
+    // rectangle): the 2-pixel margin, one more for a rim between pixel centres, and the 32-gon's widening.
+    if (is_whole || lo_x == 0 || lo_y == 0 || hi_x == w - 1 || hi_y == h - 1) continue;
+    ++bounded;
+    const double slack_x = 4.0 + 0.02 * (hi_x - lo_x), slack_y = 4.0 + 0.02 * (hi_y - lo_y);
+    CHECK(rect->x0 >= lo_x - slack_x);
+    CHECK(rect->y0 >= lo_y - slack_y);
+    CHECK(rect->x1 <= hi_x + 1 + slack_x);
+    CHECK(rect->y1 <= hi_y + 1 + slack_y);
+  }
+  INFO("bounded " << bounded << ", whole image " << whole << ", empty " << none);
+  CHECK(bounded > 30);
+  CHECK(none > 20);
+}
+
 TEST_CASE("the auto camera frames the bounds and azimuth 0 looks from +Z", "[render]") {
   const mesh::Mesh mesh = bumpy_sphere(8, 16, glm::vec3(1.0f, 2.0f, 3.0f));
   const mesh::Bounds bounds = mesh::bounds(mesh);
@@ -192,8 +246,8 @@ TEST_CASE("the SH background equals prt::sh::eval along each pixel's view direct
   CHECK(worst < 2e-5);
 }
 
-TEST_CASE("the image background equals Environment::radiance along each pixel's view direction, plus the discs the "
-          "frame shades: E / (pi sin^2 a) inside, nothing outside", "[render][gl]") {
+// Plus the discs the frame shades: E / (pi sin^2 a) inside each, nothing outside.
+TEST_CASE("the image background equals Environment::radiance plus the shaded discs along each view direction", "[render][gl]") {
   render::HeadlessContext context;
   render::Renderer renderer;
   const mesh::Mesh mesh = bumpy_sphere(6, 12);
