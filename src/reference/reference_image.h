@@ -9,8 +9,9 @@
 //     the triangle's corners, estimated with `samples` paths from SampleStream(seed, y * width + x);
 //   - it hits a back face: 0 (single-sided surfaces, as the baker; `prt render` draws both sides);
 //   - it escapes: the background environment's radiance along the ray (as `prt render --background
-//     env`), or 0 with black_background. The background is the lighting environment unless another is
-//     given: `prt reference --image --band-limit N` lights with the band-limited environment and shows
+//     env --sun none`: with discs prt render draws them in place of the map's own texels, so compare
+//     images with a disc in view with --background black), or 0 with black_background. The background
+//     is the lighting environment unless another is given: `prt reference --image --band-limit N` lights with the band-limited environment and shows
 //     the image as loaded behind the mesh, as `prt render` lights with N bands and shows the image.
 // This is the quantity a per-vertex PRT render approximates: the renderer interpolates the vertices'
 // radiance across each triangle, the reference evaluates the radiance at each pixel's own surface
