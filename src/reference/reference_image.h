@@ -11,8 +11,9 @@
 //   - it escapes: the background environment's radiance along the ray (as `prt render --background
 //     env --sun none`: with discs prt render draws them in place of the map's own texels, so compare
 //     images with a disc in view with --background black), or 0 with black_background. The background
-//     is the lighting environment unless another is given: `prt reference --image --band-limit N` lights with the band-limited environment and shows
-//     the image as loaded behind the mesh, as `prt render` lights with N bands and shows the image.
+//     is the lighting environment unless another is given: `prt reference --image --band-limit N`
+//     lights with the band-limited environment and shows the image as loaded behind the mesh, as
+//     `prt render` lights with N bands and shows the image.
 // This is the quantity a per-vertex PRT render approximates: the renderer interpolates the vertices'
 // radiance across each triangle, the reference evaluates the radiance at each pixel's own surface
 // point, so the two differ by the per-vertex interpolation error plus this estimate's noise.
