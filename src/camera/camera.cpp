@@ -10,7 +10,9 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/constants.h"
 #include "core/error.h"
+#include "sh/sampling.h"
 
 namespace prt::camera {
 
@@ -112,10 +114,9 @@ PixelRay pixel_ray(const ViewMatrices& view, int x, int y, int width, int height
 std::optional<PixelRect> cap_pixel_rect(const ViewMatrices& view, int width, int height, const glm::dvec3& direction,
                                         double angular_radius) {
   constexpr int kRimPoints = 32;
-  constexpr double kPi = 3.14159265358979323846;
   const double widened = std::atan(std::tan(angular_radius) / std::cos(kPi / kRimPoints));
-  const glm::dvec3 helper = std::fabs(direction.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
-  const glm::dvec3 u = glm::normalize(glm::cross(direction, helper)), v = glm::cross(direction, u);
+  glm::dvec3 u, v;
+  sh::orthonormal_basis(direction, u, v);
   const glm::dmat3 world_to_camera = glm::transpose(view.camera_to_world);
   const PixelRect whole{0, 0, width, height};
   double lo_x = std::numeric_limits<double>::infinity(), lo_y = lo_x, hi_x = -lo_x, hi_y = -lo_x;

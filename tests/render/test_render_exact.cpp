@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/constants.h"
 #include "cpu_raster.h"
 #include "light/environment.h"
 #include "render/headless_context.h"
@@ -270,9 +271,9 @@ TEST_CASE("the image background equals Environment::radiance plus the shaded dis
   light::Disc disc;
   disc.direction = pixel_direction(0.18 * kWidth, 0.2 * kHeight);
   disc.irradiance = glm::dvec3(0.02, 0.05, 0.01);
-  disc.angular_radius = 6.0 * 3.14159265358979323846 / 180.0;
+  disc.angular_radius = 6.0 * kPi / 180.0;
   const double sin_a = std::sin(disc.angular_radius);
-  const glm::dvec3 disc_radiance = disc.irradiance / (3.14159265358979323846 * sin_a * sin_a);
+  const glm::dvec3 disc_radiance = disc.irradiance / (kPi * sin_a * sin_a);
   const double pixel_angle = 2.0 * std::atan(view.tan_half_fov_y) / kHeight;
 
   // Renders and compares every background pixel off the disc's rim (where pixels blend) with the map plus,
