@@ -5,8 +5,9 @@
 // differ in the last bits between its code paths (it picks SSE4.2, AVX, AVX2 or AVX-512 at run time, and
 // its reciprocals are approximations refined per ISA): an interreflected bake on the same machine changed
 // bits with the device's ISA forced from AVX2 to SSE4.2. Which triangle is nearest is what Embree is for;
-// where on it the ray lands is recomputed here in double and rounded once to float, so bakes are
-// byte-identical across CPUs (docs/conventions.md, "Bits across CPUs"). The file is compiled without
+// where on it the ray lands is recomputed here in double and rounded once to float, so hit points do not
+// depend on the code path (docs/conventions.md, "Bits across Embree's code paths", which says what still
+// can: Embree's choice of triangle for a ray within rounding of an edge). The file is compiled without
 // floating-point contraction (src/trace/CMakeLists.txt), so the build's -march does not change it either.
 #include <cstddef>
 #include <cstdint>
