@@ -27,8 +27,9 @@
 // -ffp-contract=fast), so FMA and non-FMA builds differ in the last bits.
 //
 // Accuracy (tests/sh/test_eval_batch.cpp), relative to band l's bound sqrt((2l+1)/(4 pi)): double
-// within 1e-13 up to 32 bands; float grows about linearly with the band count, <= 2.3e-7 * bands
-// measured (3.4e-6 at 16 bands, 7.3e-6 at 32), from the float recurrence and the float input.
+// within 1e-13 up to 32 bands; float grows as bands^1.5: over 130 000 random directions (GCC 12 with FMA,
+// clang 14 without) the worst was 9.4e-8 * bands^1.5 (5.2e-8 at 1 band, 1.6e-6 at 9, 5.0e-6 at 16,
+// 1.6e-5 at 32), from the float recurrence and the float input.
 #include <cstddef>
 #include <cstring>
 #include <type_traits>

@@ -37,7 +37,10 @@ Samples random_samples(std::size_t count, unsigned seed) {
   for (std::size_t j = 0; j < count; ++j) {
     // Unit in double after rounding to float: the double path sees unit vectors, the float one the same
     // vector to float precision.
-    glm::vec3 d(glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng))));
+    // (Drawn one statement each: the order of a constructor's arguments is unspecified, and GCC and clang
+    // draw them in opposite orders.)
+    const double dx = normal(rng), dy = normal(rng), dz = normal(rng);
+    glm::vec3 d(glm::normalize(glm::dvec3(dx, dy, dz)));
     s.dirs.push_back(glm::normalize(glm::dvec3(d)));
     s.weights.push_back(static_cast<float>(uniform(rng)));
   }
@@ -105,12 +108,12 @@ TEST_CASE("eval_accumulate adds the weighted basis sums of the reference, any co
                                            2 * lanes, 2 * lanes + 1, 3 * lanes, 5 * lanes + 3, dlanes + 1, 3 * dlanes - 1,
                                            200};
   // Relative to band_scale(l) sum_j |w_j|: double, rounding of 31 recurrence steps and of the sums;
-  // float, the float recurrence (about 2.3e-7 per band, as eval_batch) plus the float sums.
+  // float, the float recurrence (<= 9.4e-8 bands^1.5 measured, as eval_batch) plus the float sums.
   // Measured worst (GCC 12, AVX2): double 2.5e-15, float 0.22 of its bound.
   const double double_tolerance = 1e-14;
   double worst_float_ratio = 0;
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
-    const double float_tolerance = 3e-7 * bands + 1e-7;
+    const double float_tolerance = 1.5e-7 * std::pow(bands, 1.5) + 1e-7;
     for (std::size_t count : counts) {
       INFO("bands " << bands << ", count " << count);
       const Samples s = random_samples(count, 100 + static_cast<unsigned>(bands));
@@ -160,7 +163,7 @@ TEST_CASE("Accumulator: many short calls give the reference's weighted basis sum
   const std::vector<std::vector<std::size_t>> call_sets = {
       {1}, {16}, {lanes - 1, 0, lanes + 1, 3, 2 * lanes + 5}, {64, 7}};
   for (int bands = 1; bands <= sh::kMaxBands; ++bands) {
-    const double float_tolerance = 3e-7 * bands + 1e-7;
+    const double float_tolerance = 1.5e-7 * std::pow(bands, 1.5) + 1e-7;
     const Samples s = random_samples(333, 700 + static_cast<unsigned>(bands));
     for (const std::vector<std::size_t>& calls : call_sets) {
       INFO("bands " << bands << ", first call " << calls[0]);
