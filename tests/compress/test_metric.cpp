@@ -15,6 +15,7 @@
 #include "brdf/projection.h"
 #include "compress/metric.h"
 #include "sh/rotation.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -22,17 +23,14 @@ namespace {
 
 constexpr int kRotations = 40000;
 
-glm::dmat3 random_rotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return glm::mat3_cast(glm::normalize(glm::dquat(n(rng), n(rng), n(rng), n(rng))));
-}
+using prt::test::random_rotation;
 
 sh::RgbCoefficients random_lighting(std::mt19937_64& rng, int bands) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   sh::RgbCoefficients l(bands);
   for (std::size_t j = 0; j < l.values.size(); ++j) {
     const double decay = 1.0 / (1.0 + static_cast<double>(j));  // an uneven spectrum, as real lighting has
-    l.values[j] = decay * glm::dvec3(u(rng), u(rng), u(rng));
+    l.values[j] = decay * test::draw_vec3<double>(rng, u);
   }
   return l;
 }

@@ -14,6 +14,7 @@
 #include "light/environment.h"
 #include "sh/basis.h"
 #include "sh/coefficients.h"
+#include "support/random_draws.h"
 
 namespace prt::test {
 
@@ -52,7 +53,7 @@ inline sh::RgbCoefficients random_coefficients(int bands, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   sh::RgbCoefficients c(bands);
-  for (auto& v : c.values) v = glm::dvec3(u(rng), u(rng), u(rng));
+  for (auto& v : c.values) v = test::draw_vec3<double>(rng, u);
   c.values[0] = glm::dvec3(4.0, 3.0, 5.0);
   return c;
 }

@@ -14,13 +14,11 @@
 #include "sh/basis.h"
 #include "sh/quadrature.h"
 #include "sh/zonal.h"
+#include "support/random_draws.h"
 
 namespace {
 
-glm::dvec3 random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
-}
+using prt::test::random_direction;
 
 // Calls f(w, weight) for a rule over the cap 1 - width <= axis . w <= 1 (width in (0, 2]): Gauss-Legendre
 // in axis . w times uniform phi about the axis, exact for polynomials of degree < 2 * 24 in w. The

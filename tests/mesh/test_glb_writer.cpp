@@ -10,6 +10,7 @@
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
 #include "mesh_test_util.h"
+#include "support/random_draws.h"
 
 using namespace prt::mesh;
 using namespace prt::mesh::test;
@@ -63,7 +64,7 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   for (int a = 0; a < 3; ++a) {
     VertexAttribute attribute{"_PRT_T" + std::to_string(a), {}};
     for (std::size_t i = 0; i < n; ++i)
-      attribute.values.emplace_back(uniform(rng), uniform(rng), uniform(rng), uniform(rng));
+      attribute.values.push_back(prt::test::draw_vec4<float>(rng, uniform));
     extras.push_back(attribute);
   }
   // Values that text formats would mangle: -0, denormals, huge, NaN with a payload.

@@ -9,13 +9,10 @@
 #include <glm/geometric.hpp>
 
 #include "sh/basis.h"
+#include "support/random_draws.h"
 
 namespace {
-glm::dvec3 random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  glm::dvec3 d(n(rng), n(rng), n(rng));
-  return glm::normalize(d);
-}
+using prt::test::random_direction;
 
 // Closed forms of the first 9 real SH with the Condon-Shortley phase.
 double closed_form(int i, const glm::dvec3& d) {

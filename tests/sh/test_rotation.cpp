@@ -18,6 +18,7 @@
 #include "sh/rotation.h"
 #include "sh/rotation_float.h"
 #include "sh/rotation_x90_table.h"
+#include "support/random_draws.h"
 
 namespace {
 
@@ -26,15 +27,8 @@ using prt::sh::Rotation;
 
 constexpr double kFloatEps = 5.9604644775390625e-08;  // 2^-24
 
-glm::dmat3 random_rotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return glm::mat3_cast(glm::normalize(glm::dquat(n(rng), n(rng), n(rng), n(rng))));
-}
-
-glm::dvec3 random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
-}
+using prt::test::random_direction;
+using prt::test::random_rotation;
 
 std::vector<double> random_coefficients(std::mt19937_64& rng, int bands) {
   std::uniform_real_distribution<double> u(-1, 1);

@@ -15,6 +15,7 @@
 #include "sh/basis.h"
 #include "sh/window.h"
 #include "sh/zonal.h"
+#include "support/random_draws.h"
 
 namespace {
 
@@ -47,10 +48,7 @@ std::vector<double> delta(int bands) {
   return z;
 }
 
-glm::dvec3 random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
-}
+using prt::test::random_direction;
 
 }  // namespace
 

@@ -12,15 +12,13 @@
 #include "sh/coefficients.h"
 #include "sh/quadrature.h"
 #include "sh/zonal.h"
+#include "support/random_draws.h"
 
 namespace {
 
 using prt::sh::index;
 
-glm::dvec3 random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
-}
+using prt::test::random_direction;
 
 // Y_l0 at a direction whose z is t, by the slow reference evaluation (not by sh::legendre).
 double y_l0(int l, double t) { return prt::sh::eval_reference(l, 0, {std::sqrt(std::max(0.0, 1.0 - t * t)), 0.0, t}); }

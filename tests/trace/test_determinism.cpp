@@ -13,6 +13,7 @@
 #include "sh/sampling.h"
 #include "trace/scene.h"
 #include "trace/vertex_rays.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -61,8 +62,8 @@ Results trace_all(const trace::Scene& scene, const mesh::Mesh& m, int threads) {
           // Counter-based random ray i: independent of which thread builds it.
           std::mt19937 rng(static_cast<std::uint32_t>(i));
           std::uniform_real_distribution<float> unit(-1.5f, 1.5f);
-          o = glm::vec3(unit(rng), unit(rng), unit(rng));
-          d = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)) + glm::vec3(1e-3f));
+          o = test::draw_vec3<float>(rng, unit);
+          d = glm::normalize(test::draw_vec3<float>(rng, unit) + glm::vec3(1e-3f));
         }
         occlusion.push(o, d);
         closest.push(o, d);

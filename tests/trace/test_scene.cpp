@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "trace/reference_tracer.h"
 #include "trace/scene.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 using trace::testing::reference_closest_hit;
@@ -23,7 +24,7 @@ namespace {
 glm::dvec3 random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;
   for (;;) {
-    glm::dvec3 d(normal(rng), normal(rng), normal(rng));
+    const glm::dvec3 d = test::draw_vec3<double>(rng, normal);
     const double length = glm::length(d);
     if (length > 1e-6) return d / length;
   }
@@ -35,7 +36,7 @@ mesh::Mesh random_scene(std::mt19937_64& rng, int triangles) {
   mesh::Mesh m;
   while (m.indices.size() < std::size_t(3 * triangles)) {
     glm::vec3 p[3];
-    for (auto& q : p) q = glm::vec3(unit(rng), unit(rng), unit(rng));
+    for (auto& q : p) q = test::draw_vec3<float>(rng, unit);
     if (glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) < 1e-3f) continue;
     for (auto& q : p) {
       m.indices.push_back(static_cast<std::uint32_t>(m.positions.size()));
@@ -204,7 +205,7 @@ TEST_CASE("a ray from inside a closed box always hits the wall at the slab dista
   std::vector<double> expected_t(1000);
   std::vector<int> expected_axis(1000);
   for (int ray = 0; ray < 1000; ++ray) {
-    const glm::dvec3 o = glm::dvec3(lo) + glm::dvec3(hi - lo) * glm::dvec3(unit(rng), unit(rng), unit(rng));
+    const glm::dvec3 o = glm::dvec3(lo) + glm::dvec3(hi - lo) * test::draw_vec3<double>(rng, unit);
     const glm::dvec3 d = random_unit(rng);
     // Slab method: the exit distance is the smallest positive distance to a wall plane.
     expected_t[ray] = 1e300;
