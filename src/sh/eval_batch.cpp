@@ -166,28 +166,42 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // Crowded strides with the band count's own kernel (up to kMaxFastBands bands): the kernel cut into pieces.
 // At such strides what is slow is the order of the stores, not their number: the direct path writes bands^2
 // lines into one cache set per vector of directions, while the same bytes written a few rows at a time
-// along runs of a whole row of directions cost about what a plain fill costs (bench_sh_eval's fill bounds;
-// 1-4 rows at a time: within 10% of writing whole rows one after another, 8 rows 1.3-1.4x, all rows 2.5x;
-// Xeon, 9 bands, count 1024). So the kernel's steps (eval_kernels.h) are cut into pieces of at most kPieceRows
-// output rows, and each piece runs over a tile of up to kPieceTileBytes of directions, one vector after
-// another, storing straight into the output, before the next piece starts. A piece resumes the kernel from
-// (C_m, S_m) of its column and the column's last two F. Both are recomputed (recompute_cs, resume_column:
-// the kernel's own arithmetic, the same bits) rather than stored: extra stores cost about as much as the
-// output's own (a stored F state made 9 bands 1.3-1.4x slower than its recomputation). From kPieceCsFrom bands
-// on, where the chain for (C_m, S_m) grows long, (C_m, S_m) is kept per vector instead (2 stores per column).
-// The pieces read their inputs from copies placed off the output rows' page offset (kInputShift).
-// Staging the output through an L1 tile, the path this replaced, wrote every value twice and was 1.5-2.5x
-// slower than the padded stride (Xeon); this one is 1.0-1.1x at 3-5 bands, 1.1x at 9 and 1.1-1.2x at 16
-// there. On Zen 3 (8-way L1) they run 1.1-1.9x, although filling 4 rows at a time costs about what the
-// padded batch does and the pieces' arithmetic alone is 1.05x the direct path's (docs/conventions.md).
+// along runs of directions cost about what a plain fill costs (bench_sh_eval's fill bounds; 1-4 rows at a
+// time: within 10% of writing whole rows one after another, 8 rows 1.3-1.4x, all rows 2.5x; Xeon, 9 bands,
+// count 1024). So the kernel's steps (eval_kernels.h) are cut into pieces of at most kPieceRows output rows,
+// and each piece runs over a tile of up to kPieceTileBytes of directions, one block after another, storing
+// straight into the output, before the next piece starts.
+//
+// A piece resumes the kernel from (C_m, S_m) of its column and the column's last two F (KernelState). Where
+// they cost a few operations they are recomputed by the kernel's own arithmetic (recompute_cs, resume_column:
+// the same bits); otherwise the piece before leaves them per block in a scratch stream of the tile
+// (PiecePlan) on AVX2 and narrower. Recomputing all of it doubled the arithmetic per stored vector (9 bands:
+// 2.1x the direct path's time with the output in L1), which bounds the pieces on AVX2: on Zen 3 they ran
+// 1.3-2.1x the padded batch at 4-16 bands, against 1.15-1.45x with the state kept (docs/conventions.md). With
+// AVX-512 (half the instructions per direction) recomputation measured faster: on a Xeon a stored F state made
+// 9 bands 1.3-1.4x slower, every extra store costing about what an output store does; there the pieces
+// recompute F always and (C, S) below kKeepAllCsFrom bands.
+constexpr bool kRecomputeState = sizeof(Vec<float>) >= 64;
+constexpr int kKeepAllCsFrom = 14;
+constexpr int kNever = 1 << 20;
 constexpr int kPieceRows = 4;
-constexpr std::size_t kPieceTileBytes = 4096;
-constexpr int kPieceCsFrom = 14;
+// Directions per tile: with the state kept, 2 KiB keeps a tile's seven scratch streams (x, y, z, C, S and two
+// F) at 14 KiB of L1; 4 KiB tiles were 1.1-1.2x slower (Zen 3, 9-16 bands), 1 KiB within noise.
+constexpr std::size_t kPieceTileBytes = kRecomputeState ? 4096 : 2048;
+// (C_m, S_m) is kept from column keep_cs_from on ((C_1, S_1) = (x, y) costs nothing to recompute); F_{l-1},
+// F_{l-2} where a piece resumes at l >= m + kKeepFFrom (before that the recurrence reads neither: resuming at
+// l = m + 2 replays one multiply).
+template <int N>
+constexpr int keep_cs_from() {
+  return !kRecomputeState || N >= kKeepAllCsFrom ? 2 : kNever;
+}
+constexpr int kKeepFFrom = kRecomputeState ? kNever : 3;
 // The pieces read their inputs from copies kInputShift bytes past the output rows' page offset: loads whose
 // address matches a pending store's in the low 12 bits wait for it ("4K aliasing"), and a crowded stride's
 // stores are pending long (slow to reach L2). Inputs at 64 bytes below the rows' offset (each load aliases
 // the stores of the vector before) made 9 / 16 bands 1.2 / 1.4x the padded figure, at 0 1.2 / 1.3x, at
-// 1024 1.1 / 1.2x (Xeon, count 1024); the bench's own inputs (std::vector, 32-48 bytes below) 1.2 / 1.25x.
+// 1024 1.1 / 1.2x (Xeon, count 1024); the bench's own inputs (std::vector, 32-48 bytes below) 1.2 / 1.25x;
+// on Zen 3 reading the bench's inputs directly made 4-16 bands 1.35-1.8x instead of 1.15-1.4x.
 constexpr std::size_t kInputShift = 1024;
 // Up to 3 bands a tile's output rows and inputs fit in L1 together (9 rows of 4 KiB and 12 KiB of inputs,
 // 48 KiB of L1 on the Xeon), the stores do not wait, and the copies would push it all out to L2: 3 bands
@@ -222,44 +236,85 @@ constexpr Pieces<N> make_pieces() {
 template <int N>
 inline constexpr Pieces<N> kPieces = make_pieces<N>();
 
-// A tile's inputs as the pieces read them: copies of x, y, z, one page each, and (C, S) kept per vector of
-// directions (from kPieceCsFrom bands on; by vector, not by direction: the blocks of for_each_block overlap),
-// all at a page offset away from the output rows' (see kInputShift).
+// How piece P of the N-band kernel resumes, and what it leaves for piece P + 1.
+struct PiecePlan {
+  int cs_column;   // the column whose (C, S) it needs on entry; 0 if none (it starts in column 0 or 1)
+  bool loads_cs;   // reads (C, S) of cs_column from the scratch instead of recomputing it
+  bool stores_cs;  // leaves (C, S) of its last column there for the piece after it
+  bool loads_f;    // reads F_{l-1}, F_{l-2} of its first step from the scratch instead of replaying the column
+  bool stores_f;   // leaves its last two F there for the piece after it
+};
+template <int N>
+constexpr PiecePlan plan_piece(int p) {
+  const int e0 = kPieces<N>.begin[p], e1 = kPieces<N>.begin[p + 1];
+  const KernelStep first = kernel_step<N>(e0), last = kernel_step<N>(e1 - 1);
+  // (C, S) read: by a piece that starts inside column m >= 1, or at the start of column m >= 2 (advanced from
+  // m - 1); changed: by a piece that starts column m >= 1 or crosses into a new column.
+  const int cs_column = first.l > first.m ? first.m : first.m - 1;
+  const bool changes_cs = (first.l == first.m && first.m >= 1) || last.m > first.m;
+  const bool has_next = p + 1 < kPieces<N>.count;
+  const KernelStep next = has_next ? kernel_step<N>(e1) : KernelStep{0, 0};
+  PiecePlan plan{};
+  plan.cs_column = cs_column >= 1 ? cs_column : 0;
+  plan.loads_cs = cs_column >= keep_cs_from<N>();
+  plan.stores_cs = has_next && changes_cs && last.m >= keep_cs_from<N>();
+  plan.loads_f = first.l - first.m >= kKeepFFrom;
+  plan.stores_f = has_next && next.m == last.m && next.l - next.m >= kKeepFFrom;
+  return plan;
+}
+template <int N, int P>
+inline constexpr PiecePlan kPlan = plan_piece<N>(P);
+
+// Whether some piece of the N-band kernel loads (C, S) (Cs) or F (else) from the scratch.
+template <int N, bool Cs>
+constexpr bool pieces_keep() {
+  for (int p = 0; p < kPieces<N>.count; ++p)
+    if (Cs ? plan_piece<N>(p).loads_cs : plan_piece<N>(p).loads_f) return true;
+  return false;
+}
+
+// A tile's inputs and kept state as the pieces read them: copies of x, y, z, then (C, S) and F (the last two)
+// kept per block of directions (by block, not by direction: the blocks of for_each_block overlap), in
+// consecutive streams from the output rows' page offset plus kInputShift.
 template <typename T>
 struct TileInputs {
   const T *x, *y, *z;
-  T *c, *s;
+  T *c, *s, *f1, *f2;
 };
 
 // Piece P over the n directions of one tile (kBlockLanes <= n), blocks of directions at the starts of
-// for_each_block(n, kBlockLanes, peel). in.c, in.s: (C, S) of each block as the pieces before left it (used
-// from kPieceCsFrom bands on). Blocks, as the direct path: with one vector per call instead, GCC fused the
-// a * b - c * d of (C_2, S_2) the other way round than in the direct path's Pair code (3 bands, AVX2), and
-// the crowded stride's bits differed from the padded stride's; speed was the same within noise (Zen 3).
+// for_each_block(n, kBlockLanes, peel). Blocks, as the direct path: with one vector per call instead, GCC
+// fused the a * b - c * d of (C_2, S_2) the other way round than in the direct path's Pair code (3 bands,
+// AVX2), and the crowded stride's bits differed from the padded stride's; speed was the same within noise
+// (Zen 3).
 template <int N, int P, typename T>
 PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride) {
   using V = Block<T>;
   constexpr int e0 = kPieces<N>.begin[P], e1 = kPieces<N>.begin[P + 1];
-  constexpr KernelStep first = kernel_step<N>(e0), last = kernel_step<N>(e1 - 1);
-  // (C, S) read: by a piece that starts inside column m >= 1, or at the start of column m >= 2 (advanced
-  // from m - 1); changed: by a piece that starts column m >= 1 or crosses into a new column.
-  constexpr bool reads_cs = first.l > first.m ? first.m >= 1 : first.m >= 2;
-  constexpr bool changes_cs = (first.l == first.m && first.m >= 1) || last.m > first.m;
-  constexpr bool keep_cs = N >= kPieceCsFrom;
-  std::size_t kept = 0;  // where in in.c, in.s this vector's (C, S) is
+  constexpr PiecePlan plan = kPlan<N, P>;
+  std::size_t kept = 0;  // where in the scratch streams this block's state is
   for_each_block(n, kBlockLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
     const V vx = load<V>(in.x + j), vy = load<V>(in.y + j), vz = load<V>(in.z + j);
     KernelState<V> st{vx, vy, vx, vy};  // what the steps read before writing is set below
-    if constexpr (reads_cs && keep_cs) {
+    if constexpr (plan.loads_cs) {
       st.c = load<V>(in.c + kept);
       st.s = load<V>(in.s + kept);
-    } else if constexpr (reads_cs) {
-      recompute_cs<(first.l > first.m ? first.m : first.m - 1)>(vx, vy, st);
+    } else if constexpr (plan.cs_column >= 1) {
+      recompute_cs<plan.cs_column>(vx, vy, st);
     }
-    resume_column<N, e0, T>(vz, st);
+    if constexpr (plan.loads_f) {
+      st.f1 = load<V>(in.f1 + kept);
+      st.f2 = load<V>(in.f2 + kept);
+    } else {
+      resume_column<N, e0, T>(vz, st);
+    }
     StridedStore<T> put{out + j, stride};
     eval_steps<N, e0, e1, T>(vx, vy, vz, st, put);
-    if constexpr (changes_cs && keep_cs && P + 1 < kPieces<N>.count) {
+    if constexpr (plan.stores_f) {
+      store(in.f1 + kept, st.f1);
+      store(in.f2 + kept, st.f2);
+    }
+    if constexpr (plan.stores_cs) {
       store(in.c + kept, st.c);
       store(in.s + kept, st.s);
     }
@@ -290,25 +345,38 @@ std::size_t pieces_tile_length(std::size_t count) {
 template <int N, typename T>
 PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
   constexpr auto pieces = std::make_integer_sequence<int, kPieces<N>.count>{};
+  constexpr bool keep_cs = pieces_keep<N, true>(), keep_f = pieces_keep<N, false>();
+  // Each stream holds a tile and a block (the peel adds one); they follow one another from the page offset of
+  // the output rows plus kInputShift, within a page and the streams.
+  constexpr std::size_t span = kPieceTileBytes / sizeof(T) + kBlockLanes<T>, page = kPage / sizeof(T);
+  constexpr std::size_t streams = (kCopyInputs<N> ? 3 : 0) + (keep_cs ? 2 : 0) + (keep_f ? 2 : 0);
+  alignas(kPage) T buffer[page + streams * span];
   const std::size_t tile = pieces_tile_length<T>(count), tiles = (count + tile - 1) / tile;
-  // x, y, z of a tile, one page each at the page offset of the output rows plus kInputShift, then C and S,
-  // a page and a block each (a tile of a whole page has a block more when unaligned), two pages apart.
-  constexpr std::size_t streams = N >= kPieceCsFrom ? 7 : kCopyInputs<N> ? 3 : 0, page = kPage / sizeof(T);
-  alignas(kPage) unsigned char buffer[(streams + 1) * kPage];
   for (std::size_t t = 0; t < tiles; ++t) {
     const std::size_t j = t * tile < count - tile ? t * tile : count - tile;
-    const std::size_t offset = (reinterpret_cast<std::uintptr_t>(out + j) + kInputShift) % kPage / sizeof(T);
-    T* first = reinterpret_cast<T*>(buffer) + offset;
-    TileInputs<T> in{x + j, y + j, z + j, nullptr, nullptr};
+    T* next = buffer + (reinterpret_cast<std::uintptr_t>(out + j) + kInputShift) % kPage / sizeof(T);
+    auto take = [&next]() {
+      T* stream = next;
+      next += span;
+      return stream;
+    };
+    TileInputs<T> in{x + j, y + j, z + j, nullptr, nullptr, nullptr, nullptr};
     if constexpr (kCopyInputs<N>) {
-      std::memcpy(first, x + j, tile * sizeof(T));
-      std::memcpy(first + page, y + j, tile * sizeof(T));
-      std::memcpy(first + 2 * page, z + j, tile * sizeof(T));
-      in = {first, first + page, first + 2 * page, nullptr, nullptr};
+      T *cx = take(), *cy = take(), *cz = take();
+      std::memcpy(cx, x + j, tile * sizeof(T));
+      std::memcpy(cy, y + j, tile * sizeof(T));
+      std::memcpy(cz, z + j, tile * sizeof(T));
+      in.x = cx;
+      in.y = cy;
+      in.z = cz;
     }
-    if constexpr (N >= kPieceCsFrom) {
-      in.c = first + 3 * page;
-      in.s = first + 5 * page;
+    if constexpr (keep_cs) {
+      in.c = take();
+      in.s = take();
+    }
+    if constexpr (keep_f) {
+      in.f1 = take();
+      in.f2 = take();
     }
     pieces_tile<N, T>(tile, alignment_peel(out + j, kCacheLine), in, out + j, stride, pieces);
   }

@@ -248,10 +248,10 @@ TEST_CASE("float paths match the reference to float precision", "[sh][eval]") {
 }
 
 TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the reference values", "[sh][eval]") {
-  // Up to 16 bands eval_batch cuts the kernel into pieces of a few rows run over tiles of up to 4 KiB of
-  // directions (1024 floats, 512 doubles); beyond, it stages tiles of 512 bytes. These counts cover fewer
+  // Up to 16 bands eval_batch cuts the kernel into pieces of a few rows run over tiles of up to 2 KiB of
+  // directions (512 floats, 256 doubles); beyond, it stages tiles of 512 bytes. These counts cover fewer
   // directions than one vector (the scalar path), one partial tile, one whole tile and several of them
-  // (1100 and 2500 floats, 600 and 1300 doubles: tiles of equal length, the last one overlapping), with
+  // (1024, 1100 and 2500 floats, 512 and more doubles: tiles of equal length, the last one overlapping), with
   // out 64-byte aligned or not (offset 1). Directions repeat with a period of 1009 (prime): a misplaced
   // vector or tile still shows, and the float tolerance stays the one measured on the kernel (the first
   // test case; this one checks where values go, not the kernel's accuracy over more directions).
@@ -291,8 +291,10 @@ TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the refere
 }
 
 TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
-  // The pieces path runs the kernel's own arithmetic, resumed from recomputed state: its values are the
-  // direct path's to the bit, so results do not depend on the stride. Strides (in elements): multiples of
+  // The pieces path runs the kernel's own arithmetic, resumed from state recomputed the same way or kept
+  // from the piece before: its values are the direct path's to the bit, so results do not depend on the
+  // stride. Counts of one and of several tiles; keeping a wrong value (F_{l-2} for F_{l-1}, or S for C)
+  // fails here and in the test case above. Strides (in elements): multiples of
   // 4 KiB (every row on one cache-set position) and 128 (at 16 bands crowded too: 512 bytes for float, 32
   // rows on each of 8 positions; 1 KiB for double).
   const auto dirs = rounded_to_float(test_directions(1100));
