@@ -41,6 +41,93 @@ mesh::Mesh mesh_in_environment_frame(const mesh::Mesh& mesh, const glm::dmat3& e
   return out;
 }
 
+namespace {
+
+// What every row of one render reads.
+struct RowInputs {
+  const camera::ViewMatrices& view;
+  int width, height;
+  glm::dmat3 to_environment;  // camera frame -> the environment's frame
+  const light::Environment& behind;
+  const trace::Scene& scene;
+  const PathTracer& tracer;
+  const ImageOptions& options;
+};
+
+// Per-thread buffers of the row loop.
+struct RowScratch {
+  explicit RowScratch(std::size_t width) : primary(width), directions(width) {}
+  PathWorkspace workspace;
+  trace::RayBatch primary;
+  std::vector<glm::dvec3> directions;
+};
+
+struct RowCounts {
+  std::uint64_t rays = 0, paths = 0;
+};
+
+// Row `row` (0 at the top) of the image: its primary rays traced in one batch, then each covered pixel's
+// outgoing radiance estimated (seeded by the pixel index), into out's radiance, coverage and standard error.
+RowCounts render_row(const RowInputs& in, std::size_t row, RowScratch& scratch, ReferenceImage& out) {
+  const int y = static_cast<int>(row);
+  const ReferenceOptions& reference = in.options.reference;
+  RowCounts counts;
+  scratch.primary.clear();
+  for (int x = 0; x < in.width; ++x) {
+    const camera::PixelRay ray = camera::pixel_ray(in.view, x, y, in.width, in.height);
+    scratch.directions[x] = in.to_environment * ray.direction;
+    scratch.primary.push(glm::vec3(in.to_environment * ray.origin), glm::vec3(scratch.directions[x]));
+  }
+  in.scene.intersect(scratch.primary);
+  counts.rays += static_cast<std::uint64_t>(in.width);
+  for (int x = 0; x < in.width; ++x) {
+    const std::size_t pixel = row * static_cast<std::size_t>(in.width) + static_cast<std::size_t>(x);
+    const trace::HitResult hit = scratch.primary.hit(static_cast<std::size_t>(x));
+    glm::dvec3 value(0.0);
+    if (!hit.hit()) {
+      if (!in.options.black_background) value = in.behind.radiance(scratch.directions[x]);
+    } else {
+      out.covered[pixel] = 1;
+      SurfacePoint point;
+      if (in.tracer.hit_point(hit, glm::vec3(scratch.directions[x]), point)) {
+        SampleStream stream(reference.seed, pixel);
+        const RadianceEstimate estimate = in.tracer.outgoing_radiance(point, reference.samples, stream, scratch.workspace);
+        value = estimate.value;
+        out.standard_error[pixel] = glm::vec3(estimate.standard_error);
+        counts.rays += estimate.rays;
+        counts.paths += static_cast<std::uint64_t>(reference.samples);
+      }
+    }
+    for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = static_cast<float>(value[c]);
+  }
+  return counts;
+}
+
+// The noise figure over the covered pixels that are not black (as vertex_radiance's): the mean of standard
+// error over value, pixels below 1e-6 of the brightest left out.
+double mean_relative_standard_error(const ReferenceImage& out) {
+  const std::size_t pixels = out.covered.size();
+  auto magnitude_at = [&out](std::size_t p) {
+    const float* rgb = &out.radiance.pixels[3 * p];
+    return sampling_magnitude(glm::dvec3(rgb[0], rgb[1], rgb[2]));
+  };
+  double largest = 0.0;
+  for (std::size_t p = 0; p < pixels; ++p)
+    if (out.covered[p]) largest = std::max(largest, magnitude_at(p));
+  double relative_sum = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    if (!out.covered[p]) continue;
+    const double magnitude = magnitude_at(p);
+    if (magnitude <= 1e-6 * largest || magnitude == 0.0) continue;
+    relative_sum += sampling_magnitude(glm::dvec3(out.standard_error[p])) / magnitude;
+    ++counted;
+  }
+  return counted ? relative_sum / static_cast<double>(counted) : 0.0;
+}
+
+}  // namespace
+
 ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSampler& environment,
                             const ImageOptions& options, const light::Environment* background) {
   check_options(options.reference);
@@ -55,8 +142,6 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   ReferenceReport& rep = out.report;
   const camera::ViewMatrices view =
       camera::orbit_view(options.camera, mesh::bounds(original_mesh), width, height, options.object_rotation);
-  const glm::dmat3 to_environment = glm::transpose(options.environment_rotation);
-  const light::Environment& behind = background ? *background : environment.environment();
   const mesh::Mesh mesh =
       mesh_in_environment_frame(original_mesh, options.environment_rotation, options.object_rotation);
   const std::vector<glm::vec3> albedo = reference_albedo(mesh, options.reference.albedo);
@@ -66,6 +151,8 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   const trace::Scene scene(mesh, trace::SceneOptions{1, true});
   rep.seconds_build = seconds_since(start);
   const PathTracer tracer(mesh, albedo, scene, environment, EstimatorOptions{options.reference.bounces});
+  const RowInputs inputs{view,  width,  height, glm::transpose(options.environment_rotation),
+                         background ? *background : environment.environment(), scene, tracer, options};
 
   out.radiance = image::Image(width, height, 3);
   out.covered.assign(pixels, 0);
@@ -77,47 +164,16 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   const dist::Context& ranks = dist::or_single(options.reference.dist);
   const dist::Range share = dist::my_range(ranks, static_cast<std::size_t>(height));
   parallel_for(share.size(), 1, options.reference.threads, [&](std::size_t chunk_begin, std::size_t chunk_end) {
-    const std::size_t begin = share.begin + chunk_begin, end = share.begin + chunk_end;
-    PathWorkspace workspace;
-    trace::RayBatch primary(static_cast<std::size_t>(width));
-    std::vector<glm::dvec3> directions(static_cast<std::size_t>(width));
-    std::uint64_t traced = 0, row_paths = 0;
-    for (std::size_t row = begin; row < end; ++row) {
-      const int y = static_cast<int>(row);
-      // The row's primary rays, in the environment's frame, traced in one batch.
-      primary.clear();
-      for (int x = 0; x < width; ++x) {
-        const camera::PixelRay ray = camera::pixel_ray(view, x, y, width, height);
-        directions[x] = to_environment * ray.direction;
-        primary.push(glm::vec3(to_environment * ray.origin), glm::vec3(directions[x]));
-      }
-      scene.intersect(primary);
-      traced += static_cast<std::uint64_t>(width);
-      for (int x = 0; x < width; ++x) {
-        const std::size_t pixel = row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-        const trace::HitResult hit = primary.hit(static_cast<std::size_t>(x));
-        glm::dvec3 value(0.0);
-        if (!hit.hit()) {
-          if (!options.black_background) value = behind.radiance(directions[x]);
-        } else {
-          out.covered[pixel] = 1;
-          SurfacePoint point;
-          if (tracer.hit_point(hit, glm::vec3(directions[x]), point)) {
-            SampleStream stream(options.reference.seed, pixel);
-            const RadianceEstimate estimate =
-                tracer.outgoing_radiance(point, options.reference.samples, stream, workspace);
-            value = estimate.value;
-            out.standard_error[pixel] = glm::vec3(estimate.standard_error);
-            traced += estimate.rays;
-            row_paths += static_cast<std::uint64_t>(options.reference.samples);
-          }
-        }
-        for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = static_cast<float>(value[c]);
-      }
+    RowScratch scratch(static_cast<std::size_t>(width));
+    RowCounts chunk;
+    for (std::size_t row = share.begin + chunk_begin; row < share.begin + chunk_end; ++row) {
+      const RowCounts counts = render_row(inputs, row, scratch, out);
+      chunk.rays += counts.rays;
+      chunk.paths += counts.paths;
     }
-    rays += traced;
-    paths += row_paths;
-    progress.advance((end - begin) * static_cast<std::size_t>(ranks.size()));  // equal shares
+    rays += chunk.rays;
+    paths += chunk.paths;
+    progress.advance((chunk_end - chunk_begin) * static_cast<std::size_t>(ranks.size()));  // equal shares
   });
   progress.finish();
   dist::gather_items(ranks, out.radiance.pixels, static_cast<std::size_t>(width) * 3);
@@ -126,24 +182,7 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   rep.seconds_trace = seconds_since(start);
   rep.rays = ranks.sum(rays.load());
   rep.paths = ranks.sum(paths.load());
-
-  // Noise figure over the covered pixels that are not black (as vertex_radiance's).
-  double largest = 0.0;
-  for (std::size_t p = 0; p < pixels; ++p)
-    if (out.covered[p])
-      largest = std::max(largest, sampling_magnitude(glm::dvec3(out.radiance.pixels[3 * p], out.radiance.pixels[3 * p + 1],
-                                                                 out.radiance.pixels[3 * p + 2])));
-  double relative_sum = 0.0;
-  std::size_t counted = 0;
-  for (std::size_t p = 0; p < pixels; ++p) {
-    if (!out.covered[p]) continue;
-    const double magnitude = sampling_magnitude(
-        glm::dvec3(out.radiance.pixels[3 * p], out.radiance.pixels[3 * p + 1], out.radiance.pixels[3 * p + 2]));
-    if (magnitude <= 1e-6 * largest || magnitude == 0.0) continue;
-    relative_sum += sampling_magnitude(glm::dvec3(out.standard_error[p])) / magnitude;
-    ++counted;
-  }
-  rep.mean_relative_standard_error = counted ? relative_sum / static_cast<double>(counted) : 0.0;
+  rep.mean_relative_standard_error = mean_relative_standard_error(out);
   return out;
 }
 
