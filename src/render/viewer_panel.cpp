@@ -177,20 +177,19 @@ bool apply_key(ViewerState& state, int key, int mods) {
   return false;
 }
 
-void draw_panel(ViewerState& state) {
-  FrameSettings& s = state.settings;
-  ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("prt view (H hides)");
-  // Widgets leave room for the longest label, so no label is cut off.
-  ImGui::PushItemWidth(-(ImGui::CalcTextSize(kLongestLabel).x + ImGui::GetStyle().ItemInnerSpacing.x));
+namespace {
+
+// Frame and GPU times, the renderer, the mesh size.
+void draw_status(ViewerState& state) {
   ImGui::Text("frame %.2f ms (%.0f fps)", state.frame_ms, state.frame_ms > 0.0 ? 1000.0 / state.frame_ms : 0.0);
   ImGui::Text("GPU render %.2f ms", state.render_ms);
   ImGui::TextWrapped("%s", state.renderer_name.c_str());
   ImGui::Text("%zu vertices, %zu triangles", state.vertex_count, state.triangle_count);
-  ImGui::Separator();
+}
 
-  // Shading and transfer.
+// PRT or Lambert, the transfer, its band count and (glossy) BRDF.
+void draw_shading_controls(ViewerState& state) {
+  FrameSettings& s = state.settings;
   int shading = s.shading == Shading::prt ? 0 : 1;
   ImGui::RadioButton("PRT", &shading, 0);
   ImGui::SameLine();
@@ -214,8 +213,10 @@ void draw_panel(ViewerState& state) {
   int bands = s.bands == 0 ? state.current_bands() : s.bands;
   if (ImGui::SliderInt("bands [ ]", &bands, 1, state.current_bands())) s.bands = bands;
   if (state.current_glossy()) draw_brdf_controls(state);
+}
 
-  // Exposure and tone map.
+// Exposure and tone map.
+void draw_exposure_controls(ViewerState& state) {
   float exposure = static_cast<float>(state.exposure);
   if (ImGui::SliderFloat("exposure - =", &exposure, -10.0f, 10.0f, "%.1f")) state.exposure = exposure;
   int tone_map = state.tone_map == image::ToneMap::aces ? 0 : 1;
@@ -223,9 +224,11 @@ void draw_panel(ViewerState& state) {
   ImGui::SameLine();
   ImGui::RadioButton("clamp (T)", &tone_map, 1);
   state.tone_map = tone_map == 0 ? image::ToneMap::aces : image::ToneMap::clamp;
-  ImGui::Separator();
+}
 
-  // Lighting.
+// The environment, the light and object rotations, the sun, the background.
+void draw_lighting_controls(ViewerState& state) {
+  FrameSettings& s = state.settings;
   const char* environment_name = state.environments[static_cast<std::size_t>(state.environment)].source.c_str();
   if (ImGui::BeginCombo("environment E", environment_name)) {
     for (std::size_t i = 0; i < state.environments.size(); ++i) {
@@ -255,9 +258,11 @@ void draw_panel(ViewerState& state) {
   ImGui::SameLine();
   ImGui::RadioButton("black", &background, static_cast<int>(Background::black));
   s.background = static_cast<Background>(background);
-  ImGui::Separator();
+}
 
-  // Camera.
+// Orbit angles and distance, screenshot and reset.
+void draw_camera_controls(ViewerState& state) {
+  FrameSettings& s = state.settings;
   float camera[2] = {static_cast<float>(s.camera.azimuth_degrees), static_cast<float>(s.camera.elevation_degrees)};
   if (ImGui::SliderFloat2("azim. elev.", camera, -180.0f, 180.0f, "%.1f")) {
     s.camera.azimuth_degrees = camera[0];
@@ -268,6 +273,24 @@ void draw_panel(ViewerState& state) {
   if (ImGui::Button("screenshot (S)")) state.screenshot_requested = true;
   ImGui::SameLine();
   if (ImGui::Button("reset view (R)")) state.reset_requested = true;
+}
+
+}  // namespace
+
+void draw_panel(ViewerState& state) {
+  ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("prt view (H hides)");
+  // Widgets leave room for the longest label, so no label is cut off.
+  ImGui::PushItemWidth(-(ImGui::CalcTextSize(kLongestLabel).x + ImGui::GetStyle().ItemInnerSpacing.x));
+  draw_status(state);
+  ImGui::Separator();
+  draw_shading_controls(state);
+  draw_exposure_controls(state);
+  ImGui::Separator();
+  draw_lighting_controls(state);
+  ImGui::Separator();
+  draw_camera_controls(state);
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   ImGui::PopItemWidth();
   ImGui::End();
