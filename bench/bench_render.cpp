@@ -48,21 +48,17 @@ struct FrameResult {
   double prt_ms = 0.0, lambert_ms = 0.0;
 };
 
-}  // namespace
+// What the benchmarks leave for the summary.
+struct Results {
+  std::map<int, FrameResult> frames;  // by icosphere level
+  double lighting_update_us = 0.0, upload_ms = 0.0, host_copy_ms = 0.0;
+};
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  render::HeadlessContext context;
-  std::printf("bench_render: %s; frames %dx%d\n", context.description().c_str(), kFrameSize, kFrameSize);
-  render::Renderer renderer;
-  std::map<int, FrameResult> frames;
-  double lighting_update_us = 0.0, upload_ms = 0.0;
-
+void register_lighting(render::Renderer& renderer, Results& results) {
   // 1. Per-frame CPU work: rotate the lighting by R_object^-1 R_environment and upload it.
   for (int bands : {3, 5, 8, 16}) {
     const std::string name = "lighting_rotate_upload/bands:" + std::to_string(bands) + "/rgb";
-    benchmark::RegisterBenchmark(name.c_str(), [&renderer, bands, &lighting_update_us](benchmark::State& state) {
+    benchmark::RegisterBenchmark(name.c_str(), [&renderer, bands, &results](benchmark::State& state) {
       renderer.set_mesh(bench::icosphere(1));
       renderer.set_lighting(synthetic_lighting(bands), nullptr);
       double angle = 0.0;
@@ -75,7 +71,7 @@ int main(int argc, char** argv) {
       const double us = 1e6 * seconds_since(start) / static_cast<double>(state.iterations());
       glFinish();
       state.counters["us/frame"] = us;
-      if (bands == 5) lighting_update_us = us;
+      if (bands == 5) results.lighting_update_us = us;
       if (bands == 5) state.counters["target_us"] = kTargetLightingUpdateUs;
     })->Unit(benchmark::kMicrosecond);
   }
@@ -90,11 +86,14 @@ int main(int argc, char** argv) {
     }
   })->Unit(benchmark::kMicrosecond);
 
+}
+
+void register_frames(render::Renderer& renderer, Results& results) {
   // 2. Frame time, PRT (5 bands RGB) against Lambert, same mesh and camera, alternating frame by frame.
   for (int levels : {6, 7, 8}) {
     const std::string name = "frame_prt_vs_lambert/icosphere:" + std::to_string(levels) + "/" +
                              std::to_string(kFrameSize) + "x" + std::to_string(kFrameSize);
-    benchmark::RegisterBenchmark(name.c_str(), [&renderer, levels, &frames](benchmark::State& state) {
+    benchmark::RegisterBenchmark(name.c_str(), [&renderer, levels, &results](benchmark::State& state) {
       const mesh::Mesh mesh = bench::bumpy_icosphere(levels, 0.3f);
       renderer.set_mesh(mesh);
       const int index = renderer.add_transfer(synthetic_transfer(mesh.vertex_count(), 5, 3), "synthetic");
@@ -124,7 +123,7 @@ int main(int argc, char** argv) {
         state.SetIterationTime(p);
       }
       const double n = static_cast<double>(state.iterations());
-      FrameResult& r = frames[levels];
+      FrameResult& r = results.frames[levels];
       r.prt_ms = 1e3 * prt_seconds / n;
       r.lambert_ms = 1e3 * lambert_seconds / n;
       state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
@@ -135,9 +134,11 @@ int main(int argc, char** argv) {
       state.counters["target_ratio"] = kTargetFrameRatio;
     })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
   }
+}
 
+void register_uploads(Results& results) {
   // 3. One-time upload of a 400k-vertex, 5-band RGB transfer (120 MB of floats) into its storage buffer.
-  benchmark::RegisterBenchmark("transfer_upload/vertices:400000/bands:5/rgb", [&upload_ms](benchmark::State& state) {
+  benchmark::RegisterBenchmark("transfer_upload/vertices:400000/bands:5/rgb", [&results](benchmark::State& state) {
     const transfer::TransferData data = synthetic_transfer(400000, 5, 3);
     double total = 0.0;
     for (auto _ : state) {
@@ -148,17 +149,16 @@ int main(int argc, char** argv) {
       total += s;
       state.SetIterationTime(s);
     }
-    upload_ms = 1e3 * total / static_cast<double>(state.iterations());
+    results.upload_ms = 1e3 * total / static_cast<double>(state.iterations());
     state.counters["MB"] = static_cast<double>(data.values.size() * sizeof(float)) * 1e-6;
-    state.counters["ms"] = upload_ms;
+    state.counters["ms"] = results.upload_ms;
     state.counters["target_ms"] = kTargetUploadMs;
   })->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
 
   // Baseline for 3: copying the same values into fresh host memory (a std::vector), which pays the same
   // first-touch page faults as the driver's allocation.
-  double host_copy_ms = 0.0;
   benchmark::RegisterBenchmark("transfer_upload_baseline/host_copy/vertices:400000/bands:5/rgb",
-                               [&host_copy_ms](benchmark::State& state) {
+                               [&results](benchmark::State& state) {
     const transfer::TransferData data = synthetic_transfer(400000, 5, 3);
     double total = 0.0;
     for (auto _ : state) {
@@ -169,24 +169,41 @@ int main(int argc, char** argv) {
       total += s;
       state.SetIterationTime(s);
     }
-    host_copy_ms = 1e3 * total / static_cast<double>(state.iterations());
-    state.counters["ms"] = host_copy_ms;
+    results.host_copy_ms = 1e3 * total / static_cast<double>(state.iterations());
+    state.counters["ms"] = results.host_copy_ms;
   })->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
+}
 
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-
+void print_summary(const Results& results) {
   std::printf("\nSummary (machine shared and noisy: compare ratios within this run)\n");
   std::printf("%-34s %10s %10s %10s %12s %8s\n", "mesh (1024x1024, 5 bands RGB)", "triangles", "PRT ms", "Lambert ms",
               "PRT/Lambert", "target");
-  for (const auto& [levels, r] : frames)
+  for (const auto& [levels, r] : results.frames)
     std::printf("bumpy icosphere level %-12d %10d %10.2f %10.2f %12.3f %8.1f\n", levels, 20 * (1 << (2 * levels)),
                 r.prt_ms, r.lambert_ms, r.prt_ms / r.lambert_ms, kTargetFrameRatio);
-  if (upload_ms > 0.0)
+  if (results.upload_ms > 0.0)
     std::printf("transfer upload, 400k vertices, 5 bands RGB (120 MB): %.1f ms (target <= %.0f ms); a plain host copy "
                 "of the same values into fresh memory: %.1f ms (x%.2f)\n",
-                upload_ms, kTargetUploadMs, host_copy_ms, host_copy_ms > 0.0 ? upload_ms / host_copy_ms : 0.0);
-  std::printf("lighting rotation + upload per frame, 5 bands RGB: %.2f us (target <= %.0f us)\n", lighting_update_us,
-              kTargetLightingUpdateUs);
+                results.upload_ms, kTargetUploadMs, results.host_copy_ms,
+                results.host_copy_ms > 0.0 ? results.upload_ms / results.host_copy_ms : 0.0);
+  std::printf("lighting rotation + upload per frame, 5 bands RGB: %.2f us (target <= %.0f us)\n",
+              results.lighting_update_us, kTargetLightingUpdateUs);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  render::HeadlessContext context;
+  std::printf("bench_render: %s; frames %dx%d\n", context.description().c_str(), kFrameSize, kFrameSize);
+  render::Renderer renderer;
+  Results results;
+  register_lighting(renderer, results);
+  register_frames(renderer, results);
+  register_uploads(results);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  print_summary(results);
   return 0;
 }

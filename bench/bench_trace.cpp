@@ -86,22 +86,8 @@ void register_pass(Fixture& f, const std::string& name, int threads, Pass pass) 
       ->Unit(benchmark::kSecond);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  bool full = false;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--full") == 0)
-      full = true;
-    else
-      args.push_back(argv[i]);
-  }
-  int bench_argc = static_cast<int>(args.size());
-  benchmark::Initialize(&bench_argc, args.data());
-  if (benchmark::ReportUnrecognizedArguments(bench_argc, args.data())) return 1;
-
-  Fixture f;
+// The blob mesh and the vertex subsets traced: every 8th vertex in Morton order, or all with `full`.
+void load_fixture(Fixture& f, bool full) {
   f.mesh = bench::detailed_blob();
   const std::vector<std::uint32_t> order = trace::morton_order(f.mesh.positions);
   const std::size_t stride = full ? 1 : 8;
@@ -110,14 +96,10 @@ int main(int argc, char** argv) {
   std::sort(f.file_order.begin(), f.file_order.end());
   f.directions_1024 = bench::hemisphere_directions(1024);
   f.directions_256 = bench::hemisphere_directions(256);
-  const std::size_t mesh_bytes = f.mesh.positions.size() * 2 * sizeof(glm::vec3) + f.mesh.indices.size() * 4;
-  std::printf(
-      "bench_trace: blob mesh %zu vertices, %zu triangles (%.1f MiB positions+normals+indices); tracing "
-      "%zu vertices (%s)\n",
-      f.mesh.positions.size(), f.mesh.indices.size() / 3, mib(mesh_bytes), f.morton.size(),
-      full ? "--full: all" : "every 8th in Morton order; --full for all");
+}
 
-  // Scene builds: 1 and 2 build threads; the 2-thread scene is the one traced.
+// Scene builds: 1 and 2 build threads; the 2-thread scene is the one traced.
+void register_builds(Fixture& f, std::size_t mesh_bytes) {
   for (int threads : {1, 2}) {
     const std::string name = "build/threads:" + std::to_string(threads);
     benchmark::RegisterBenchmark(
@@ -142,6 +124,10 @@ int main(int argc, char** argv) {
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond);
   }
+}
+
+// The baseline passes and their variants.
+void register_passes(Fixture& f) {
   auto scene = [&f]() -> const trace::Scene& {
     if (!f.scene) {
       trace::SceneOptions options;
@@ -198,15 +184,16 @@ int main(int argc, char** argv) {
   register_pass(f, "occlusion/rays_per_vertex:256/threads:1", 1,
                 [&f, scene] { return bench::occlusion_pass(scene(), f.mesh, f.morton, f.directions_256, 1); });
 
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
+}
 
+// The summary table: every pass against its baseline, thread scaling, the BVH's memory.
+void print_summary(const Fixture& f, bool full, std::size_t mesh_bytes) {
   std::printf("\nSummary (%s; machine shared: compare ratios within this run)\n",
               full ? "all vertices" : "every 8th vertex");
   std::printf("%-42s %10s %10s %12s %10s %10s %14s\n", "pass", "rays", "seconds", "Mrays/s", "Mrays/cpu_s", "target",
               "x baseline");
   for (const std::string& name : f.run_order) {
-    const bench::PassResult& r = f.results[name];
+    const bench::PassResult& r = f.results.at(name);
     const bool two = name.find("threads:2") != std::string::npos;
     const auto base = f.results.find(two ? "occlusion/threads:2" : "occlusion/threads:1");
     const double ratio = base != f.results.end() ? r.mrays_per_second / base->second.mrays_per_second : 0.0;
@@ -230,5 +217,35 @@ int main(int argc, char** argv) {
         s.build_seconds, mib(s.embree_bytes), mib(s.embree_peak_bytes), mib(s.geometry_bytes), mib(mesh_bytes),
         peak_rss_mib());
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool full = false;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--full") == 0)
+      full = true;
+    else
+      args.push_back(argv[i]);
+  }
+  int bench_argc = static_cast<int>(args.size());
+  benchmark::Initialize(&bench_argc, args.data());
+  if (benchmark::ReportUnrecognizedArguments(bench_argc, args.data())) return 1;
+
+  Fixture f;
+  load_fixture(f, full);
+  const std::size_t mesh_bytes = f.mesh.positions.size() * 2 * sizeof(glm::vec3) + f.mesh.indices.size() * 4;
+  std::printf(
+      "bench_trace: blob mesh %zu vertices, %zu triangles (%.1f MiB positions+normals+indices); tracing "
+      "%zu vertices (%s)\n",
+      f.mesh.positions.size(), f.mesh.indices.size() / 3, mib(mesh_bytes), f.morton.size(),
+      full ? "--full: all" : "every 8th in Morton order; --full for all");
+  register_builds(f, mesh_bytes);
+  register_passes(f);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  print_summary(f, full, mesh_bytes);
   return 0;
 }

@@ -91,7 +91,8 @@ RowCounts render_row(const RowInputs& in, std::size_t row, RowScratch& scratch, 
       SurfacePoint point;
       if (in.tracer.hit_point(hit, glm::vec3(scratch.directions[x]), point)) {
         SampleStream stream(reference.seed, pixel);
-        const RadianceEstimate estimate = in.tracer.outgoing_radiance(point, reference.samples, stream, scratch.workspace);
+        const RadianceEstimate estimate =
+            in.tracer.outgoing_radiance(point, reference.samples, stream, scratch.workspace);
         value = estimate.value;
         out.standard_error[pixel] = glm::vec3(estimate.standard_error);
         counts.rays += estimate.rays;
