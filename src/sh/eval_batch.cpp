@@ -183,19 +183,17 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // recompute F always and (C, S) below kKeepAllCsFrom bands.
 constexpr bool kRecomputeState = sizeof(Vec<float>) >= 64;
 constexpr int kKeepAllCsFrom = 14;
-constexpr int kNever = 1 << 20;
 constexpr int kPieceRows = 4;
 // Directions per tile: with the state kept, 2 KiB keeps a tile's seven scratch streams (x, y, z, C, S and two
 // F) at 14 KiB of L1; 4 KiB tiles were 1.1-1.2x slower (Zen 3, 9-16 bands), 1 KiB within noise.
 constexpr std::size_t kPieceTileBytes = kRecomputeState ? 4096 : 2048;
-// (C_m, S_m) is kept from column keep_cs_from on ((C_1, S_1) = (x, y) costs nothing to recompute); F_{l-1},
-// F_{l-2} where a piece resumes at l >= m + kKeepFFrom (before that the recurrence reads neither: resuming at
-// l = m + 2 replays one multiply).
+// Where state is kept: (C_m, S_m) from column kKeepCsFrom on ((C_1, S_1) = (x, y) costs nothing to
+// recompute); F_{l-1}, F_{l-2} where a piece resumes at l >= m + kKeepFFrom (before that the recurrence
+// reads neither: resuming at l = m + 2 replays one multiply).
 template <int N>
-constexpr int keep_cs_from() {
-  return !kRecomputeState || N >= kKeepAllCsFrom ? 2 : kNever;
-}
-constexpr int kKeepFFrom = kRecomputeState ? kNever : 3;
+inline constexpr bool kKeepsCs = !kRecomputeState || N >= kKeepAllCsFrom;
+constexpr bool kKeepsF = !kRecomputeState;
+constexpr int kKeepCsFrom = 2, kKeepFFrom = 3;
 // The pieces read their inputs from copies kInputShift bytes past the output rows' page offset: loads whose
 // address matches a pending store's in the low 12 bits wait for it ("4K aliasing"), and a crowded stride's
 // stores are pending long (slow to reach L2). Inputs at 64 bytes below the rows' offset (each load aliases
@@ -256,10 +254,10 @@ constexpr PiecePlan plan_piece(int p) {
   const KernelStep next = has_next ? kernel_step<N>(e1) : KernelStep{0, 0};
   PiecePlan plan{};
   plan.cs_column = cs_column >= 1 ? cs_column : 0;
-  plan.loads_cs = cs_column >= keep_cs_from<N>();
-  plan.stores_cs = has_next && changes_cs && last.m >= keep_cs_from<N>();
-  plan.loads_f = first.l - first.m >= kKeepFFrom;
-  plan.stores_f = has_next && next.m == last.m && next.l - next.m >= kKeepFFrom;
+  plan.loads_cs = kKeepsCs<N> && cs_column >= kKeepCsFrom;
+  plan.stores_cs = kKeepsCs<N> && has_next && changes_cs && last.m >= kKeepCsFrom;
+  plan.loads_f = kKeepsF && first.l - first.m >= kKeepFFrom;
+  plan.stores_f = kKeepsF && has_next && next.m == last.m && next.l - next.m >= kKeepFFrom;
   return plan;
 }
 template <int N, int P>
