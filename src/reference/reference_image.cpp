@@ -12,6 +12,7 @@
 #include "core/progress.h"
 #include "dist/exchange.h"
 #include "reference/estimator.h"
+#include "reference/vertex_driver.h"
 #include "trace/scene.h"
 
 namespace prt::reference {
@@ -46,7 +47,6 @@ namespace {
 // What every row of one render reads.
 struct RowInputs {
   const camera::ViewMatrices& view;
-  int width, height;
   glm::dmat3 to_environment;  // camera frame -> the environment's frame
   const light::Environment& behind;
   const trace::Scene& scene;
@@ -69,19 +69,19 @@ struct RowCounts {
 // Row `row` (0 at the top) of the image: its primary rays traced in one batch, then each covered pixel's
 // outgoing radiance estimated (seeded by the pixel index), into out's radiance, coverage and standard error.
 RowCounts render_row(const RowInputs& in, std::size_t row, RowScratch& scratch, ReferenceImage& out) {
-  const int y = static_cast<int>(row);
+  const int y = static_cast<int>(row), width = in.options.width, height = in.options.height;
   const ReferenceOptions& reference = in.options.reference;
   RowCounts counts;
   scratch.primary.clear();
-  for (int x = 0; x < in.width; ++x) {
-    const camera::PixelRay ray = camera::pixel_ray(in.view, x, y, in.width, in.height);
+  for (int x = 0; x < width; ++x) {
+    const camera::PixelRay ray = camera::pixel_ray(in.view, x, y, width, height);
     scratch.directions[x] = in.to_environment * ray.direction;
     scratch.primary.push(glm::vec3(in.to_environment * ray.origin), glm::vec3(scratch.directions[x]));
   }
   in.scene.intersect(scratch.primary);
-  counts.rays += static_cast<std::uint64_t>(in.width);
-  for (int x = 0; x < in.width; ++x) {
-    const std::size_t pixel = row * static_cast<std::size_t>(in.width) + static_cast<std::size_t>(x);
+  counts.rays += static_cast<std::uint64_t>(width);
+  for (int x = 0; x < width; ++x) {
+    const std::size_t pixel = row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
     const trace::HitResult hit = scratch.primary.hit(static_cast<std::size_t>(x));
     glm::dvec3 value(0.0);
     if (!hit.hit()) {
@@ -104,27 +104,17 @@ RowCounts render_row(const RowInputs& in, std::size_t row, RowScratch& scratch, 
   return counts;
 }
 
-// The noise figure over the covered pixels that are not black (as vertex_radiance's): the mean of standard
-// error over value, pixels below 1e-6 of the brightest left out.
-double mean_relative_standard_error(const ReferenceImage& out) {
-  const std::size_t pixels = out.covered.size();
-  auto magnitude_at = [&out](std::size_t p) {
-    const float* rgb = &out.radiance.pixels[3 * p];
-    return sampling_magnitude(glm::dvec3(rgb[0], rgb[1], rgb[2]));
-  };
-  double largest = 0.0;
-  for (std::size_t p = 0; p < pixels; ++p)
-    if (out.covered[p]) largest = std::max(largest, magnitude_at(p));
-  double relative_sum = 0.0;
-  std::size_t counted = 0;
-  for (std::size_t p = 0; p < pixels; ++p) {
+// The noise figure over the covered pixels, as the vertex reference computes it (detail::summarise_noise).
+void summarise_pixel_noise(ReferenceImage& out) {
+  std::vector<glm::vec3> radiance;
+  std::vector<glm::dvec3> error;
+  for (std::size_t p = 0; p < out.covered.size(); ++p) {
     if (!out.covered[p]) continue;
-    const double magnitude = magnitude_at(p);
-    if (magnitude <= 1e-6 * largest || magnitude == 0.0) continue;
-    relative_sum += sampling_magnitude(glm::dvec3(out.standard_error[p])) / magnitude;
-    ++counted;
+    const float* rgb = &out.radiance.pixels[3 * p];
+    radiance.emplace_back(rgb[0], rgb[1], rgb[2]);
+    error.emplace_back(out.standard_error[p]);
   }
-  return counted ? relative_sum / static_cast<double>(counted) : 0.0;
+  detail::summarise_noise(radiance, error, out.report, nullptr);
 }
 
 }  // namespace
@@ -152,7 +142,7 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   const trace::Scene scene(mesh, trace::SceneOptions{1, true});
   rep.seconds_build = seconds_since(start);
   const PathTracer tracer(mesh, albedo, scene, environment, EstimatorOptions{options.reference.bounces});
-  const RowInputs inputs{view,  width,  height, glm::transpose(options.environment_rotation),
+  const RowInputs inputs{view, glm::transpose(options.environment_rotation),
                          background ? *background : environment.environment(), scene, tracer, options};
 
   out.radiance = image::Image(width, height, 3);
@@ -183,7 +173,7 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
   rep.seconds_trace = seconds_since(start);
   rep.rays = ranks.sum(rays.load());
   rep.paths = ranks.sum(paths.load());
-  rep.mean_relative_standard_error = mean_relative_standard_error(out);
+  summarise_pixel_noise(out);
   return out;
 }
 
