@@ -16,22 +16,15 @@
 
 #include "sh/basis.h"
 #include "sh/eval_kernels.h"
+#include "support/eval_batch_checks.h"
 
 namespace sh = prt::sh;
 
 namespace {
 
-// Tolerances, as a multiple of band l's magnitude bound sqrt((2l+1)/(4 pi)) >= |Y_lm|.
-// Double: rounding of the recurrence (a few ulp per step, over at most 31 steps).
-constexpr double kDoubleTolerance = 1e-12;
-// Float: the recurrence in float plus the input's own rounding (a float direction is unit only to
-// ~6e-8). The error grows as bands^1.5: the worst over 130 000 random directions (GCC 12 with FMA,
-// clang 14 without) was 5.2e-8 (1 band), 1.6e-6 (9), 5.0e-6 (16), 1.6e-5 (32), <= 9.4e-8 bands^1.5.
-// (A bound linear in the band count, 3e-7 bands, held for the directions drawn here by GCC's build and
-// failed for those of clang's, which drew a direction's coordinates in the other order.)
-double float_tolerance(int bands) { return 1.5e-7 * std::pow(bands, 1.5); }
-
-double band_scale(int l) { return std::sqrt((2.0 * l + 1.0) / (4.0 * M_PI)); }
+using prt::test::band_scale;
+using prt::test::float_tolerance;
+using prt::test::kDoubleTolerance;
 
 // The poles, the axes, a few points on the equator and on coordinate planes, then random unit directions.
 std::vector<glm::dvec3> test_directions(std::size_t random_count) {
@@ -249,10 +242,10 @@ TEST_CASE("float paths match the reference to float precision", "[sh][eval]") {
 
 TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the reference values", "[sh][eval]") {
   // Up to 16 bands eval_batch cuts the kernel into pieces of a few rows run over tiles of up to 2 KiB of
-  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond, it stages tiles of 512 bytes. These counts cover fewer
-  // directions than one vector (the scalar path), one partial tile, one whole tile and several of them
-  // (1024, 1100 and 2500 floats, 512 and more doubles: tiles of equal length, the last one overlapping), with
-  // out 64-byte aligned or not (offset 1). Directions repeat with a period of 1009 (prime): a misplaced
+  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond, it stages tiles of 512 bytes. These
+  // counts cover fewer directions than one vector (the scalar path), one partial tile, one whole tile and
+  // several of them (1024, 1100 and 2500 floats, 512 and more doubles: tiles of equal length, the last one
+  // overlapping), with out 64-byte aligned or not (offset 1). Directions repeat with a period of 1009 (prime): a misplaced
   // vector or tile still shows, and the float tolerance stays the one measured on the kernel (the first
   // test case; this one checks where values go, not the kernel's accuracy over more directions).
   auto base = test_directions(999);
@@ -303,26 +296,8 @@ TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
       for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}, std::size_t{128}}) {
         if (crowded < count) continue;
         INFO("bands " << bands << ", count " << count << ", stride " << crowded);
-        auto same_bits = [&](auto zero) {
-          using T = decltype(zero);
-          std::vector<T> x(count), y(count), z(count);
-          for (std::size_t j = 0; j < count; ++j) {
-            x[j] = static_cast<T>(dirs[j].x);
-            y[j] = static_cast<T>(dirs[j].y);
-            z[j] = static_cast<T>(dirs[j].z);
-          }
-          const std::size_t stride = crowded, padded = sh::padded_stride(count, sizeof(T));
-          const std::size_t rows = static_cast<std::size_t>(bands * bands);
-          std::vector<T> a(rows * stride), b(rows * padded);
-          sh::eval_batch(bands, count, x.data(), y.data(), z.data(), a.data(), stride);
-          sh::eval_batch(bands, count, x.data(), y.data(), z.data(), b.data(), padded);
-          std::size_t differing = 0;
-          for (std::size_t k = 0; k < rows; ++k)
-            differing += !std::equal(a.begin() + k * stride, a.begin() + k * stride + count, b.begin() + k * padded);
-          return differing;
-        };
-        REQUIRE(same_bits(0.0f) == 0);
-        REQUIRE(same_bits(0.0) == 0);
+        REQUIRE(prt::test::eval_in_two_layouts<float>(bands, count, crowded, dirs).differing_rows == 0);
+        REQUIRE(prt::test::eval_in_two_layouts<double>(bands, count, crowded, dirs).differing_rows == 0);
       }
     }
   }

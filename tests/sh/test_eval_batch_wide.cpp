@@ -14,43 +14,29 @@
 
 #include "sh/basis.h"
 #include "sh/eval_kernels.h"
+#include "support/eval_batch_checks.h"
 #include "support/random_draws.h"
 
 namespace sh = prt::sh;
 
 namespace {
 
-// The largest |value - reference| over rows k and directions j, in units of band l's magnitude bound
-// sqrt((2l+1)/(4 pi)), and whether padded and crowded layouts agree bit for bit.
-struct Outcome {
-  double worst = 0.0;
-  std::size_t differing_rows = 0;
-};
-
+// The largest |value - reference| over rows and directions of the padded layout, in units of band l's
+// magnitude bound.
 template <typename T>
-Outcome run(int bands, std::size_t count, std::size_t crowded, const std::vector<glm::dvec3>& dirs) {
-  std::vector<T> x(count), y(count), z(count);
-  for (std::size_t j = 0; j < count; ++j) {
-    x[j] = static_cast<T>(dirs[j].x);
-    y[j] = static_cast<T>(dirs[j].y);
-    z[j] = static_cast<T>(dirs[j].z);
-  }
-  const std::size_t rows = static_cast<std::size_t>(bands * bands), padded = sh::padded_stride(count, sizeof(T));
-  std::vector<T> a(rows * crowded), b(rows * padded);
-  sh::eval_batch(bands, count, x.data(), y.data(), z.data(), a.data(), crowded);
-  sh::eval_batch(bands, count, x.data(), y.data(), z.data(), b.data(), padded);
-  Outcome out;
+double worst_error(int bands, std::size_t count, const prt::test::TwoLayouts<T>& t) {
+  double worst = 0.0;
   for (int l = 0; l < bands; ++l)
     for (int m = -l; m <= l; ++m) {
       const std::size_t k = static_cast<std::size_t>(sh::index(l, m));
-      out.differing_rows += !std::equal(a.begin() + k * crowded, a.begin() + k * crowded + count, b.begin() + k * padded);
       for (std::size_t j = 0; j < count; ++j) {
-        const glm::dvec3 d(static_cast<double>(x[j]), static_cast<double>(y[j]), static_cast<double>(z[j]));
-        const double error = std::abs(static_cast<double>(b[k * padded + j]) - sh::eval_reference(l, m, d));
-        out.worst = std::max(out.worst, error / std::sqrt((2.0 * l + 1.0) / (4.0 * M_PI)));
+        const glm::dvec3 d(static_cast<double>(t.x[j]), static_cast<double>(t.y[j]), static_cast<double>(t.z[j]));
+        const double value = static_cast<double>(t.padded[k * t.padded_stride + j]);
+        const double error = std::abs(value - sh::eval_reference(l, m, d));
+        worst = std::max(worst, error / prt::test::band_scale(l));
       }
     }
-  return out;
+  return worst;
 }
 
 }  // namespace
@@ -67,12 +53,11 @@ TEST_CASE("64-byte vectors: crowded strides give the direct path's bits and the 
       for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}}) {
         if (crowded < count) continue;
         INFO("bands " << bands << ", count " << count << ", stride " << crowded);
-        const Outcome f = run<float>(bands, count, crowded, dirs);
+        const auto f = prt::test::eval_in_two_layouts<float>(bands, count, crowded, dirs);
         CHECK(f.differing_rows == 0);
-        // The documented float accuracy, 1.5e-7 x bands^1.5, with the float inputs' own rounding included.
-        CHECK(f.worst <= 1.5e-7 * std::pow(bands, 1.5));
-        const Outcome d = run<double>(bands, count, crowded, dirs);
+        CHECK(worst_error(bands, count, f) <= prt::test::float_tolerance(bands));
+        const auto d = prt::test::eval_in_two_layouts<double>(bands, count, crowded, dirs);
         CHECK(d.differing_rows == 0);
-        CHECK(d.worst <= 1e-12);
+        CHECK(worst_error(bands, count, d) <= prt::test::kDoubleTolerance);
       }
 }
