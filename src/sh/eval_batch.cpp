@@ -175,25 +175,51 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 // A piece resumes the kernel from (C_m, S_m) of its column and the column's last two F (KernelState). Where
 // they cost a few operations they are recomputed by the kernel's own arithmetic (recompute_cs, resume_column:
 // the same bits); otherwise the piece before leaves them per block in a scratch stream of the tile
-// (PiecePlan) on AVX2 and narrower. Recomputing all of it doubled the arithmetic per stored vector (9 bands:
-// 2.1x the direct path's time with the output in L1), which bounds the pieces on AVX2: on Zen 3 they ran
-// 1.3-2.1x the padded batch at 4-16 bands, against 1.15-1.45x with the state kept (docs/conventions.md). With
-// AVX-512 (half the instructions per direction) recomputation measured faster: on a Xeon a stored F state made
-// 9 bands 1.3-1.4x slower, every extra store costing about what an output store does; there the pieces
-// recompute F always and (C, S) below kKeepAllCsFrom bands.
-constexpr bool kRecomputeState = sizeof(Vec<float>) >= 64;
-constexpr int kKeepAllCsFrom = 14;
+// (PiecePlan). Which is cheaper depends on the target, measured with 1024 directions at stride = count
+// against the padded batch (docs/conventions.md):
+// - AVX2 and narrower (Zen 3): recomputing all of it doubled the arithmetic per stored vector (9 bands: 2.1x
+//   the direct path's time with the output in L1), 1.3-2.1x the padded batch at 4-16 bands; keeping (C, S)
+//   from column 2 and F wherever a piece resumes at l >= m + 3, 1.15-1.45x (kKeepRule).
+// - AVX-512 on a Xeon: recomputation measured faster, a stored F made 9 bands 1.3-1.4x slower, every extra
+//   store costing about what an output store does (kRecomputeRule: (C, S) kept from 14 bands only).
+// - AVX-512 on AMD Zen 5: recomputation ran 1.15-1.8x the padded batch at 7-16 bands; keeping (C, S) from
+//   column 4 and F where a piece resumes at l >= m + 5 (a replay of at most two recurrence steps otherwise),
+//   0.94-1.06x at 4-7, 9, 12 and 14-16 bands and 1.1-1.2x at 8, 10, 11 and 13, where keeping everything from
+//   column 2 / depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector per cache line the
+//   arithmetic per stored line is half AVX2's.
+// The default follows the build's target (__znverN__: GCC and clang tuning for AMD Zen, which -march=native
+// picks on any Zen); PRT_SH_PIECE_RULE (0 recompute, 1 keep deep, 2 keep) overrides it, for the tests.
+struct PieceRule {
+  int keep_cs_bands;       // (C, S) kept at all from this band count on
+  bool keep_f;             // F kept at all
+  int cs_from_column;      // (C_m, S_m) kept from column m = this on ((C_1, S_1) = (x, y) costs nothing)
+  int f_from_depth;        // F_{l-1}, F_{l-2} kept where a piece resumes at l >= m + this (>= 3: before that
+                           // the recurrence reads neither, and resuming at l = m + 2 replays one multiply)
+  std::size_t tile_bytes;  // directions per tile, in bytes of one input stream
+};
+// 2 KiB tiles keep a tile's seven scratch streams (x, y, z, C, S and two F) at 14 KiB of L1; 4 KiB tiles were
+// 1.1-1.2x slower on Zen 3 at 9-16 bands, 1 KiB within noise. On Zen 5 (48 KiB L1), keeping deep, 2 KiB
+// tiles were 1.1-1.3x slower than 4 KiB at 4-10 bands and the same within noise at 13-16.
+constexpr PieceRule kRecomputeRule{14, false, 2, 3, 4096};
+constexpr PieceRule kKeepDeepRule{1, true, 4, 5, 4096};
+constexpr PieceRule kKeepRule{1, true, 2, 3, 2048};
+#if defined(PRT_SH_PIECE_RULE)
+constexpr int kPieceRuleIndex = PRT_SH_PIECE_RULE;
+#elif defined(__znver1__) || defined(__znver2__) || defined(__znver3__) || defined(__znver4__) || \
+    defined(__znver5__)
+constexpr int kPieceRuleIndex = sizeof(Vec<float>) >= 64 ? 1 : 2;
+#else
+constexpr int kPieceRuleIndex = sizeof(Vec<float>) >= 64 ? 0 : 2;
+#endif
+static_assert(0 <= kPieceRuleIndex && kPieceRuleIndex <= 2, "PRT_SH_PIECE_RULE is 0, 1 or 2");
+constexpr PieceRule kPieceRule =
+    kPieceRuleIndex == 0 ? kRecomputeRule : kPieceRuleIndex == 1 ? kKeepDeepRule : kKeepRule;
 constexpr int kPieceRows = 4;
-// Directions per tile: with the state kept, 2 KiB keeps a tile's seven scratch streams (x, y, z, C, S and two
-// F) at 14 KiB of L1; 4 KiB tiles were 1.1-1.2x slower (Zen 3, 9-16 bands), 1 KiB within noise.
-constexpr std::size_t kPieceTileBytes = kRecomputeState ? 4096 : 2048;
-// Where state is kept: (C_m, S_m) from column kKeepCsFrom on ((C_1, S_1) = (x, y) costs nothing to
-// recompute); F_{l-1}, F_{l-2} where a piece resumes at l >= m + kKeepFFrom (before that the recurrence
-// reads neither: resuming at l = m + 2 replays one multiply).
+constexpr std::size_t kPieceTileBytes = kPieceRule.tile_bytes;
 template <int N>
-inline constexpr bool kKeepsCs = !kRecomputeState || N >= kKeepAllCsFrom;
-constexpr bool kKeepsF = !kRecomputeState;
-constexpr int kKeepCsFrom = 2, kKeepFFrom = 3;
+inline constexpr bool kKeepsCs = N >= kPieceRule.keep_cs_bands;
+constexpr bool kKeepsF = kPieceRule.keep_f;
+constexpr int kKeepCsFrom = kPieceRule.cs_from_column, kKeepFFrom = kPieceRule.f_from_depth;
 // The pieces read their inputs from copies kInputShift bytes past the output rows' page offset: loads whose
 // address matches a pending store's in the low 12 bits wait for it ("4K aliasing"), and a crowded stride's
 // stores are pending long (slow to reach L2). Inputs at 64 bytes below the rows' offset (each load aliases
