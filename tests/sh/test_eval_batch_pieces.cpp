@@ -1,7 +1,8 @@
-// eval_batch as AVX-512 builds compile it, on any machine: this test is built with its own copy of the SH
-// kernels compiled with 64-byte vectors (PRT_SH_VECTOR_BYTES=64; GCC splits them into the machine's own
-// registers). With such vectors the crowded-stride pieces recompute their resume state instead of keeping
-// it in L1 (eval_batch.cpp, kRecomputeState), a variant the main SH tests exercise only on AVX-512 machines.
+// eval_batch's crowded-stride pieces under each of their rules, on any machine: each test_sh_pieces_* executable
+// is built with its own copy of the SH kernels, compiled with PRT_SH_VECTOR_BYTES-wide vectors (GCC splits
+// wider ones into the machine's own registers) and the piece rule PRT_SH_PIECE_RULE (eval_batch.cpp: 0
+// recomputes the resume state, as on a Xeon with AVX-512; 1 keeps (C, S) from column 4 and deep F, as on
+// Zen 5; 2 keeps both from column 2, as with AVX2). The main SH tests exercise only the machine's own rule.
 // Checked: the pieces give the direct path's bits, and both the reference values (sh::eval_reference,
 // through theta and phi: another algorithm than the kernels' recurrence in z).
 #include <catch2/catch.hpp>
@@ -41,13 +42,14 @@ double worst_error(int bands, std::size_t count, const prt::test::TwoLayouts<T>&
 
 }  // namespace
 
-TEST_CASE("64-byte vectors: crowded strides give the direct path's bits and the reference values", "[sh][eval]") {
-  REQUIRE(sizeof(sh::detail::Vec<float>) == 64);
+TEST_CASE("crowded strides give the direct path's bits and the reference values under this build's piece rule",
+          "[sh][eval]") {
+  REQUIRE(sizeof(sh::detail::Vec<float>) == PRT_SH_VECTOR_BYTES);
   std::mt19937_64 rng(11);
   std::vector<glm::dvec3> dirs;
   for (int j = 0; j < 1100; ++j) dirs.push_back(prt::test::random_direction(rng));
-  // Counts within one tile and over several (tiles of 4 KiB of directions with these vectors), strides of
-  // 4 KiB multiples (every row on one cache-set position).
+  // Counts within one tile and over several (tiles of 2 or 4 KiB of directions), strides of 4 KiB multiples
+  // (every row on one cache-set position).
   for (int bands = 1; bands <= sh::kMaxFastBands; ++bands)
     for (std::size_t count : {32, 100, 1024, 1100})
       for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}}) {

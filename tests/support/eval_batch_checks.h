@@ -1,6 +1,6 @@
 // What the eval_batch tests share: the documented tolerances, and one batch evaluated in a crowded and in the
 // padded layout. Used by test_eval_batch.cpp (the kernels as this machine builds them) and
-// test_eval_batch_wide.cpp (the kernels built with 64-byte vectors).
+// test_eval_batch_pieces.cpp (the kernels built once per crowded-stride piece rule).
 #pragma once
 
 #include <algorithm>
