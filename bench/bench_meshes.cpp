@@ -13,6 +13,7 @@
 
 #include "core/parallel.h"
 #include "sh/sampling.h"
+#include "support/random_draws.h"
 
 namespace prt::bench {
 namespace {
@@ -357,7 +358,7 @@ sh::RgbCoefficients random_lighting(int bands) {
   std::mt19937_64 rng(5);
   std::normal_distribution<double> gauss;
   sh::RgbCoefficients l(bands);
-  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * 0.3;
+  for (glm::dvec3& v : l.values) v = prt::test::draw_vec3<double>(rng, gauss) * 0.3;
   l.values[0] += glm::dvec3(3.0);
   return l;
 }

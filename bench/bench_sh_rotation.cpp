@@ -17,6 +17,7 @@
 
 #include "sh/rotation.h"
 #include "sh/rotation_float.h"
+#include "support/random_draws.h"
 
 namespace {
 
@@ -27,10 +28,9 @@ void settings(benchmark::internal::Benchmark* b) { b->Repetitions(5)->MinTime(0.
 
 std::vector<glm::dmat3> random_rotations() {
   std::mt19937_64 rng(7);
-  std::normal_distribution<double> normal;
   std::vector<glm::dmat3> out;
   for (int i = 0; i < kRotationCount; ++i)
-    out.push_back(glm::mat3_cast(glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)))));
+    out.push_back(prt::test::random_rotation(rng));
   return out;
 }
 

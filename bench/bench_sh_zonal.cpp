@@ -21,6 +21,7 @@
 #include "sh/sampling.h"
 #include "sh/window.h"
 #include "sh/zonal.h"
+#include "support/random_draws.h"
 
 namespace sh = prt::sh;
 
@@ -30,9 +31,8 @@ constexpr std::size_t kNormals = 1024;
 
 std::vector<glm::dvec3> random_normals() {
   std::mt19937_64 rng(42);
-  std::normal_distribution<double> n;
   std::vector<glm::dvec3> out;
-  for (std::size_t i = 0; i < kNormals; ++i) out.push_back(glm::normalize(glm::dvec3(n(rng), n(rng), n(rng))));
+  for (std::size_t i = 0; i < kNormals; ++i) out.push_back(prt::test::random_direction(rng));
   return out;
 }
 
@@ -40,7 +40,7 @@ sh::RgbCoefficients random_radiance(int bands) {
   std::mt19937_64 rng(7);
   std::normal_distribution<double> n;
   sh::RgbCoefficients c(bands);
-  for (auto& v : c.values) v = glm::dvec3(n(rng), n(rng), n(rng));
+  for (auto& v : c.values) v = prt::test::draw_vec3<double>(rng, n);
   return c;
 }
 

@@ -19,6 +19,7 @@
 #include "sh/quadrature.h"
 #include "support/shapes.h"
 #include "trace/scene.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -87,7 +88,7 @@ TEST_CASE("unshadowed transfer equals exact hemisphere quadrature to 1e-5", "[ba
   mesh::Mesh m = test::uv_sphere(8, 16);
   std::mt19937_64 rng(7);
   std::normal_distribution<double> gauss;
-  for (glm::vec3& n : m.normals) n = glm::normalize(glm::vec3(gauss(rng), gauss(rng), gauss(rng)));
+  for (glm::vec3& n : m.normals) n = glm::normalize(test::draw_vec3<float>(rng, gauss));
   m.normals[0] = {0, 0, 1};
   m.normals[1] = {0, -1, 0};
   for (int bands : {1, 3, 5, 9}) {

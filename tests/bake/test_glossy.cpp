@@ -22,6 +22,7 @@
 #include "shade/shade.h"
 #include "support/shapes.h"
 #include "trace/scene.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -39,14 +40,14 @@ bake::BakeOptions glossy_options(transfer::Kind kind, int bands, int samples, co
 sh::RgbCoefficients random_lighting(int bands, std::mt19937_64& rng) {
   std::normal_distribution<double> gauss;
   sh::RgbCoefficients l(bands);
-  for (glm::dvec3& v : l.values) v = glm::dvec3(gauss(rng), gauss(rng), gauss(rng));
+  for (glm::dvec3& v : l.values) v = prt::test::draw_vec3<double>(rng, gauss);
   l.values[0] += glm::dvec3(4.0);
   return l;
 }
 
 glm::dvec3 random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> gauss;
-  return glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+  return glm::normalize(prt::test::draw_vec3<double>(rng, gauss));
 }
 
 // Uniform direction on the hemisphere about n (world frame), by rejection from the sphere.

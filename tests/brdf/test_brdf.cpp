@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "sh/quadrature.h"
 #include "support/run_prt.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -23,7 +24,7 @@ namespace {
 glm::dvec3 random_upper(std::mt19937_64& rng) {
   std::normal_distribution<double> gauss;
   for (;;) {
-    glm::dvec3 d(gauss(rng), gauss(rng), gauss(rng));
+    glm::dvec3 d = prt::test::draw_vec3<double>(rng, gauss);
     if (glm::length(d) < 1e-6) continue;
     d = glm::normalize(d);
     if (std::abs(d.z) < 1e-3) continue;
@@ -226,7 +227,7 @@ TEST_CASE("the shading frame is a rotation with z = n, smooth away from +-Y", "[
   std::mt19937_64 rng(5);
   std::normal_distribution<double> gauss;
   for (int trial = 0; trial < 2000; ++trial) {
-    glm::dvec3 n = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+    glm::dvec3 n = glm::normalize(prt::test::draw_vec3<double>(rng, gauss));
     if (trial == 0) n = {0, 1, 0};
     if (trial == 1) n = {0, -1, 0};
     if (trial == 2) n = glm::normalize(glm::dvec3(1e-8, 1, -2e-8));
@@ -238,7 +239,7 @@ TEST_CASE("the shading frame is a rotation with z = n, smooth away from +-Y", "[
     REQUIRE(glm::length(f[2] - n) < 1e-15);
     // Smooth: a small change of n (away from the poles) changes the frame by a small amount.
     if (std::abs(n.y) < 0.99) {
-      const glm::dvec3 n2 = glm::normalize(n + 1e-6 * glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+      const glm::dvec3 n2 = glm::normalize(n + 1e-6 * prt::test::draw_vec3<double>(rng, gauss));
       const glm::dmat3 f2 = brdf::shading_frame(n2);
       REQUIRE(glm::length(f2[0] - f[0]) < 1e-4);
     }

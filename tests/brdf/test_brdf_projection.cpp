@@ -18,6 +18,7 @@
 #include "sh/quadrature.h"
 #include "sh/rotation.h"
 #include "sh/zonal.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -32,7 +33,7 @@ std::vector<double> random_coefficients(int bands, std::mt19937_64& rng) {
 
 glm::dvec3 random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> gauss;
-  return glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+  return glm::normalize(prt::test::draw_vec3<double>(rng, gauss));
 }
 
 double max_abs(const std::vector<double>& v) {

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "light/environment.h"
 #include "light_test_util.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -107,7 +108,7 @@ TEST_CASE("cube convention follows OpenGL table 8.19", "[environment]") {
   std::mt19937 rng(2);
   std::normal_distribution<double> g;
   for (int k = 0; k < 500; ++k) {
-    glm::dvec3 d(g(rng), g(rng), g(rng));
+    glm::dvec3 d = prt::test::draw_vec3<double>(rng, g);
     d /= std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
     const double ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
     int face;

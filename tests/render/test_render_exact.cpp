@@ -21,6 +21,7 @@
 #include "shade/shade.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
+#include "support/random_draws.h"
 
 using namespace prt;
 using namespace prt::render_test;
@@ -140,7 +141,7 @@ TEST_CASE("cap_pixel_rect holds every pixel whose view direction is in the cap, 
         render::orbit_view(render::Camera{360.0 * unit(rng), 160.0 * unit(rng) - 80.0, 2.0 + 5.0 * unit(rng)}, bounds, w, h);
     // Half the caps about the view's centre line (forward, jittered), half anywhere.
     glm::dvec3 d = trial % 2 == 0 ? -view.camera_to_world[2] * 3.0 : glm::dvec3(0.0);
-    d += glm::dvec3(2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0);
+    d += 2.0 * prt::test::draw_vec3<double>(rng, unit) - 1.0;
     d = glm::normalize(d);
     const double radius = glm::radians(0.3 + 40.0 * unit(rng) * unit(rng));
     // Brute force: the bounding box (rows up from the bottom) of the pixels whose centre ray is in the cap.

@@ -251,7 +251,8 @@ TEST_CASE("float fast paths match the double rotation to float precision for eve
       prt::sh::RgbCoefficients rgb_double(bands);
       std::uniform_real_distribution<double> u(-1, 1);
       for (int i = 0; i < count; ++i) {
-        rgb[i] = glm::vec3(c[i], static_cast<float>(u(rng)), static_cast<float>(u(rng)));
+        const float green = static_cast<float>(u(rng)), blue = static_cast<float>(u(rng));
+        rgb[i] = glm::vec3(c[i], green, blue);
         rgb_double.values[i] = glm::dvec3(rgb[i]);
       }
       std::vector<double> cd(c.begin(), c.end()), expected(count);

@@ -1,7 +1,7 @@
-// Random test inputs drawn in a fixed order. The arguments of one call are evaluated in an unspecified
-// order, and GCC and clang differ (GCC draws glm::dvec3(n(rng), n(rng), n(rng))'s z first, clang its x),
-// so such an expression gives each compiler's build other test inputs from the same seed. These draw
-// x, then y, then z (w, then x, y, z for a quaternion), one statement each.
+// Random test and benchmark inputs drawn in a fixed order. The arguments of one call are evaluated in an
+// unspecified order, and GCC and clang differ (GCC draws glm::dvec3(n(rng), n(rng), n(rng))'s z first,
+// clang its x), so such an expression gives each compiler's build other inputs from the same seed. These
+// draw x, then y, then z (w, then x, y, z for a quaternion), one statement each.
 #pragma once
 
 #include <random>

@@ -93,7 +93,7 @@ TEST_CASE("occluded and intersect agree with brute-force Moller-Trumbore on rand
     std::vector<glm::dvec3> origins, dirs;
     std::vector<double> tfars;
     for (int ray = 0; ray < kRays; ++ray) {
-      const glm::vec3 o(box(rng), box(rng), box(rng));
+      const glm::vec3 o = prt::test::draw_vec3<float>(rng, box);
       // Half the rays aim at a random point of a random triangle, half go anywhere; directions have
       // random lengths (t is in units of |dir|); half the rays end at a finite tfar.
       glm::vec3 d = glm::vec3(random_unit(rng));
