@@ -184,9 +184,9 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 //   store costing about what an output store does (kRecomputeRule: (C, S) kept from 14 bands only).
 // - AVX-512 on AMD Zen 5: recomputation ran 1.15-1.8x the padded batch at 7-16 bands; keeping (C, S) from
 //   column 4 and F where a piece resumes at l >= m + 5 (a replay of at most two recurrence steps otherwise),
-//   0.94-1.06x at 4-7, 9, 12 and 14-16 bands and 1.1-1.2x at 8, 10, 11 and 13, where keeping everything from
-//   column 2 / depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector per cache line the
-//   arithmetic per stored line is half AVX2's.
+//   with input copies from 6 bands, 0.7-1.06x at 4-7, 9 and 11-16 bands and 1.15-1.2x at 8 and 10, where
+//   keeping everything from column 2 / depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector
+//   per cache line the arithmetic per stored line is half AVX2's.
 // The default follows the build's target (__znverN__: GCC and clang tuning for AMD Zen, which -march=native
 // picks on any Zen); PRT_SH_PIECE_RULE (0 recompute, 1 keep deep, 2 keep) overrides it, for the tests.
 struct PieceRule {
@@ -196,13 +196,14 @@ struct PieceRule {
   int f_from_depth;        // F_{l-1}, F_{l-2} kept where a piece resumes at l >= m + this (>= 3: before that
                            // the recurrence reads neither, and resuming at l = m + 2 replays one multiply)
   std::size_t tile_bytes;  // directions per tile, in bytes of one input stream
+  int copy_inputs_bands;   // the pieces read copies of x, y, z (kCopyInputs) from this band count on
 };
 // 2 KiB tiles keep a tile's seven scratch streams (x, y, z, C, S and two F) at 14 KiB of L1; 4 KiB tiles were
 // 1.1-1.2x slower on Zen 3 at 9-16 bands, 1 KiB within noise. On Zen 5 (48 KiB L1), keeping deep, 2 KiB
 // tiles were 1.1-1.3x slower than 4 KiB at 4-10 bands and the same within noise at 13-16.
-constexpr PieceRule kRecomputeRule{14, false, 2, 3, 4096};
-constexpr PieceRule kKeepDeepRule{1, true, 4, 5, 4096};
-constexpr PieceRule kKeepRule{1, true, 2, 3, 2048};
+constexpr PieceRule kRecomputeRule{14, false, 2, 3, 4096, 4};
+constexpr PieceRule kKeepDeepRule{1, true, 4, 5, 4096, 6};
+constexpr PieceRule kKeepRule{1, true, 2, 3, 2048, 4};
 #if defined(PRT_SH_PIECE_RULE)
 constexpr int kPieceRuleIndex = PRT_SH_PIECE_RULE;
 #elif defined(__znver1__) || defined(__znver2__) || defined(__znver3__) || defined(__znver4__) || \
@@ -229,9 +230,12 @@ constexpr int kKeepCsFrom = kPieceRule.cs_from_column, kKeepFFrom = kPieceRule.f
 constexpr std::size_t kInputShift = 1024;
 // Up to 3 bands a tile's output rows and inputs fit in L1 together (9 rows of 4 KiB and 12 KiB of inputs,
 // 48 KiB of L1 on the Xeon), the stores do not wait, and the copies would push it all out to L2: 3 bands
-// with them took 1.14 ns per direction instead of 0.46.
+// with them took 1.14 ns per direction instead of 0.46. On Zen 5 (keeping deep) the pieces read the
+// caller's inputs faster up to 5 bands wherever they lie: with the inputs' page offset swept in steps of
+// 128 bytes against the rows', 0.59-0.78x the padded batch at 4 bands and 0.78-0.82x at 5, against
+// 0.91-1.05x with copies; from 6 bands inputs up to 256 bytes below the rows' offset made it 1.04-1.3x.
 template <int N>
-inline constexpr bool kCopyInputs = N >= 4;
+inline constexpr bool kCopyInputs = N >= kPieceRule.copy_inputs_bands;
 
 // Output rows of one kernel step: Y_l,0, or Y_l,m and Y_l,-m.
 constexpr int step_rows(const KernelStep& step) { return step.m == 0 ? 1 : 2; }
