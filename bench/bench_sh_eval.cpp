@@ -9,6 +9,8 @@
 // recommended layout; "batch_stride=count" repeats the float fast path with out_stride = count, which
 // for count = 1024 or 4096 is the cache-hostile 4 KiB-multiple stride (eval_batch's path for crowded strides).
 // "fill" writes the same bytes with std::fill: the write bound of a batch, measured in the run.
+// "placed_ratio_in@B": the float batch at out_stride = count over the padded one, paired, with the rows on a
+// page boundary and the inputs B bytes past one (the table 'inputs placed').
 // "fused_dirs=N" is sh::eval_accumulate over N directions per call (evaluation fused with weighted
 // accumulation into bands^2 sums, as projection uses it): the figure that does not depend on the cache.
 // "stream_dirs=N" is sh::Accumulator fed N directions per call, the batch's directions in all, reduced once:
@@ -17,6 +19,7 @@
 // shared: CPU time excludes time the process spent descheduled). Usage:
 //   bench_sh_eval [--batch=N] [--reps=R] [google benchmark flags, e.g. --benchmark_filter=float]
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -79,6 +82,53 @@ void bench_batch(benchmark::State& state, int bands, Path path, std::size_t coun
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * count));
   state.counters["dirs"] = static_cast<double>(count);
+}
+
+// The first 4096-byte boundary in `storage` (which has a page of slack).
+template <typename T>
+T* page_start(std::vector<T>& storage) {
+  T* p = storage.data();
+  while (reinterpret_cast<std::uintptr_t>(p) % 4096 != 0) ++p;
+  return p;
+}
+
+// The float batch at out_stride = count against the padded stride, with both outputs' rows on a page
+// boundary and x, y, z `offset` bytes past one (whole pages apart, so all three at that page offset): one
+// placement of the inputs against the rows. Loads whose address matches a pending store's in the low 12
+// bits wait for it (4K aliasing), so a path's speed can depend on where the caller's inputs lie. The two
+// strides alternate, 4 calls each, and the counter "ratio" is the median over the iterations of the
+// crowded time over the padded time: paired, so that the machine's drifts cancel.
+void bench_placed_ratio(benchmark::State& state, int bands, std::size_t count, std::size_t offset) {
+  using Clock = std::chrono::steady_clock;
+  const Directions<float> d = random_directions<float>(count);
+  const std::size_t page = 4096 / sizeof(float);  // floats per page
+  const std::size_t span = (count + offset / sizeof(float) + page - 1) / page * page;
+  std::vector<float> in_storage(3 * span + page);
+  float* x = page_start(in_storage) + offset / sizeof(float);
+  float *y = x + span, *z = y + span;
+  std::copy(d.x.begin(), d.x.end(), x);
+  std::copy(d.y.begin(), d.y.end(), y);
+  std::copy(d.z.begin(), d.z.end(), z);
+  const std::size_t padded = sh::padded_stride(count, sizeof(float)), rows = static_cast<std::size_t>(bands * bands);
+  std::vector<float> crowded_storage(rows * count + page), padded_storage(rows * padded + page);
+  float *crowded_out = page_start(crowded_storage), *padded_out = page_start(padded_storage);
+  std::vector<double> ratios;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    for (int i = 0; i < 4; ++i) {
+      sh::eval_batch(bands, count, x, y, z, padded_out, padded);
+      benchmark::ClobberMemory();
+    }
+    const auto t1 = Clock::now();
+    for (int i = 0; i < 4; ++i) {
+      sh::eval_batch(bands, count, x, y, z, crowded_out, count);
+      benchmark::ClobberMemory();
+    }
+    const auto t2 = Clock::now();
+    ratios.push_back(std::chrono::duration<double>(t2 - t1).count() / std::chrono::duration<double>(t1 - t0).count());
+  }
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  state.counters["ratio"] = ratios.empty() ? NAN : ratios[ratios.size() / 2];
 }
 
 // The bound of a batched figure: the same output bytes written by std::fill (no arithmetic), in the
@@ -212,6 +262,8 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     benchmark::ConsoleReporter::ReportRuns(runs);
     for (const Run& run : runs) {
       if (run.run_type != Run::RT_Iteration || run.error_occurred || run.iterations == 0) continue;
+      auto ratio = run.counters.find("ratio");
+      if (ratio != run.counters.end()) samples_[run.run_name.function_name].push_back(ratio->second.value);
       auto dirs = run.counters.find("dirs");
       if (dirs == run.counters.end()) continue;
       double ns = run.cpu_accumulated_time * 1e9 / (static_cast<double>(run.iterations) * dirs->second.value);
@@ -219,7 +271,8 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     }
   }
 
-  /// Median ns per direction of a benchmark, or NAN if it did not run (filtered out).
+  /// Median ns per direction of a benchmark (its "ratio" counter where it has one), or NAN if it did not run
+  /// (filtered out).
   double median(const std::string& name) const {
     auto it = samples_.find(name);
     if (it == samples_.end() || it->second.empty()) return NAN;
@@ -326,6 +379,34 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
               "measured in this run.\n", batch);
 }
 
+// Page offsets (bytes) of the inputs in the 'placed' benchmarks: spread over the page, and 128 bytes below
+// the rows' offset, where the inputs' loads meet the rows' stores most.
+const std::vector<std::size_t> kInputOffsets = {0, 1024, 2048, 3072, 3968};
+std::string placed_kind(std::size_t offset) { return "placed_ratio_in@" + std::to_string(offset); }
+
+void print_placed_table(const SummaryReporter& r, std::size_t batch) {
+  std::printf("\nstride = count against padded with the inputs placed (rows on a page boundary; x, y, z at the "
+              "page offset shown, bytes), float, %zu directions: the median of paired time ratios, and the worst "
+              "('ok' within 5%%):\n", batch);
+  std::printf("%5s |", "bands");
+  for (std::size_t offset : kInputOffsets) std::printf(" in@%-5zu|", offset);
+  std::printf(" worst\n");
+  for (int bands = 1; bands <= sh::kMaxFastBands; ++bands) {
+    double worst = 0.0;
+    bool any = false;
+    for (std::size_t offset : kInputOffsets)
+      any = any || !std::isnan(r.median(name_of(placed_kind(offset).c_str(), "float", Path::kFast, bands)));
+    if (!any) continue;
+    std::printf("%5d |", bands);
+    for (std::size_t offset : kInputOffsets) {
+      const double ratio = r.median(name_of(placed_kind(offset).c_str(), "float", Path::kFast, bands));
+      std::printf(" %6.2fx |", ratio);
+      if (ratio > worst) worst = ratio;
+    }
+    std::printf(" %5.2fx %s\n", worst, worst <= 1.05 ? "ok" : "SLOWER");
+  }
+}
+
 // The header of a table whose columns are direction counts.
 void print_count_header(const std::vector<std::size_t>& counts) {
   std::printf("%5s |", "bands");
@@ -405,6 +486,11 @@ int main(int argc, char** argv) {
             [=](benchmark::State& s) { bench_fill<float>(s, bands, batch, batch); });
         add(name_of("fill_tiled_stride=count", "float", path, bands),
             [=](benchmark::State& s) { bench_fill_tiled<float>(s, bands, batch, batch); });
+        for (std::size_t offset : kInputOffsets) {
+          if (bands < 2 || bands > sh::kMaxFastBands) break;
+          add(name_of(placed_kind(offset).c_str(), "float", path, bands),
+              [=](benchmark::State& s) { bench_placed_ratio(s, bands, batch, offset); });
+        }
       }
       for (std::size_t count : fused_counts(batch)) {
         if (path == Path::kGeneric && count != batch) continue;  // the generic path at the batch only
@@ -433,6 +519,7 @@ int main(int argc, char** argv) {
   SummaryReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   print_batch_table(reporter, batch, one_count);
+  print_placed_table(reporter, batch);
   print_fused_table(reporter, batch);
   benchmark::Shutdown();
   return 0;

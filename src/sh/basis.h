@@ -57,8 +57,9 @@ void eval(int bands, const glm::vec3& dir, float* out);
 /// Speed: an out_stride whose byte size is a multiple of 4 KiB (e.g. out_stride = count = 1024) makes
 /// the rows collide in the L1 cache; such strides take a path that writes the rows a few at a time
 /// (the same values, bit for bit): 1.0-1.1x the time with padded_stride at 3-5 bands, 1.1x at 9 bands,
-/// 1.1-1.2x at 16 on a Xeon (AVX-512); 0.7-1.06x at 4-7, 9 and 11-16 bands, 1.15-1.2x at 3, 8 and 10 on
-/// an AMD Zen 5 (AVX-512); 1.15-1.45x at 4-16 bands on an AMD Zen 3 (AVX2; docs/conventions.md).
+/// 1.1-1.2x at 16 on a Xeon (AVX-512); on an AMD Zen 5 (AVX-512) 0.7-0.85x at 4-5 bands, 1.0-1.05x at 6-7,
+/// 1.0-1.3x at 3 and 8-16 depending on where the output and inputs lie; 1.15-1.45x at 4-16 bands on an
+/// AMD Zen 3 (AVX2; docs/conventions.md).
 /// Prefer out_stride = padded_stride(count, sizeof(T)), and a 64-byte aligned `out`.
 void eval_batch(int bands, std::size_t count, const float* x, const float* y, const float* z, float* out,
                 std::size_t out_stride);
