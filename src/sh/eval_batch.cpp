@@ -184,9 +184,10 @@ void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 //   store costing about what an output store does (kRecomputeRule: (C, S) kept from 14 bands only).
 // - AVX-512 on AMD Zen 5: recomputation ran 1.15-1.8x the padded batch at 7-16 bands; keeping (C, S) from
 //   column 4 and F where a piece resumes at l >= m + 5 (a replay of at most two recurrence steps otherwise),
-//   with input copies from 6 bands, 0.7-1.06x at 4-7, 9 and 11-16 bands and 1.15-1.2x at 8 and 10, where
-//   keeping everything from column 2 / depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector
-//   per cache line the arithmetic per stored line is half AVX2's.
+//   with input copies from 6 bands, 0.7-1.06x at 4-7, 9 and 11-16 bands and 1.15-1.2x at 8 and 10 (1.0-1.25x
+//   at 8-16 with page-aligned rows and the strides timed in pairs), where keeping everything from column 2 /
+//   depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector per cache line the arithmetic per
+//   stored line is half AVX2's.
 // The default follows the build's target (__znverN__: GCC and clang tuning for AMD Zen, which -march=native
 // picks on any Zen); PRT_SH_PIECE_RULE (0 recompute, 1 keep deep, 2 keep) overrides it, for the tests.
 struct PieceRule {
