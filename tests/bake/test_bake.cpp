@@ -17,9 +17,9 @@
 #include "reference/reference.h"
 #include "sh/basis.h"
 #include "sh/quadrature.h"
+#include "support/random_draws.h"
 #include "support/shapes.h"
 #include "trace/scene.h"
-#include "support/random_draws.h"
 
 using namespace prt;
 

@@ -20,9 +20,9 @@
 #include "sh/quadrature.h"
 #include "shade/glossy.h"
 #include "shade/shade.h"
+#include "support/random_draws.h"
 #include "support/shapes.h"
 #include "trace/scene.h"
-#include "support/random_draws.h"
 
 using namespace prt;
 
@@ -45,14 +45,9 @@ sh::RgbCoefficients random_lighting(int bands, std::mt19937_64& rng) {
   return l;
 }
 
-glm::dvec3 random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> gauss;
-  return glm::normalize(prt::test::draw_vec3<double>(rng, gauss));
-}
-
 // Uniform direction on the hemisphere about n (world frame), by rejection from the sphere.
 glm::dvec3 uniform_hemisphere(const glm::dvec3& n, std::mt19937_64& rng) {
-  const glm::dvec3 d = random_unit(rng);
+  const glm::dvec3 d = prt::test::random_direction(rng);
   return glm::dot(d, n) >= 0.0 ? d : -d;
 }
 
@@ -93,7 +88,7 @@ TEST_CASE("on a convex sphere glossy shadowed is the unshadowed transfer: the li
       for (int j = 0; j < n; ++j) local[k] += matrix[k * n + j] * light[j];
     }
     for (int trial = 0; trial < 4; ++trial) {
-      const glm::dvec3 w = random_unit(rng);
+      const glm::dvec3 w = prt::test::random_direction(rng);
       sh::eval(bands, w, y.data());
       double transferred = 0.0;
       for (int k = 0; k < n; ++k) transferred += local[k] * y[k];

@@ -31,11 +31,6 @@ std::vector<double> random_coefficients(int bands, std::mt19937_64& rng) {
   return c;
 }
 
-glm::dvec3 random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> gauss;
-  return glm::normalize(prt::test::draw_vec3<double>(rng, gauss));
-}
-
 double max_abs(const std::vector<double>& v) {
   double m = 0.0;
   for (double x : v) m = std::max(m, std::abs(x));
@@ -62,14 +57,14 @@ TEST_CASE("Lambert's B reproduces the diffuse unshadowed result exactly", "[brdf
     const int n = bands * bands;
     for (int trial = 0; trial < 20; ++trial) {
       const std::vector<double> lighting = random_coefficients(bands, rng);
-      const glm::dvec3 normal = random_unit(rng);
+      const glm::dvec3 normal = prt::test::random_direction(rng);
       const glm::dmat3 frame = brdf::shading_frame(normal);
       std::vector<double> local(n), out(n), y(n);
       sh::Rotation(bands, glm::transpose(frame)).apply(lighting.data(), local.data());
       brdf::apply(b, 0, local.data(), out.data());
       const double expected = 0.7 / M_PI * sh::irradiance(bands, lighting.data(), normal);
       for (int view = 0; view < 5; ++view) {
-        glm::dvec3 v = random_unit(rng);
+        glm::dvec3 v = prt::test::random_direction(rng);
         if (glm::dot(v, normal) < 0.0) v = -v;
         sh::eval(bands, glm::transpose(frame) * v, y.data());
         double radiance = 0.0;
