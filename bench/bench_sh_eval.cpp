@@ -64,13 +64,20 @@ Directions<T> random_directions(std::size_t count) {
 
 enum class Path { kFast, kGeneric };
 
+// The first `alignment`-byte boundary in `storage` (which has that many bytes of slack).
+template <typename T>
+T* aligned_start(std::vector<T>& storage, std::size_t alignment) {
+  T* p = storage.data();
+  while (reinterpret_cast<std::uintptr_t>(p) % alignment != 0) ++p;
+  return p;
+}
+
 // Output rows `stride` apart in a 64-byte aligned buffer.
 template <typename T>
 void bench_batch(benchmark::State& state, int bands, Path path, std::size_t count, std::size_t stride) {
   Directions<T> d = random_directions<T>(count);
   std::vector<T> storage(static_cast<std::size_t>(bands * bands) * stride + 64 / sizeof(T));
-  T* out = storage.data();
-  while (reinterpret_cast<std::uintptr_t>(out) % 64 != 0) ++out;
+  T* out = aligned_start(storage, 64);
   for (auto _ : state) {
     if (path == Path::kFast) {
       sh::eval_batch(bands, count, d.x.data(), d.y.data(), d.z.data(), out, stride);
@@ -82,14 +89,6 @@ void bench_batch(benchmark::State& state, int bands, Path path, std::size_t coun
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * count));
   state.counters["dirs"] = static_cast<double>(count);
-}
-
-// The first 4096-byte boundary in `storage` (which has a page of slack).
-template <typename T>
-T* page_start(std::vector<T>& storage) {
-  T* p = storage.data();
-  while (reinterpret_cast<std::uintptr_t>(p) % 4096 != 0) ++p;
-  return p;
 }
 
 // The float batch at out_stride = count against the padded stride, with both outputs' rows on a page
@@ -104,14 +103,14 @@ void bench_placed_ratio(benchmark::State& state, int bands, std::size_t count, s
   const std::size_t page = 4096 / sizeof(float);  // floats per page
   const std::size_t span = (count + offset / sizeof(float) + page - 1) / page * page;
   std::vector<float> in_storage(3 * span + page);
-  float* x = page_start(in_storage) + offset / sizeof(float);
+  float* x = aligned_start(in_storage, 4096) + offset / sizeof(float);
   float *y = x + span, *z = y + span;
   std::copy(d.x.begin(), d.x.end(), x);
   std::copy(d.y.begin(), d.y.end(), y);
   std::copy(d.z.begin(), d.z.end(), z);
   const std::size_t padded = sh::padded_stride(count, sizeof(float)), rows = static_cast<std::size_t>(bands * bands);
   std::vector<float> crowded_storage(rows * count + page), padded_storage(rows * padded + page);
-  float *crowded_out = page_start(crowded_storage), *padded_out = page_start(padded_storage);
+  float *crowded_out = aligned_start(crowded_storage, 4096), *padded_out = aligned_start(padded_storage, 4096);
   std::vector<double> ratios;
   // Four timed calls after an untimed one, which brings that output back into the caches from where the
   // other stride's calls pushed it (the steady state of a caller that reuses its buffer).
@@ -138,8 +137,7 @@ void bench_placed_ratio(benchmark::State& state, int bands, std::size_t count, s
 template <typename T>
 void bench_fill(benchmark::State& state, int bands, std::size_t count, std::size_t stride) {
   std::vector<T> storage(static_cast<std::size_t>(bands * bands) * stride + 64 / sizeof(T));
-  T* out = storage.data();
-  while (reinterpret_cast<std::uintptr_t>(out) % 64 != 0) ++out;
+  T* out = aligned_start(storage, 64);
   T value = static_cast<T>(0.5);
   for (auto _ : state) {
     for (int k = 0; k < bands * bands; ++k) std::fill(out + static_cast<std::size_t>(k) * stride, out + k * stride + count, value);
@@ -159,8 +157,7 @@ void bench_fill(benchmark::State& state, int bands, std::size_t count, std::size
 template <typename T>
 void bench_fill_tiled(benchmark::State& state, int bands, std::size_t count, std::size_t stride) {
   std::vector<T> storage(static_cast<std::size_t>(bands * bands) * stride + 64 / sizeof(T));
-  T* out = storage.data();
-  while (reinterpret_cast<std::uintptr_t>(out) % 64 != 0) ++out;
+  T* out = aligned_start(storage, 64);
   constexpr std::size_t width = 64 / sizeof(T);
   const std::size_t tile = sh::detail::staged_tile_directions(bands, count, sizeof(T));
   const int rows = bands * bands, pass = sh::detail::staged_pass_rows(bands);

@@ -171,23 +171,18 @@ PRT_SH_INLINE W fold_pair(W a, W b, std::index_sequence<I...>) {
   return kept + moved;
 }
 
-// Stage H of the butterfly on v[0 .. 2H): v[j] <- fold(v[j], v[j + H]) for j < H. Only v[j] with j < n hold
-// coefficients; a pair whose second vector is absent folds the first with itself (the lanes that would
-// belong to the absent one are left with values no total reads).
+// Stage H of the butterfly and the stages after it: v[j] = fold(src[j], src[j + H]) for j < min(H, N), where
+// src[0 .. N) hold the vectors to fold; the later stages then fold v in place (src = v). A pair whose second
+// vector is absent folds the first with itself (the lanes that would belong to the absent one are left with
+// values no total reads). The first stage reads the accumulators where they are: copying them into v first
+// compiled to a memcpy call per group of kLanes, and calls of 16 directions took 2.3x as long at 5 and 9
+// bands (Zen 5).
 template <std::size_t H, std::size_t N, typename W, std::size_t... J>
-PRT_SH_INLINE void fold_stage(W* v, std::index_sequence<J...>) {
+PRT_SH_INLINE void fold_stage(const W* src, W* v, std::index_sequence<J...>) {
   constexpr auto lanes = std::make_index_sequence<sizeof(W) / sizeof(v[0][0])>{};
-  ((v[J] = fold_pair<H>(v[J], v[J + H < N ? J + H : J], lanes)), ...);
-  if constexpr (H > 1) fold_stage<H / 2, sizeof...(J)>(v, std::make_index_sequence<(H / 2 < sizeof...(J) ? H / 2 : sizeof...(J))>{});
-}
-
-// The first stage (distance H) reading the N accumulators in place: v[j] = fold(acc[j], acc[j + H]) for
-// j < min(H, N). Copying them into a local array first, as the later stages work in place, compiled to a
-// memcpy call per group of kLanes: calls of 16 directions took 2.3x as long at 5 and 9 bands (Zen 5).
-template <std::size_t H, std::size_t N, typename W, std::size_t... J>
-PRT_SH_INLINE void fold_first(const W* acc, W* v, std::index_sequence<J...>) {
-  constexpr auto lanes = std::make_index_sequence<sizeof(W) / sizeof(acc[0][0])>{};
-  ((v[J] = fold_pair<H>(acc[J], acc[J + H < N ? J + H : J], lanes)), ...);
+  ((v[J] = fold_pair<H>(src[J], src[J + H < N ? J + H : J], lanes)), ...);
+  constexpr std::size_t live = sizeof...(J);
+  if constexpr (H > 1) fold_stage<H / 2, live>(v, v, std::make_index_sequence<(H / 2 < live ? H / 2 : live)>{});
 }
 
 // The totals of N <= kLanes accumulators: lane i of the result is the sum of the lanes of acc[i] (i < N;
@@ -199,8 +194,7 @@ PRT_SH_INLINE Vec<T> reduce_group(const Vec<T>* acc) {
   } else {
     constexpr std::size_t h = kLanes<T> / 2, live = h < N ? h : N;
     Vec<T> v[live];
-    fold_first<h, N>(acc, v, std::make_index_sequence<live>{});
-    if constexpr (h > 1) fold_stage<h / 2, live>(v, std::make_index_sequence<(h / 2 < live ? h / 2 : live)>{});
+    fold_stage<h, N>(acc, v, std::make_index_sequence<live>{});
     return v[0];
   }
 }
@@ -233,14 +227,14 @@ PRT_SH_INLINE void finish_group(std::size_t k, const Vec<T>* acc, T* sums) {
     T part[kLanes<T>];
     store(part, scaled);
     for (std::size_t i = 0; i < N; ++i) {
-      T total = sums[k + i] + part[i];
+      T sum = sums[k + i] + part[i];
 #if defined(__x86_64__) || defined(__i386__)
       // One sum at a time: GCC otherwise merges the first 8 into a 32-byte load, which waits whenever the
       // caller has just written sums with other stores (zeroed them, say: 3 bands, calls of 16 directions,
       // 23 against 18 ns per call, Zen 5).
-      asm("" : "+x"(total));
+      asm("" : "+x"(sum));
 #endif
-      sums[k + i] = total;
+      sums[k + i] = sum;
     }
   }
 }
