@@ -220,8 +220,6 @@ constexpr int kPieceRows = 4;
 constexpr std::size_t kPieceTileBytes = kPieceRule.tile_bytes;
 template <int N>
 inline constexpr bool kKeepsCs = N >= kPieceRule.keep_cs_bands;
-constexpr bool kKeepsF = kPieceRule.keep_f;
-constexpr int kKeepCsFrom = kPieceRule.cs_from_column, kKeepFFrom = kPieceRule.f_from_depth;
 // The pieces read their inputs from copies kInputShift bytes past the output rows' page offset: loads whose
 // address matches a pending store's in the low 12 bits wait for it ("4K aliasing"), and a crowded stride's
 // stores are pending long (slow to reach L2). Inputs at 64 bytes below the rows' offset (each load aliases
@@ -285,10 +283,11 @@ constexpr PiecePlan plan_piece(int p) {
   const KernelStep next = has_next ? kernel_step<N>(e1) : KernelStep{0, 0};
   PiecePlan plan{};
   plan.cs_column = cs_column >= 1 ? cs_column : 0;
-  plan.loads_cs = kKeepsCs<N> && cs_column >= kKeepCsFrom;
-  plan.stores_cs = kKeepsCs<N> && has_next && changes_cs && last.m >= kKeepCsFrom;
-  plan.loads_f = kKeepsF && first.l - first.m >= kKeepFFrom;
-  plan.stores_f = kKeepsF && has_next && next.m == last.m && next.l - next.m >= kKeepFFrom;
+  constexpr PieceRule rule = kPieceRule;
+  plan.loads_cs = kKeepsCs<N> && cs_column >= rule.cs_from_column;
+  plan.stores_cs = kKeepsCs<N> && has_next && changes_cs && last.m >= rule.cs_from_column;
+  plan.loads_f = rule.keep_f && first.l - first.m >= rule.f_from_depth;
+  plan.stores_f = rule.keep_f && has_next && next.m == last.m && next.l - next.m >= rule.f_from_depth;
   return plan;
 }
 template <int N, int P>
