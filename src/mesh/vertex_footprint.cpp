@@ -1,0 +1,67 @@
+#include "mesh/vertex_footprint.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+#include <glm/geometric.hpp>
+
+namespace prt::mesh {
+
+VertexFootprints::VertexFootprints(const Mesh& mesh) : positions_(mesh.positions), indices_(&mesh.indices) {
+  const std::vector<std::uint32_t>& idx = mesh.indices;
+  begin_.assign(positions_.size() + 1, 0);
+  for (std::uint32_t v : idx) ++begin_[v + 1];
+  for (std::size_t v = 0; v < positions_.size(); ++v) begin_[v + 1] += begin_[v];
+  corners_.resize(idx.size());
+  cumulative_area_.resize(idx.size());
+  std::vector<std::uint32_t> next(begin_.begin(), begin_.end() - 1);
+  for (std::size_t c = 0; c < idx.size(); ++c) corners_[next[idx[c]]++] = static_cast<std::uint32_t>(c);
+  for (std::size_t v = 0; v < positions_.size(); ++v) {
+    double sum = 0.0;
+    for (std::uint32_t e = begin_[v]; e < begin_[v + 1]; ++e) {
+      const std::size_t t = corners_[e] / 3 * 3;
+      const glm::dvec3 a(positions_[idx[t]]), b(positions_[idx[t + 1]]), c(positions_[idx[t + 2]]);
+      sum += 0.5 * glm::length(glm::cross(b - a, c - a));
+      cumulative_area_[e] = sum;
+    }
+  }
+}
+
+double VertexFootprints::ring_area(std::uint32_t v) const {
+  return begin_[v + 1] > begin_[v] ? cumulative_area_[begin_[v + 1] - 1] : 0.0;
+}
+
+glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w) const {
+  const std::uint32_t first = begin_[v], last = begin_[v + 1];
+  const double total = ring_area(v);
+  if (!(total > 0.0)) return positions_[v];
+  const double target = u * total;
+  const auto it = std::upper_bound(cumulative_area_.begin() + first, cumulative_area_.begin() + last, target);
+  const std::uint32_t e = std::min<std::uint32_t>(static_cast<std::uint32_t>(it - cumulative_area_.begin()), last - 1);
+  const double below = e > first ? cumulative_area_[e - 1] : 0.0, share = cumulative_area_[e] - below;
+  const double rescaled = share > 0.0 ? std::clamp((target - below) / share, 0.0, 1.0) : 0.5;
+  const std::uint32_t corner = corners_[e], t = corner / 3 * 3, k = corner - t;
+  const std::vector<std::uint32_t>& idx = *indices_;
+  const glm::dvec3 p(positions_[v]), a(positions_[idx[t + (k + 1) % 3]]), b(positions_[idx[t + (k + 2) % 3]]);
+  const double own = beta22_quantile(rescaled), rest = 1.0 - own;
+  return glm::vec3(own * p + rest * (w * a + (1.0 - w) * b));
+}
+
+const char* footprint_name(Footprint footprint) { return footprint == Footprint::area ? "area" : "vertex"; }
+
+Footprint parse_footprint(const std::string& text, const std::string& option) {
+  if (text == "area") return Footprint::area;
+  if (text == "vertex") return Footprint::vertex;
+  fail(option + ": expected area or vertex, got '" + text + "'");
+}
+
+int footprint_point_count(int samples) { return std::clamp(samples / kSamplesPerFootprintPoint, 1, kMaxFootprintPoints); }
+
+double beta22_quantile(double u) {
+  const double s = std::clamp(1.0 - 2.0 * u, -1.0, 1.0);
+  return 0.5 - std::sin(std::asin(s) / 3.0);
+}
+
+}  // namespace prt::mesh
