@@ -103,6 +103,8 @@ std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bo
     j["seed"] = o.seed;
     j["sample_set"] = "owen-scrambled sobol, cosine-weighted hemisphere, per-vertex hashed rotation";
     j["ray_offset"] = ray_offset;
+    // Only when not the default, so that vertex bakes stay byte-identical to those of earlier versions.
+    if (o.footprint != mesh::Footprint::vertex) j["footprint"] = mesh::footprint_name(o.footprint);
   }
   if (o.kind == transfer::Kind::interreflected) {
     j["bounces_requested"] = o.bounces < 0 ? std::string("auto") : std::to_string(o.bounces);
@@ -170,6 +172,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   LocalSampleSet samples;
   std::vector<std::uint32_t> order;
   PassContext ctx;
+  std::unique_ptr<mesh::VertexFootprints> footprints;
   if (options.kind != transfer::Kind::unshadowed) {
     auto start = std::chrono::steady_clock::now();
     scene = std::make_unique<trace::Scene>(mesh, bake_scene_options(options.threads));
@@ -179,6 +182,10 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     order = trace::morton_order(mesh.positions);
     ctx = PassContext{&mesh, scene.get(), &samples, &order, options.seed, options.threads, options.progress};
     ctx.dist = options.dist;
+    if (options.footprint == mesh::Footprint::area) {
+      footprints = std::make_unique<mesh::VertexFootprints>(mesh);
+      ctx.footprints = footprints.get();
+    }
     start = std::chrono::steady_clock::now();
     rep.rays_traced += shadowed_geometric(ctx, geometric);
     // Distributed: every rank needs the direct pass for the bounces, rank 0 alone for the file.

@@ -67,6 +67,7 @@
 #include "brdf/brdf.h"
 #include "dist/context.h"
 #include "mesh/mesh.h"
+#include "mesh/vertex_footprint.h"
 #include "mesh/writers.h"
 #include "trace/scene.h"
 #include "transfer/transfer_file.h"
@@ -84,6 +85,12 @@ struct BakeOptions {
   bool progress = false;  ///< progress bar on stderr (only drawn when stderr is a terminal)
   brdf::Brdf brdf;        ///< glossy kinds: the BRDF of the whole mesh (required); unused otherwise
   int bands_out = 0;      ///< glossy kinds: transferred-radiance bands 1..bands; 0 = bands
+  /// Where each vertex's rays leave from (shadowed, interreflected and glossy kinds): `area`, points
+  /// spread over the vertex's one-ring with its hat weight, so that the value stored is the average
+  /// that linear interpolation stands for (no dark vertex at a crease that only the vertex itself
+  /// sees; docs/conventions.md "Vertex footprint"); `vertex`, the vertex itself (the radiance exactly
+  /// at the vertex, what `prt reference` estimates per vertex).
+  mesh::Footprint footprint = mesh::Footprint::vertex;
   /// The ranks of a distributed bake (dist/context.h); null: this process alone. Every rank traces its
   /// share of the vertices and the passes' results are exchanged. Rank 0's result is complete
   /// (byte-identical to a single process's); so is every rank's for the interreflected kinds (every

@@ -38,6 +38,7 @@ std::string parameters_json(const BakeOptions& o, int bands_out, int bounces_don
   j["sample_set"] = "owen-scrambled sobol, uniform hemisphere, per-vertex hashed rotation";
   j["frame"] = "local: t = normalize(+Y x n) (+X at the poles), b = n x t, z = n";
   j["ray_offset"] = ray_offset;
+  if (o.footprint != mesh::Footprint::vertex) j["footprint"] = mesh::footprint_name(o.footprint);  // as bake.cpp
   if (o.kind == transfer::Kind::glossy_interreflected) {
     j["bounces_requested"] = o.bounces < 0 ? std::string("auto") : std::to_string(o.bounces);
     j["bounces"] = bounces_done;
@@ -76,6 +77,8 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   for (std::size_t v = 0; v < vertices; ++v) frames[v] = brdf::shading_frame(mesh.normals[v]);
   GlossyContext ctx{&mesh, scene.get(), &samples, &order, &frames, options.bands, bands_out,
                           options.seed, options.threads, options.progress, options.dist};
+  const mesh::VertexFootprints footprints(mesh);
+  if (options.footprint == mesh::Footprint::area) ctx.footprints = &footprints;
   const dist::Context& dist = dist::or_single(options.dist);
 
   start = std::chrono::steady_clock::now();

@@ -32,12 +32,13 @@ struct GlossyContext {
   int threads = 0;
   bool progress = false;
   const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
+  const mesh::VertexFootprints* footprints = nullptr;  ///< null: rays leave from the vertices themselves
 
   /// The per-vertex ray loop of this context (trace/vertex_rays.h) with query `query`, over this
   /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
-    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, nullptr, nullptr, share.begin, share.end};
+    return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, nullptr, nullptr, share.begin, share.end, footprints};
   }
 };
 

@@ -7,6 +7,8 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
+
 #include "core/error.h"
 #include "mesh/mesh.h"
 
@@ -38,5 +40,9 @@ image::ToneMap parse_tone_map(const std::string& name) {
 }
 
 bool want_progress(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
+
+void add_footprint_option(CLI::App* cmd, std::string& value, const std::string& what) {
+  cmd->add_option("--footprint", value, "area or vertex: " + what)->capture_default_str();
+}
 
 }  // namespace prt::cli

@@ -6,7 +6,16 @@
 
 #include "image/image.h"
 
+namespace CLI {
+class App;
+}
+
 namespace prt::cli {
+
+/// Adds `--footprint area|vertex` to `cmd`, its default the value `value` holds ("vertex"): where the
+/// per-vertex estimates start (mesh/vertex_footprint.h); `what` says what the vertex's value then is.
+/// Parse the value with mesh::parse_footprint.
+void add_footprint_option(CLI::App* cmd, std::string& value, const std::string& what);
 
 /// Parses "A,B,C" into three doubles of magnitude at most mesh::kMaxCoordinate (1e12: positions,
 /// colours and angles beyond it overflow float maths downstream). Throws prt::Error("<option>: expected <what>, got '<text>'").

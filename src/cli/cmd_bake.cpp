@@ -30,6 +30,7 @@ struct BakeCommandOptions {
   std::string albedo;
   std::string brdf;
   std::string compress;  // "K,N": write a .cprt instead of the .prt
+  std::string footprint = "vertex";
   int bands = 5;
   int bands_out = 0;
   int samples = 1024;
@@ -48,7 +49,7 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
   return std::string("bake ") + transfer::kind_name(b.kind) + " bands " + std::to_string(b.bands) + " out " +
          std::to_string(b.bands_out) + " samples " + std::to_string(b.samples) + " bounces " + std::to_string(b.bounces) +
          " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," + exact(b.albedo.b) + " seed " +
-         std::to_string(b.seed) + " brdf " + (b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
+         std::to_string(b.seed) + " footprint " + mesh::footprint_name(b.footprint) + " brdf " + (b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
          std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty()) +
          " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair);
 }
@@ -56,6 +57,7 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
 void run_bake(const BakeCommandOptions& o) {
   bake::BakeOptions options;
   options.kind = transfer::parse_kind(o.kind);
+  options.footprint = mesh::parse_footprint(o.footprint, "--footprint");
   options.bands = o.bands;
   options.samples = o.samples;
   options.bounces = o.bounces;
@@ -149,6 +151,9 @@ void add_bake_command(CLI::App& app) {
                   "Interreflection passes; default: until a pass adds < 1e-3 of the direct pass's energy (max 16)");
   cmd->add_option("--albedo", options->albedo, "R,G,B linear albedo for meshes without colours (default 0.8,0.8,0.8)");
   cmd->add_option("--seed", options->seed, "Seed of the sample set and per-vertex frames")->capture_default_str();
+  add_footprint_option(cmd, options->footprint,
+                       "where a vertex's rays leave from: points of its one-ring, hat-weighted (the value its interpolation "
+                       "stands for, no dark vertex under a fold), or the vertex itself (as prt reference per vertex)");
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
   cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");

@@ -7,6 +7,9 @@
 // sh::vertex_frame(n, seed, v), from its spawn point, in batches of up to
 // kDefaultBatchCapacity rays, robust mode where the scene's contact rule asks for it and for every
 // closest-hit query (trace/scene.h, ROBUST MODE). What a pass does with the hits is its worker's business.
+// With a footprint (VertexRays::footprints) the rays of a vertex leave from mesh::footprint_point_count(S)
+// points of its one-ring instead of the vertex itself (docs/conventions.md "Vertex footprint"), each
+// with a run of consecutive directions.
 // The "vertices" may be other surface sample points (a lightmap's texel samples): VertexRays::positions
 // and ::normals then replace the mesh's, and the index v names a sample point.
 #include <algorithm>
@@ -19,9 +22,11 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/hash.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "mesh/mesh.h"
+#include "mesh/vertex_footprint.h"
 #include "sh/sampling.h"
 #include "trace/scene.h"
 
@@ -29,6 +34,23 @@ namespace prt::trace {
 
 /// Vertices per parallel_for chunk of trace_vertex_rays.
 inline constexpr std::size_t kVerticesPerChunk = 64;
+
+
+/// Salt of the hash (core/hash.h) that scrambles a vertex's footprint points.
+inline constexpr std::uint32_t kFootprintSalt = 0xf0070000u;
+
+/// The first `count` (<= mesh::kMaxFootprintPoints) ray origins of vertex v with a footprint: point k =
+/// footprints.point(v, sh::sobol_2d(k, hash_to_u32(seed, v, kFootprintSalt))), stratified over the
+/// footprint, lifted off the surface along the vertex normal n as Scene::offset_origin does (the lift
+/// stays above every one-ring face whose normal is within 90 degrees of n).
+inline void footprint_origins(const mesh::VertexFootprints& footprints, const Scene& scene, std::uint32_t v,
+                              const glm::vec3& n, std::uint32_t seed, std::size_t count, glm::vec3* out) {
+  const std::uint32_t scramble = hash_to_u32(seed, v, kFootprintSalt);
+  for (std::size_t k = 0; k < count; ++k) {
+    const glm::dvec2 uw = sh::sobol_2d(static_cast<std::uint32_t>(k), scramble);
+    out[k] = scene.offset_origin(footprints.point(v, uw.x, uw.y), n);
+  }
+}
 
 /// Which query a pass runs on its rays.
 enum class Query { occluded, closest_hit };
@@ -50,6 +72,10 @@ struct VertexRays {
   /// dist/partition.h); clipped to order->size(). Default: all of them.
   std::size_t order_begin = 0;
   std::size_t order_end = static_cast<std::size_t>(-1);
+  /// The mesh's vertex footprints: rays leave from points of each vertex's one-ring (footprint_origins)
+  /// instead of the vertex; the robust-mode choice stays the vertex's. Null, or with `positions` set:
+  /// from the points themselves.
+  const mesh::VertexFootprints* footprints = nullptr;
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
@@ -71,6 +97,9 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
   // without it ~5e-6 of vertex rays name a wrong triangle (trace/scene.h, ROBUST MODE), and a bounce
   // pass reads transfer at the hit. Occlusion takes robust mode only for contact points.
   const bool closest_robust = r.query == Query::closest_hit;
+  const bool spread = r.footprints != nullptr && r.positions == nullptr;
+  const int capped_samples = static_cast<int>(std::min<std::size_t>(samples, INT32_MAX));
+  const std::size_t origin_count = static_cast<std::size_t>(mesh::footprint_point_count(capped_samples));
   std::atomic<std::uint64_t> rays{0};
   const std::size_t share_end = std::min(r.order_end, r.order->size()), share_begin = std::min(r.order_begin, share_end);
   const double progress_scale =
@@ -91,12 +120,15 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
       const std::uint32_t v = (*r.order)[k];
       const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
       const SpawnPoint& spawn = spawns[k - begin];
+      glm::vec3 origins[mesh::kMaxFootprintPoints];
+      if (spread) footprint_origins(*r.footprints, *r.scene, v, normals[v], r.seed, origin_count, origins);
       worker.start(v, frame);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);
         batch.clear();
         batch.set_robust(spawn.robust || closest_robust);
-        for (std::size_t s = first; s < first + count; ++s) batch.push(spawn.origin, frame * local[s]);
+        for (std::size_t s = first; s < first + count; ++s)
+          batch.push(spread ? origins[s * origin_count / samples] : spawn.origin, frame * local[s]);
         if (r.query == Query::occluded) r.scene->occluded(batch);
         else r.scene->intersect(batch);
         worker.batch(v, batch, first);

@@ -66,6 +66,15 @@ TEST_CASE("prt bake writes identical files for 1 and 2 threads and prt info read
   CHECK(info.exit_code == 0);
   CHECK(contains(info.output, "kind: interreflected"));
   CHECK(contains(info.output, "bands: 4 (16 coefficients)"));
+  CHECK_FALSE(contains(info.output, "footprint"));  // the default, vertex, is not recorded
+
+  // --footprint area: also independent of the thread count, and recorded in the parameters.
+  for (const char* threads : {"1", "2"})
+    REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint area --threads " +
+                          threads + " -q -o " + dir + "/area" + threads + ".prt").exit_code == 0);
+  CHECK(read_file(dir + "/area1.prt") == read_file(dir + "/area2.prt"));
+  CHECK(read_file(dir + "/area1.prt") != read_file(dir + "/one.prt"));
+  CHECK(contains(test::run_prt("info " + dir + "/area1.prt").output, "\"footprint\":\"area\""));
 }
 
 TEST_CASE("prt shade under a white light equals the furnace radiance and prt compare measures a known change", "[bake][cli]") {
@@ -110,6 +119,7 @@ TEST_CASE("prt bake and shade refuse bad input with one line and leave no file",
       {"bake " + mesh + " --transfer glossy -o " + dir + "/o.prt", "unknown transfer kind 'glossy'"},
       {"bake " + mesh + " --bands 40 -o " + dir + "/o.prt", "--bands 40 is out of range"},
       {"bake " + mesh + " --albedo 1,2 -o " + dir + "/o.prt", "--albedo: expected R,G,B"},
+      {"bake " + mesh + " --footprint corner -o " + dir + "/o.prt", "--footprint: expected area or vertex, got 'corner'"},
       {"bake " + mesh + " -o " + dir + "/no/such/dir/o.prt", "output folder does not exist"},
       {"shade " + mesh + " " + dir + "/missing.prt --light x.json -o " + dir + "/o.ply", "missing.prt"},
   };
