@@ -42,6 +42,7 @@ struct ReferenceCommandOptions {
   unsigned seed = 1;
   int threads = 0;
   bool quiet = false;
+  std::string footprint = "vertex";
   // --image and the options that only it takes (as `prt render`'s).
   bool image = false;
   std::string texels;  // a lightmap (.prt): the reference at its texel sample points (cmd_reference_texels.h)
@@ -71,6 +72,7 @@ reference::ReferenceOptions diffuse_options(const ReferenceCommandOptions& o, co
   options.bounces = o.bounces;
   options.samples = given.samples ? o.samples : (o.image ? reference::kDefaultImageSamples : reference::kDefaultSamples);
   options.seed = o.seed;
+  options.footprint = mesh::parse_footprint(o.footprint, "--footprint");
   options.threads = o.threads;
   options.progress = want_progress(o.quiet) && job().is_root();
   options.dist = &job();
@@ -85,7 +87,7 @@ reference::ReferenceOptions diffuse_options(const ReferenceCommandOptions& o, co
 // The glossy options (--brdf, --eye, --brdf-bands), checked; `options` gives the shared ones.
 reference::GlossyReferenceOptions glossy_options(const ReferenceCommandOptions& o, const GivenOptions& given,
                                                  const reference::ReferenceOptions& options) {
-  reference::GlossyReferenceOptions glossy;
+  reference::GlossyReferenceOptions glossy = reference::glossy_run_options(options);
   if (o.brdf.empty()) fail(o.eye.empty() ? "--brdf-bands needs --brdf SPEC" : "--eye needs --brdf SPEC (glossy reference)");
   if (o.eye.empty()) fail("--brdf needs --eye X,Y,Z: glossy radiance depends on the view");
   if (o.image) fail("--brdf: the glossy reference is per vertex only (no --image)");
@@ -96,11 +98,6 @@ reference::GlossyReferenceOptions glossy_options(const ReferenceCommandOptions& 
     fail("--brdf-bands: expected a band count in 1.." + std::to_string(sh::kMaxBands) + ", got " + std::to_string(o.brdf_bands));
   glossy.estimator.brdf_bands = given.brdf_bands ? o.brdf_bands : 0;
   glossy.eye = parse_triple(o.eye, "--eye", "X,Y,Z (mesh units)");
-  glossy.samples = options.samples;
-  glossy.seed = options.seed;
-  glossy.threads = options.threads;
-  glossy.progress = options.progress;
-  glossy.dist = options.dist;
   return glossy;
 }
 
@@ -144,7 +141,7 @@ void write_reference_image(const ReferenceCommandOptions& o, const reference::Re
 // Everything of the command line that changes the output (dist: every rank must trace the same job).
 std::string canonical_options(const ReferenceCommandOptions& o, const reference::ReferenceOptions& r) {
   std::string text = "reference bounces " + std::to_string(r.bounces) + " samples " + std::to_string(r.samples) +
-                     " seed " + std::to_string(r.seed) + " albedo " + exact(r.albedo.r) + "," + exact(r.albedo.g) + "," +
+                     " seed " + std::to_string(r.seed) + " footprint " + mesh::footprint_name(r.footprint) + " albedo " + exact(r.albedo.r) + "," + exact(r.albedo.g) + "," +
                      exact(r.albedo.b) + " band-limit " + std::to_string(o.band_limit) + " brdf " +
                      (o.brdf.empty() ? "" : brdf::to_spec(brdf::parse_brdf(o.brdf))) + " brdf-bands " +
                      std::to_string(o.brdf_bands) + " eye " + o.eye + " image " + std::to_string(o.image);
@@ -238,6 +235,9 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar or summary");
+  add_footprint_option(cmd, options->footprint,
+                       "per-vertex output: the hat-weighted average over each vertex's one-ring (as prt bake --footprint "
+                       "area stores) or the radiance exactly at the vertex");
   cmd->add_option("--texels", options->texels,
                   "LIGHTMAP.prt (prt bake --lightmap): the reference at its texel sample points, as an .exr of the lightmap's "
                   "size (covered texels; others 0)");

@@ -201,8 +201,8 @@ class GlossySurface {
 
 }  // namespace
 
-RadianceEstimate GlossyTracer::vertex_radiance(std::uint32_t vertex, const glm::dvec3& view, int paths, SampleStream& stream,
-                                               GlossyWorkspace& workspace) const {
+RadianceEstimate GlossyTracer::vertex_radiance(std::uint32_t vertex, const glm::vec3& position, const glm::dvec3& view,
+                                               int paths, SampleStream& stream, GlossyWorkspace& workspace) const {
   const Impl& im = *impl_;
   GlossyWorkspace::Buffers& ws = workspace.buffers();
   const std::size_t block = 3 * static_cast<std::size_t>(im.coefficients());
@@ -212,7 +212,7 @@ RadianceEstimate GlossyTracer::vertex_radiance(std::uint32_t vertex, const glm::
   PathPoint start;
   start.normal = glm::normalize(glm::dvec3(im.mesh.normals[vertex]));
   start.frame = brdf::shading_frame(start.normal);
-  start.origin = glm::dvec3(im.scene.offset_origin(im.mesh.positions[vertex], im.mesh.normals[vertex]));
+  start.origin = glm::dvec3(im.scene.offset_origin(position, im.mesh.normals[vertex]));
   start.weights = ws.start_weights.data();
   im.set_view(start, glm::normalize(view), ws.basis);
   std::optional<EnvironmentSampler> table;

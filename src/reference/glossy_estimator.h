@@ -82,8 +82,10 @@ class GlossyTracer {
   ~GlossyTracer();
 
   /// L_o(vertex, view, options.bounces) (see above) from `paths` >= 1 paths; `view` unit, world frame.
-  RadianceEstimate vertex_radiance(std::uint32_t vertex, const glm::dvec3& view, int paths, SampleStream& stream,
-                                   GlossyWorkspace& workspace) const;
+  /// The paths leave from `position` (the vertex's own, or a point of its footprint) lifted along the
+  /// vertex normal (Scene::offset_origin); normal and shading frame are the vertex's.
+  RadianceEstimate vertex_radiance(std::uint32_t vertex, const glm::vec3& position, const glm::dvec3& view, int paths,
+                                   SampleStream& stream, GlossyWorkspace& workspace) const;
 
  struct Impl;  // the BRDF, its matrix and lobe sampler (internal)
 
@@ -100,7 +102,12 @@ struct GlossyReferenceOptions {
   bool progress = false;
   glm::dvec3 eye{0.0};               ///< the eye point (mesh units): view = normalize(eye - position)
   const dist::Context* dist = nullptr;  ///< ranks of a distributed run (reference.h, ReferenceOptions::dist)
+  mesh::Footprint footprint = mesh::Footprint::vertex;  ///< as ReferenceOptions::footprint; the view stays the vertex's
 };
+
+/// Glossy options with the run settings of `shared` (samples, seed, footprint, threads, progress, dist);
+/// the estimator (BRDF, bounces) and the eye are left to the caller.
+GlossyReferenceOptions glossy_run_options(const ReferenceOptions& shared);
 
 /// Outgoing radiance of every vertex toward the eye point (a vertex exactly at the eye uses its
 /// normal), in mesh vertex order, visiting vertices in Morton order with a BVH built on one thread:

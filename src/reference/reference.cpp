@@ -66,12 +66,12 @@ void check_options(const ReferenceOptions& o) {
 
 namespace {
 
-// The diffuse estimate at every point: point k at positions[k], as make_point(tracer, scene, k) says.
-template <class MakePoint>
+// The diffuse estimate at every point: point k at positions[k], estimate(tracer, scene, k, stream, workspace).
+template <class Estimate>
 std::vector<glm::vec3> diffuse_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
                                         const ReferenceOptions& options, const std::vector<glm::vec3>& positions,
                                         const char* label, ReferenceReport* report, std::vector<glm::vec3>* standard_error,
-                                        const MakePoint& make_point) {
+                                        const Estimate& estimate) {
   check_options(options);
   ReferenceReport local_report;
   ReferenceReport& rep = report ? *report : local_report;
@@ -86,7 +86,7 @@ std::vector<glm::vec3> diffuse_radiance(const mesh::Mesh& mesh, const Environmen
   return detail::trace_every_vertex<PathWorkspace>(
       positions, label, options.seed, options.samples, options.threads, options.progress, options.dist, rep, standard_error,
       [&](std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
-        return tracer.outgoing_radiance(make_point(tracer, scene, v), options.samples, stream, workspace);
+        return estimate(tracer, scene, v, stream, workspace);
       });
 }
 
@@ -95,8 +95,19 @@ std::vector<glm::vec3> diffuse_radiance(const mesh::Mesh& mesh, const Environmen
 std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
                                        const ReferenceOptions& options, ReferenceReport* report,
                                        std::vector<glm::vec3>* standard_error) {
-  return diffuse_radiance(mesh, environment, options, mesh.positions, "reference", report, standard_error,
-                          [](const PathTracer& tracer, const trace::Scene&, std::uint32_t v) { return tracer.vertex_point(v); });
+  const mesh::VertexFootprints footprints(mesh);
+  return diffuse_radiance(
+      mesh, environment, options, mesh.positions, "reference", report, standard_error,
+      [&](const PathTracer& tracer, const trace::Scene& scene, std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
+        if (options.footprint == mesh::Footprint::vertex)
+          return tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
+        return detail::footprint_estimate(footprints, v, options.seed, options.samples,
+                                          [&](const glm::vec3& position, int paths, SampleStream& run_stream) {
+                                            SurfacePoint point = tracer.vertex_point(v);
+                                            point.origin = glm::dvec3(scene.offset_origin(position, mesh.normals[v]));
+                                            return tracer.outgoing_radiance(point, paths, run_stream, workspace);
+                                          });
+      });
 }
 
 std::vector<glm::vec3> point_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
@@ -105,12 +116,13 @@ std::vector<glm::vec3> point_radiance(const mesh::Mesh& mesh, const EnvironmentS
   std::vector<glm::vec3> positions;
   for (const PointSample& p : points) positions.push_back(p.position);
   return diffuse_radiance(mesh, environment, options, positions, "reference points", report, nullptr,
-                          [&](const PathTracer&, const trace::Scene& scene, std::uint32_t k) {
+                          [&](const PathTracer& tracer, const trace::Scene& scene, std::uint32_t k, SampleStream& stream,
+                              PathWorkspace& workspace) {
                             SurfacePoint point;
                             point.normal = glm::normalize(glm::dvec3(points[k].normal));
                             point.origin = glm::dvec3(scene.offset_origin(points[k].position, points[k].normal));
                             point.albedo = glm::dvec3(points[k].albedo);
-                            return point;
+                            return tracer.outgoing_radiance(point, options.samples, stream, workspace);
                           });
 }
 

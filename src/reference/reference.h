@@ -25,6 +25,7 @@
 #include "dist/context.h"
 #include "light/environment.h"
 #include "mesh/mesh.h"
+#include "mesh/vertex_footprint.h"
 #include "reference/environment_sampler.h"
 
 namespace prt::reference {
@@ -48,6 +49,10 @@ struct ReferenceOptions {
   int threads = 0;              ///< worker threads; 0 = all cores. Does not change the output.
   bool progress = false;        ///< progress bar on stderr (only drawn when stderr is a terminal)
   const dist::Context* dist = nullptr;  ///< ranks of a distributed run (only rank 0's result is complete); null: this process
+  /// vertex_radiance: `area`, the hat-weighted average over each vertex's one-ring, what a bake with the
+  /// same footprint stores (paths from points of the footprint, vertex_driver.h footprint_estimate);
+  /// `vertex`, the radiance exactly at the vertex. point_radiance ignores it.
+  mesh::Footprint footprint = mesh::Footprint::vertex;
 };
 
 /// What a run did (timing is not part of the output).
@@ -69,8 +74,9 @@ std::vector<glm::vec3> reference_albedo(const mesh::Mesh& mesh, const glm::vec3&
 void check_options(const ReferenceOptions& options);
 
 /// Outgoing radiance of every vertex, in the mesh's vertex order, by path tracing (estimator.h) in the
-/// environment of `environment`. Vertices are visited in Morton order, in parallel chunks; each uses
-/// SampleStream(options.seed, v) and sums its paths in a fixed order, and the BVH is built with one
+/// environment of `environment`, at each vertex or over its footprint (options.footprint). Vertices are
+/// visited in Morton order, in parallel chunks; each uses SampleStream(options.seed, v) (footprint: its
+/// runs' streams, footprint_estimate) and sums its paths in a fixed order, and the BVH is built with one
 /// thread, so the result is bit-identical for any thread count. `standard_error` (optional) receives
 /// the per-vertex i.i.d. standard error estimates. Throws prt::Error for invalid options.
 std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,

@@ -95,6 +95,9 @@ TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical diffuse transfer", "[dist][ba
   CHECK(data.header.channels == 3);
   // The automatic bounce count: the stopping rule sees the same energies on every rank.
   check_identical("interreflected_auto", "bake " + in.grey + " --transfer interreflected --bands 2 --samples 16", ".prt");
+  // Rays from points of each vertex's footprint: chosen per vertex, whichever rank traces it.
+  check_identical("interreflected_area",
+                  "bake " + in.grey + " --transfer interreflected --bands 3 --samples 64 --bounces 2 --footprint area", ".prt");
 }
 
 TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical lightmaps", "[dist][bake][slow]") {
@@ -129,6 +132,7 @@ TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical probes and references", "[dis
                   "probes " + in.grey + " --env " + in.sky + " --grid 4,3,4 --format prt --rays 64 --surface-samples 16 --bounces 2 --transfer",
                   ".prt");
   check_identical("reference", "reference " + in.grey + " --env " + in.sky + " --samples 16 --bounces 1", ".ply");
+  check_identical("reference_area", "reference " + in.grey + " --env " + in.sky + " --samples 32 --bounces 1 --footprint area", ".ply");
   check_identical("reference_image",
                   "reference " + in.grey + " --env " + in.sky + " --samples 4 --image --size 40x30", ".exr", {3});
 }

@@ -145,9 +145,12 @@ TEST_CASE("prt reference agrees with prt bake + prt shade: rel_rms <= 1% shadowe
   struct Case {
     std::string name, bake_options, reference_options;
   };
+  // --footprint area averages over each vertex's one-ring (docs/conventions.md "Vertex footprint"): noisier
+  // per ray where visibility varies across it (the blocks' edges), so 4x the samples.
   const std::vector<Case> cases = {
       {"shadowed", "--transfer shadowed --samples 4096", "--bounces 0 --samples 2048"},
       {"interreflected", "--transfer interreflected --bounces 2 --samples 8192", "--bounces 2 --samples 8192"},
+      {"shadowed_area", "--transfer shadowed --samples 16384 --footprint area", "--bounces 0 --samples 8192 --footprint area"},
   };
   for (const Case& c : cases) {
     const std::string transfer = f.dir + "/" + c.name + ".prt", shaded = f.dir + "/" + c.name + "_shade.ply",
@@ -176,6 +179,7 @@ TEST_CASE("prt reference: bad inputs give one line, a non-zero exit and no outpu
       {"reference " + f.mesh + " --env " + f.env + " --albedo 0.5,0.5,1.5 -o " + out, "--albedo"},
       {"reference " + f.mesh + " --env " + f.env + " --samples 0 --bounces 0 -o " + out, "--samples"},
       {"reference " + f.mesh + " --env " + f.env + " --bounces -1 -o " + out, "--bounces"},
+      {"reference " + f.mesh + " --env " + f.env + " --footprint ring -o " + out, "--footprint: expected area or vertex, got 'ring'"},
       {"reference " + f.mesh + " --env " + f.env + " -o " + f.dir + "/out.txt", "out.txt"},
       {"reference " + f.mesh + " --env " + f.env + " -o " + f.dir + "/no/such/folder/out.ply", "folder"},
   };
