@@ -8,7 +8,9 @@
 #include "brdf/frame.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/parallel.h"
+#include "sh/sampling.h"
 #include "trace/scene.h"
 
 namespace prt::shade {
@@ -47,10 +49,18 @@ void accumulate(const mesh::Mesh& mesh, const std::vector<light::Disc>& discs, c
         const glm::dvec3 n(mesh.normals[v]);
         batch.clear();
         std::size_t used = 0;
-        for (const glm::dvec3& w : directions) {
+        const std::uint32_t scramble = hash_to_u32(options.seed, v, kDiscFootprintSalt);
+        for (std::size_t s = 0; s < directions.size(); ++s) {
+          const glm::dvec3& w = directions[s];
           if (!(glm::dot(n, w) > 0.0)) continue;
           w_of[used++] = w;
-          if (scene) batch.push(scene->offset_origin(mesh.positions[v], mesh.normals[v]), glm::vec3(w));
+          if (!scene) continue;
+          glm::vec3 from = mesh.positions[v];
+          if (options.footprints) {
+            const glm::dvec2 uw = sh::sobol_2d(static_cast<std::uint32_t>(s), scramble);
+            from = options.footprints->point(static_cast<std::uint32_t>(v), uw.x, uw.y);
+          }
+          batch.push(scene->offset_origin(from, mesh.normals[v]), glm::vec3(w));
         }
         if (scene && used) scene->occluded(batch);
         glm::dvec3 sum(0.0);

@@ -12,6 +12,11 @@
 // V is 1 when the ray from scene.offset_origin(x_p, n_p) toward w_s meets no triangle (either side), or
 // always 1 without a scene (unshadowed transfer). For a small disc fully above the horizon and
 // unoccluded, the diffuse term is (albedo / pi) E (n . d) (light/disc.h).
+// With footprints (a transfer baked with --footprint area), ray s of vertex p leaves from the footprint
+// point VertexFootprints::point(p, sobol_2d(s, hash_to_u32(seed, p, kDiscFootprintSalt))) instead of
+// x_p (lifted the same way): V is averaged over the surface that the vertex's value covers, as the
+// bake's sky and bounce terms are (docs/conventions.md "Vertex footprint").
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -19,6 +24,7 @@
 #include "brdf/brdf.h"
 #include "light/disc.h"
 #include "mesh/mesh.h"
+#include "mesh/vertex_footprint.h"
 
 namespace prt::trace {
 class Scene;
@@ -29,7 +35,13 @@ namespace prt::shade {
 struct DiscShadingOptions {
   int samples = 64;  ///< S per disc, rounded up to a square k^2; 1..65536
   int threads = 0;   ///< 0: all cores; the result does not depend on it
+  /// The mesh's vertex footprints, or null: rays leave from the vertices themselves (see above).
+  const mesh::VertexFootprints* footprints = nullptr;
+  std::uint32_t seed = 1;  ///< scrambles the footprint points
 };
+
+/// Salt of the hash that scrambles a vertex's footprint points for disc rays (core/hash.h).
+inline constexpr std::uint32_t kDiscFootprintSalt = 0xd15c0000u;
 
 /// Diffuse direct light of `discs` per vertex (linear RGB). `albedo` one per vertex; `scene` built from
 /// `mesh`, or nullptr for no shadows. Throws prt::Error if the sizes differ or samples is out of range.

@@ -40,6 +40,24 @@ std::unique_ptr<transfer::TransferData> bounce_part(const transfer::TransferData
   return part;
 }
 
+// The disc options for a transfer: `given`, with the mesh's footprints when the bake used them (kept
+// alive here; a move keeps the pointer valid).
+struct FootprintOptions {
+  std::unique_ptr<mesh::VertexFootprints> footprints;
+  DiscShadingOptions options;
+};
+
+FootprintOptions footprint_options(const mesh::Mesh& mesh, const transfer::Header& header, const std::string& origin,
+                                   const DiscShadingOptions& given) {
+  FootprintOptions out;
+  out.options = given;
+  if (baked_footprint(header, origin) == mesh::Footprint::area) {
+    out.footprints = std::make_unique<mesh::VertexFootprints>(mesh);
+    out.options.footprints = out.footprints.get();
+  }
+  return out;
+}
+
 void add_into(std::vector<glm::vec3>& to, const std::vector<glm::vec3>& from) {
   for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
 }
@@ -65,7 +83,8 @@ std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfe
   const trace::Scene* shadows = transfer.header.kind == transfer::Kind::unshadowed ? nullptr
                                 : shadow_scene_given                               ? shadow_scene_given
                                                                                    : scene.get();
-  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, shadows, options));
+  const FootprintOptions disc = footprint_options(mesh, transfer.header, origin, options);
+  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, shadows, disc.options));
   return clamped(std::move(out), lighting);
 }
 
@@ -85,7 +104,8 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
     view[v] = glm::length(d) > 0.0f ? glm::normalize(d) : mesh.normals[v];
   }
   const auto scene = shadow_scene(mesh, transfer.header, options.threads);
-  add_into(out, disc_direct_glossy(mesh, surface, lighting.discs, view, scene.get(), options));
+  const FootprintOptions disc = footprint_options(mesh, transfer.header, origin, options);
+  add_into(out, disc_direct_glossy(mesh, surface, lighting.discs, view, scene.get(), disc.options));
   return clamped(std::move(out), lighting);
 }
 

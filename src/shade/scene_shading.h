@@ -34,7 +34,9 @@ struct SplitReport {
 /// Diffuse transfer: per-vertex outgoing radiance under `lighting`. `origin` names the transfer in
 /// errors and the warning. Throws prt::Error for a glossy transfer or mismatched sizes.
 /// `shadow_scene`: the scene the discs' shadow rays are traced against; null: built from `mesh` (a
-/// lightmap passes a mesh of texel sample points and the real scene).
+/// lightmap passes a mesh of texel sample points and the real scene). A transfer baked with
+/// `--footprint area` (its parameters say so) gets its discs' shadow rays from the vertices'
+/// footprints too (disc_direct.h), so all its terms are averages over the same surface.
 std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
                                            const light::SceneLighting& lighting, const std::string& origin,
                                            const DiscShadingOptions& options = {}, SplitReport* report = nullptr,

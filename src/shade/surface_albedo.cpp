@@ -30,4 +30,13 @@ std::vector<glm::vec3> surface_albedo(const mesh::Mesh& mesh, const transfer::He
   return std::vector<glm::vec3>(mesh.positions.size(), fallback);
 }
 
+mesh::Footprint baked_footprint(const transfer::Header& header, const std::string& what) {
+  const nlohmann::json params = nlohmann::json::parse(header.parameters_json, nullptr, false);
+  if (!params.is_object() || !params.contains("footprint")) return mesh::Footprint::vertex;
+  const nlohmann::json& f = params["footprint"];
+  if (f == "area") return mesh::Footprint::area;
+  if (f == "vertex") return mesh::Footprint::vertex;
+  fail_file(what, "bake parameters: \"footprint\" must be \"area\" or \"vertex\"");
+}
+
 }  // namespace prt::shade

@@ -1,12 +1,13 @@
 #pragma once
-// The diffuse albedo a transfer was baked with, per vertex: what the exact (disc) direct term needs,
-// since a 1-channel transfer has the albedo folded in.
+// What the exact (disc) direct term needs to know of a transfer's bake: the diffuse albedo per vertex
+// (a 1-channel transfer has it folded in) and where the vertices' rays left from.
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "mesh/mesh.h"
+#include "mesh/vertex_footprint.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::shade {
@@ -17,5 +18,9 @@ namespace prt::shade {
 /// default. Throws prt::Error("<what>: ...") if the parameters say "mesh" but the mesh has no albedo,
 /// or the albedo entry is malformed.
 std::vector<glm::vec3> surface_albedo(const mesh::Mesh& mesh, const transfer::Header& header, const std::string& what);
+
+/// The footprint a transfer was baked with: its parameters' "footprint" ("area" or "vertex"), vertex
+/// when absent. Throws prt::Error("<what>: bake parameters: ...") for another value.
+mesh::Footprint baked_footprint(const transfer::Header& header, const std::string& what);
 
 }  // namespace prt::shade

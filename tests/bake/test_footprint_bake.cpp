@@ -16,6 +16,11 @@
 #include <glm/geometric.hpp>
 
 #include "bake/bake.h"
+#include "light/disc.h"
+#include "mesh/vertex_footprint.h"
+#include "shade/disc_direct.h"
+#include "shade/surface_albedo.h"
+#include "trace/scene.h"
 
 using namespace prt;
 
@@ -93,10 +98,11 @@ double visible_fraction(const Escapes& escapes, const glm::dvec3& q, const glm::
   return visible / double(kGrid * kGrid);
 }
 
-// The hat-weighted mean of visible_fraction over vertex c's one-ring: each triangle with c cut into
-// 12 x 12 sub-triangles, each weighted by its area times c's barycentric weight at its centroid.
-double footprint_truth(const Escapes& escapes, const mesh::Mesh& m, std::uint32_t c, const glm::dvec3& n) {
-  constexpr int kCuts = 12;
+// The hat-weighted mean of f(q, on_floor, on_wall) over vertex c's one-ring: each triangle with c cut
+// into cuts x cuts sub-triangles, each weighted by its area times c's barycentric weight at its centroid.
+template <class F>
+double hat_average(const mesh::Mesh& m, std::uint32_t c, int cuts, const F& f) {
+  const int kCuts = cuts;
   double sum = 0.0, weight = 0.0;
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
     int k = 0;
@@ -112,11 +118,18 @@ double footprint_truth(const Escapes& escapes, const mesh::Mesh& m, std::uint32_
           const double sb = (i + (up ? 2.0 : 1.0) / 3.0) / kCuts, sd = (j + (up ? 2.0 : 1.0) / 3.0) / kCuts;
           const double hat = 1.0 - sb - sd;
           const glm::dvec3 q = a + sb * (b - a) + sd * (d - a);
-          sum += hat * visible_fraction(escapes, q, n, on_floor, on_wall);
+          sum += hat * f(q, on_floor, on_wall);
           weight += hat;
         }
   }
   return sum / weight;
+}
+
+// The hat-weighted mean of visible_fraction over vertex c's one-ring (12 x 12 cuts).
+double footprint_truth(const Escapes& escapes, const mesh::Mesh& m, std::uint32_t c, const glm::dvec3& n) {
+  return hat_average(m, c, 12, [&](const glm::dvec3& q, bool on_floor, bool on_wall) {
+    return visible_fraction(escapes, q, n, on_floor, on_wall);
+  });
 }
 
 double baked_fraction(const mesh::Mesh& m, mesh::Footprint footprint, std::uint32_t v, transfer::TransferData* cache) {
@@ -224,4 +237,48 @@ TEST_CASE("bake footprint: a vertex under a small overhang stores the visibility
   CHECK(area_sum / 5 == Approx(truth_sum / 5).margin(0.02));
   CHECK(vertex_sum / 5 == Approx(at_vertex).margin(0.01));
   CHECK(truth_sum / 5 > at_vertex + 0.3);  // the overhang darkens the vertex, not its footprint
+}
+
+TEST_CASE("disc shading of an area bake: the sun's shadow rays leave from the footprint too", "[bake][footprint][sun]") {
+  // A small sun straight above the lids: each lid's vertex is in full shadow, its footprint only where
+  // the lid is above it (the penumbra, 0.05 tan(0.5 deg) wide, is far below the quadrature's cells).
+  const mesh::Mesh m = floor_with_lids();
+  const trace::Scene scene(m, trace::SceneOptions{1, true});
+  light::Disc sun;
+  sun.direction = glm::dvec3(0, 1, 0);
+  sun.irradiance = glm::dvec3(M_PI);  // (albedo / pi) E (n . d) = 1 where lit
+  sun.angular_radius = 0.5 * M_PI / 180;
+  const std::vector<glm::vec3> albedo(m.positions.size(), glm::vec3(1.0f));
+  const mesh::VertexFootprints footprints(m);
+  shade::DiscShadingOptions at_vertex, over_area;
+  at_vertex.samples = over_area.samples = 1024;
+  over_area.footprints = &footprints;
+  const std::vector<glm::vec3> point = shade::disc_direct_diffuse(m, albedo, {sun}, &scene, at_vertex);
+  const std::vector<glm::vec3> area = shade::disc_direct_diffuse(m, albedo, {sun}, &scene, over_area);
+  double truth_sum = 0.0, area_sum = 0.0;
+  for (double x : kLidX) {
+    const auto v = std::uint32_t(2 * (2 * kHalf + 1) + int(x) + kHalf);
+    const double truth = hat_average(m, v, 48, [](const glm::dvec3& q, bool, bool) {
+      return escapes_lids(q, glm::dvec3(0, 1, 0), true, false) ? 1.0 : 0.0;
+    });
+    INFO("x = " << x << ": lit fraction of the footprint " << truth << ", area " << area[v].r << ", at the vertex " << point[v].r);
+    CHECK(point[v].r == 0.0f);
+    CHECK(std::abs(area[v].r - truth) < 0.03);
+    truth_sum += truth;
+    area_sum += area[v].r;
+  }
+  CHECK(area_sum / 5 == Approx(truth_sum / 5).margin(0.01));
+  CHECK(truth_sum / 5 > 0.9);  // against 0 at the vertex itself
+}
+
+TEST_CASE("prt shade reads the footprint a transfer was baked with; a bad entry is an error naming the file", "[bake][footprint]") {
+  transfer::Header h;
+  h.parameters_json = "{}";
+  CHECK(shade::baked_footprint(h, "t.prt") == mesh::Footprint::vertex);
+  h.parameters_json = R"({"footprint":"area"})";
+  CHECK(shade::baked_footprint(h, "t.prt") == mesh::Footprint::area);
+  h.parameters_json = R"({"footprint":"vertex"})";
+  CHECK(shade::baked_footprint(h, "t.prt") == mesh::Footprint::vertex);
+  h.parameters_json = R"({"footprint":7})";
+  CHECK_THROWS_WITH(shade::baked_footprint(h, "t.prt"), Catch::Contains("t.prt") && Catch::Contains("\"footprint\" must be"));
 }
