@@ -46,6 +46,15 @@ std::string parameters_json(const BakeOptions& o, int bands_out, int bounces_don
   return j.dump();
 }
 
+// The direct pass's one matrix per vertex repeated for three channels (vertex-major, channel blocks).
+std::vector<float> three_channels(const std::vector<float>& direct, std::size_t vertices, std::size_t matrix_size) {
+  std::vector<float> out(vertices * 3 * matrix_size);
+  for (std::size_t v = 0; v < vertices; ++v)
+    for (int c = 0; c < 3; ++c)
+      std::copy(direct.begin() + v * matrix_size, direct.begin() + (v + 1) * matrix_size, out.begin() + (v * 3 + c) * matrix_size);
+  return out;
+}
+
 }  // namespace
 
 transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
@@ -75,10 +84,9 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
   std::vector<glm::mat3> frames(vertices);
   for (std::size_t v = 0; v < vertices; ++v) frames[v] = brdf::shading_frame(mesh.normals[v]);
+  const auto footprints = footprints_for(mesh, options.footprint);
   GlossyContext ctx{&mesh, scene.get(), &samples, &order, &frames, options.bands, bands_out,
-                          options.seed, options.threads, options.progress, options.dist};
-  const mesh::VertexFootprints footprints(mesh);
-  if (options.footprint == mesh::Footprint::area) ctx.footprints = &footprints;
+                    options.seed, options.threads, options.progress, options.dist, footprints.get()};
   const dist::Context& dist = dist::or_single(options.dist);
 
   start = std::chrono::steady_clock::now();
@@ -88,15 +96,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   if (interreflected) dist::allgather_items(dist, direct, matrix_size, &order);
   else dist::gather_items(dist, direct, matrix_size, &order);
   rep.seconds_visibility = seconds_since(start);
-  if (channels == 1) {
-    data.values = std::move(direct);
-  } else {
-    data.values.resize(vertices * 3 * matrix_size);
-    for (std::size_t v = 0; v < vertices; ++v)
-      for (int c = 0; c < 3; ++c)
-        std::copy(direct.begin() + v * matrix_size, direct.begin() + (v + 1) * matrix_size,
-                  data.values.begin() + (v * 3 + c) * matrix_size);
-  }
+  data.values = channels == 1 ? std::move(direct) : three_channels(direct, vertices, matrix_size);
   rep.pass_energy.push_back(pass_energy(data.values, matrix_size, vertices * channels));
 
   if (interreflected) {
