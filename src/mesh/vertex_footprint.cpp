@@ -1,23 +1,57 @@
 #include "mesh/vertex_footprint.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <unordered_map>
 
 #include "core/error.h"
+#include "core/hash.h"
 
 #include <glm/geometric.hpp>
 
 namespace prt::mesh {
 
+namespace {
+
+// Equal bits of position and normal: copies of one smooth vertex (split for UVs or materials).
+struct VertexKey {
+  std::array<std::uint32_t, 6> bits;
+  bool operator==(const VertexKey& o) const { return bits == o.bits; }
+};
+struct VertexKeyHash {
+  std::size_t operator()(const VertexKey& k) const {
+    std::uint64_t h = 0;
+    for (std::uint32_t b : k.bits) h = mix64(h ^ b);
+    return static_cast<std::size_t>(h);
+  }
+};
+
+VertexKey key_of(const Mesh& mesh, std::size_t v) {
+  VertexKey k{};
+  const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+  const float f[6] = {mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z, n.x, n.y, n.z};
+  for (int i = 0; i < 6; ++i) std::memcpy(&k.bits[static_cast<std::size_t>(i)], &f[i], sizeof(float));
+  return k;
+}
+
+}  // namespace
+
 VertexFootprints::VertexFootprints(const Mesh& mesh) : positions_(mesh.positions), indices_(&mesh.indices) {
   const std::vector<std::uint32_t>& idx = mesh.indices;
+  group_.resize(positions_.size());
+  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> first_of;
+  first_of.reserve(positions_.size());
+  for (std::size_t v = 0; v < positions_.size(); ++v)
+    group_[v] = first_of.emplace(key_of(mesh, v), static_cast<std::uint32_t>(v)).first->second;
   begin_.assign(positions_.size() + 1, 0);
-  for (std::uint32_t v : idx) ++begin_[v + 1];
+  for (std::uint32_t v : idx) ++begin_[group_[v] + 1];
   for (std::size_t v = 0; v < positions_.size(); ++v) begin_[v + 1] += begin_[v];
   corners_.resize(idx.size());
   cumulative_area_.resize(idx.size());
   std::vector<std::uint32_t> next(begin_.begin(), begin_.end() - 1);
-  for (std::size_t c = 0; c < idx.size(); ++c) corners_[next[idx[c]]++] = static_cast<std::uint32_t>(c);
+  for (std::size_t c = 0; c < idx.size(); ++c) corners_[next[group_[idx[c]]]++] = static_cast<std::uint32_t>(c);
   for (std::size_t v = 0; v < positions_.size(); ++v) {
     double sum = 0.0;
     for (std::uint32_t e = begin_[v]; e < begin_[v + 1]; ++e) {
@@ -30,11 +64,12 @@ VertexFootprints::VertexFootprints(const Mesh& mesh) : positions_(mesh.positions
 }
 
 double VertexFootprints::ring_area(std::uint32_t v) const {
-  return begin_[v + 1] > begin_[v] ? cumulative_area_[begin_[v + 1] - 1] : 0.0;
+  const std::uint32_t g = group_[v];
+  return begin_[g + 1] > begin_[g] ? cumulative_area_[begin_[g + 1] - 1] : 0.0;
 }
 
 glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w) const {
-  const std::uint32_t first = begin_[v], last = begin_[v + 1];
+  const std::uint32_t first = begin_[group_[v]], last = begin_[group_[v] + 1];
   const double total = ring_area(v);
   if (!(total > 0.0)) return positions_[v];
   const double target = u * total;

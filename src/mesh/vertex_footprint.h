@@ -31,8 +31,11 @@ inline constexpr int kMaxFootprintPoints = 1024;
 int footprint_point_count(int samples);
 
 /// For every vertex, the triangles around it and their areas, to draw points of its footprint.
-/// Read-only after construction: one may serve every thread. Holds a reference to the mesh's
-/// positions (the mesh must outlive it).
+/// Vertices with bit-identical position and normal (one smooth vertex split for UVs or materials, as
+/// glTF assets are along their UV seams) share the union of their triangles, so the copies on either
+/// side of a seam stand for the same surface; a hard edge (normals differ) stays split. Read-only after
+/// construction: one may serve every thread. Holds a reference to the mesh's positions and indices
+/// (the mesh must outlive it).
 class VertexFootprints {
  public:
   /// Lists each vertex's triangles (mesh.indices) with their areas. O(triangles) time and memory.
@@ -52,8 +55,9 @@ class VertexFootprints {
 
  private:
   const std::vector<glm::vec3>& positions_;
-  std::vector<std::uint32_t> begin_;        // vertex v's corners are corners_[begin_[v] .. begin_[v + 1])
-  std::vector<std::uint32_t> corners_;      // 3 t + k: corner k of triangle t, the corner at v
+  std::vector<std::uint32_t> group_;        // the first vertex with v's position and normal
+  std::vector<std::uint32_t> begin_;        // group g's corners are corners_[begin_[g] .. begin_[g + 1])
+  std::vector<std::uint32_t> corners_;      // 3 t + k: corner k of triangle t, the corner in the group
   std::vector<double> cumulative_area_;     // per entry of corners_, the area of v's triangles up to it
   const std::vector<std::uint32_t>* indices_ = nullptr;  // the mesh's
 };

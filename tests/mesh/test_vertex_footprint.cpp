@@ -98,3 +98,35 @@ TEST_CASE("vertex footprint: a vertex on no triangle is its own footprint; Beta(
     CHECK(mesh::beta22_quantile(cdf) == Approx(x).margin(1e-12));
   }
 }
+
+TEST_CASE("vertex footprint: copies of a smooth vertex (a UV seam) share one one-ring; a hard edge does not", "[footprint]") {
+  // The fan's vertex 0 split in two along a seam: triangle 0 keeps vertex 0, triangles 1 and 2 use its
+  // copy 6 (same position, same normal). Copy 7 has the position but another normal (a hard edge) and
+  // one triangle of its own.
+  mesh::Mesh m = fan();
+  m.positions.push_back(m.positions[0]);
+  m.normals.push_back(m.normals[0]);
+  m.positions.push_back(m.positions[0]);
+  m.normals.push_back(glm::vec3(1, 0, 0));
+  m.indices = {0, 1, 2, 6, 2, 3, 4, 1, 6, 7, 3, 4};
+  const mesh::VertexFootprints footprints(m);
+  const double whole = area(glm::dvec3(m.positions[0]), glm::dvec3(m.positions[1]), glm::dvec3(m.positions[2])) +
+                       area(glm::dvec3(m.positions[0]), glm::dvec3(m.positions[2]), glm::dvec3(m.positions[3])) +
+                       area(glm::dvec3(m.positions[4]), glm::dvec3(m.positions[1]), glm::dvec3(m.positions[0]));
+  CHECK(footprints.ring_area(0) == Approx(whole).epsilon(1e-9));
+  CHECK(footprints.ring_area(6) == Approx(whole).epsilon(1e-9));
+  CHECK(footprints.ring_area(7) == Approx(area(glm::dvec3(m.positions[0]), glm::dvec3(m.positions[3]), glm::dvec3(m.positions[4])))
+                                       .epsilon(1e-9));
+  // Both copies draw from all three triangles: the first triangle's share of points is its area share.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const glm::dvec3 p0(m.positions[0]), p1(m.positions[1]), p2(m.positions[2]);
+  const double share = area(p0, p1, p2) / whole;
+  for (std::uint32_t copy : {0u, 6u}) {
+    const int n = 100000;
+    int in_first = 0;
+    double b = 0.0;
+    for (int i = 0; i < n; ++i) in_first += weight_in(glm::dvec3(footprints.point(copy, u(rng), u(rng))), p0, p1, p2, b);
+    CHECK(std::abs(in_first / double(n) - share) < 5 * std::sqrt(share * (1 - share) / n));
+  }
+}
