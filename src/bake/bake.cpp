@@ -117,10 +117,6 @@ std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bo
   return j.dump();
 }
 
-std::unique_ptr<mesh::VertexFootprints> footprints_for(const mesh::Mesh& mesh, mesh::Footprint footprint) {
-  return footprint == mesh::Footprint::area ? std::make_unique<mesh::VertexFootprints>(mesh) : nullptr;
-}
-
 std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback) {
   if (!mesh.albedo.empty()) return mesh.albedo;
   return std::vector<glm::vec3>(mesh.positions.size(), fallback);
@@ -186,7 +182,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     order = trace::morton_order(mesh.positions);
     ctx = PassContext{&mesh, scene.get(), &samples, &order, options.seed, options.threads, options.progress};
     ctx.dist = options.dist;
-    footprints = footprints_for(mesh, options.footprint);
+    footprints = mesh::footprints_for(mesh, options.footprint);
     ctx.footprints = footprints.get();
     start = std::chrono::steady_clock::now();
     rep.rays_traced += shadowed_geometric(ctx, geometric);

@@ -84,7 +84,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   const std::vector<std::uint32_t> order = trace::morton_order(mesh.positions);
   std::vector<glm::mat3> frames(vertices);
   for (std::size_t v = 0; v < vertices; ++v) frames[v] = brdf::shading_frame(mesh.normals[v]);
-  const auto footprints = footprints_for(mesh, options.footprint);
+  const auto footprints = mesh::footprints_for(mesh, options.footprint);
   GlossyContext ctx{&mesh, scene.get(), &samples, &order, &frames, options.bands, bands_out,
                     options.seed, options.threads, options.progress, options.dist, footprints.get()};
   const dist::Context& dist = dist::or_single(options.dist);

@@ -63,9 +63,6 @@ struct PassContext {
   const char* point_unit() const { return points.positions ? "texels" : "vertices"; }
 };
 
-/// The mesh's vertex footprints for the passes' rays when `footprint` is area; null for vertex.
-std::unique_ptr<mesh::VertexFootprints> footprints_for(const mesh::Mesh& mesh, mesh::Footprint footprint);
-
 /// (1/pi) A_l, l < bands: the clamped-cosine factors of the unshadowed transfer.
 std::vector<double> unshadowed_factors(int bands);
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "sh/sampling.h"
 
 #include <glm/geometric.hpp>
 
@@ -82,6 +83,15 @@ glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w) const {
   const glm::dvec3 p(positions_[v]), a(positions_[idx[t + (k + 1) % 3]]), b(positions_[idx[t + (k + 2) % 3]]);
   const double own = beta22_quantile(rescaled), rest = 1.0 - own;
   return glm::vec3(own * p + rest * (w * a + (1.0 - w) * b));
+}
+
+glm::vec3 VertexFootprints::stratified_point(std::uint32_t v, std::uint32_t k, std::uint32_t scramble) const {
+  const glm::dvec2 uw = sh::sobol_2d(k, scramble);
+  return point(v, uw.x, uw.y);
+}
+
+std::unique_ptr<VertexFootprints> footprints_for(const Mesh& mesh, Footprint footprint) {
+  return footprint == Footprint::area ? std::make_unique<VertexFootprints>(mesh) : nullptr;
 }
 
 const char* footprint_name(Footprint footprint) { return footprint == Footprint::area ? "area" : "vertex"; }

@@ -34,16 +34,15 @@ std::vector<glm::vec3> glossy_vertex_radiance(const mesh::Mesh& mesh, const Envi
   const trace::Scene scene(mesh, trace::SceneOptions{1, true});  // one build thread: see reference.h
   rep.seconds_build = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const GlossyTracer tracer(mesh, scene, environment, options.estimator);
-  const mesh::VertexFootprints footprints(mesh);
+  const auto footprints = mesh::footprints_for(mesh, options.footprint);
   return detail::trace_every_vertex<GlossyWorkspace>(
       mesh.positions, "reference glossy", options.seed, options.samples, options.threads, options.progress, options.dist,
       rep, standard_error, [&](std::uint32_t v, SampleStream& stream, GlossyWorkspace& workspace) {
         const glm::dvec3 to_eye = options.eye - glm::dvec3(mesh.positions[v]);
         const double distance = glm::length(to_eye);
         const glm::dvec3 view = distance > 0.0 ? to_eye / distance : glm::dvec3(mesh.normals[v]);
-        if (options.footprint == mesh::Footprint::vertex)
-          return tracer.vertex_radiance(v, mesh.positions[v], view, options.samples, stream, workspace);
-        return detail::footprint_estimate(footprints, v, options.seed, options.samples,
+        if (!footprints) return tracer.vertex_radiance(v, mesh.positions[v], view, options.samples, stream, workspace);
+        return detail::footprint_estimate(*footprints, v, options.seed, options.samples,
                                           [&](const glm::vec3& position, int paths, SampleStream& run_stream) {
                                             return tracer.vertex_radiance(v, position, view, paths, run_stream, workspace);
                                           });

@@ -95,13 +95,12 @@ std::vector<glm::vec3> diffuse_radiance(const mesh::Mesh& mesh, const Environmen
 std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const EnvironmentSampler& environment,
                                        const ReferenceOptions& options, ReferenceReport* report,
                                        std::vector<glm::vec3>* standard_error) {
-  const mesh::VertexFootprints footprints(mesh);
+  const auto footprints = mesh::footprints_for(mesh, options.footprint);
   return diffuse_radiance(
       mesh, environment, options, mesh.positions, "reference", report, standard_error,
       [&](const PathTracer& tracer, const trace::Scene& scene, std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
-        if (options.footprint == mesh::Footprint::vertex)
-          return tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
-        return detail::footprint_estimate(footprints, v, options.seed, options.samples,
+        if (!footprints) return tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
+        return detail::footprint_estimate(*footprints, v, options.seed, options.samples,
                                           [&](const glm::vec3& position, int paths, SampleStream& run_stream) {
                                             SurfacePoint point = tracer.vertex_point(v);
                                             point.origin = glm::dvec3(scene.offset_origin(position, mesh.normals[v]));

@@ -80,23 +80,22 @@ std::vector<glm::vec3> trace_every_vertex(const std::vector<glm::vec3>& position
 
 /// Vertex v's estimate over its footprint (mesh/vertex_footprint.h), from `samples` paths cut into
 /// mesh::footprint_point_count(samples) runs of nearly equal length. Run k leaves from footprint point
-/// footprints.point(v, sh::sobol_2d(k, scramble)) (stratified over the footprint; scramble = the first
-/// output of SampleStream(seed, v)) and has its own stream, SampleStream(seed, v * mesh::kMaxFootprintPoints
-/// + k), for its paths: estimate_at(position, paths, stream) -> RadianceEstimate. The runs' means are weighted by their lengths; their standard errors, independent,
-/// are combined the same way.
+/// footprints.stratified_point(v, k, scramble) (scramble = the first output of SampleStream(seed, v))
+/// and has its own stream, SampleStream(seed, v * mesh::kMaxFootprintPoints + k), for its paths:
+/// estimate_at(position, paths, stream) -> RadianceEstimate. The runs' means are weighted by their
+/// lengths; their standard errors, independent, are combined the same way.
 template <class EstimateAt>
 RadianceEstimate footprint_estimate(const mesh::VertexFootprints& footprints, std::uint32_t v, std::uint32_t seed, int samples,
                                     const EstimateAt& estimate_at) {
   const int runs = mesh::footprint_point_count(samples);
   const std::uint32_t scramble = SampleStream(seed, v).rng().next_u32();
+  const auto run_end = [&](int run) { return static_cast<int>(static_cast<std::int64_t>(samples) * run / runs); };
   RadianceEstimate total;
   glm::dvec3 variance(0.0);
   for (int k = 0; k < runs; ++k) {
-    const auto end = [&](int run) { return static_cast<int>(static_cast<std::int64_t>(samples) * run / runs); };
-    const int paths = end(k + 1) - end(k);
+    const int paths = run_end(k + 1) - run_end(k);
     SampleStream stream(seed, static_cast<std::uint64_t>(v) * mesh::kMaxFootprintPoints + static_cast<std::uint64_t>(k));
-    const glm::dvec2 uw = sh::sobol_2d(static_cast<std::uint32_t>(k), scramble);
-    const RadianceEstimate e = estimate_at(footprints.point(v, uw.x, uw.y), paths, stream);
+    const RadianceEstimate e = estimate_at(footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble), paths, stream);
     const double w = static_cast<double>(paths) / samples;
     total.value += w * e.value;
     variance += w * w * e.standard_error * e.standard_error;

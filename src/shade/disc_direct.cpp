@@ -10,7 +10,6 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/parallel.h"
-#include "sh/sampling.h"
 #include "trace/scene.h"
 
 namespace prt::shade {
@@ -49,17 +48,15 @@ void accumulate(const mesh::Mesh& mesh, const std::vector<light::Disc>& discs, c
         const glm::dvec3 n(mesh.normals[v]);
         batch.clear();
         std::size_t used = 0;
-        const std::uint32_t scramble = hash_to_u32(options.seed, v, kDiscFootprintSalt);
+        const std::uint32_t scramble = options.footprints ? hash_to_u32(options.seed, v, kDiscFootprintSalt) : 0;
         for (std::size_t s = 0; s < directions.size(); ++s) {
           const glm::dvec3& w = directions[s];
           if (!(glm::dot(n, w) > 0.0)) continue;
           w_of[used++] = w;
           if (!scene) continue;
-          glm::vec3 from = mesh.positions[v];
-          if (options.footprints) {
-            const glm::dvec2 uw = sh::sobol_2d(static_cast<std::uint32_t>(s), scramble);
-            from = options.footprints->point(static_cast<std::uint32_t>(v), uw.x, uw.y);
-          }
+          const glm::vec3 from = options.footprints ? options.footprints->stratified_point(static_cast<std::uint32_t>(v),
+                                                                                            static_cast<std::uint32_t>(s), scramble)
+                                                    : mesh.positions[v];
           batch.push(scene->offset_origin(from, mesh.normals[v]), glm::vec3(w));
         }
         if (scene && used) scene->occluded(batch);

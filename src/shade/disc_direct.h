@@ -13,7 +13,7 @@
 // always 1 without a scene (unshadowed transfer). For a small disc fully above the horizon and
 // unoccluded, the diffuse term is (albedo / pi) E (n . d) (light/disc.h).
 // With footprints (a transfer baked with --footprint area), ray s of vertex p leaves from the footprint
-// point VertexFootprints::point(p, sobol_2d(s, hash_to_u32(seed, p, kDiscFootprintSalt))) instead of
+// point VertexFootprints::stratified_point(p, s, hash_to_u32(seed, p, kDiscFootprintSalt)) instead of
 // x_p (lifted the same way): V is averaged over the surface that the vertex's value covers, as the
 // bake's sky and bounce terms are (docs/conventions.md "Vertex footprint").
 #include <cstdint>

@@ -40,24 +40,6 @@ std::unique_ptr<transfer::TransferData> bounce_part(const transfer::TransferData
   return part;
 }
 
-// The disc options for a transfer: `given`, with the mesh's footprints when the bake used them (kept
-// alive here; a move keeps the pointer valid).
-struct FootprintOptions {
-  std::unique_ptr<mesh::VertexFootprints> footprints;
-  DiscShadingOptions options;
-};
-
-FootprintOptions footprint_options(const mesh::Mesh& mesh, const transfer::Header& header, const std::string& origin,
-                                   const DiscShadingOptions& given) {
-  FootprintOptions out;
-  out.options = given;
-  if (baked_footprint(header, origin) == mesh::Footprint::area) {
-    out.footprints = std::make_unique<mesh::VertexFootprints>(mesh);
-    out.options.footprints = out.footprints.get();
-  }
-  return out;
-}
-
 void add_into(std::vector<glm::vec3>& to, const std::vector<glm::vec3>& from) {
   for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
 }
@@ -83,8 +65,10 @@ std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfe
   const trace::Scene* shadows = transfer.header.kind == transfer::Kind::unshadowed ? nullptr
                                 : shadow_scene_given                               ? shadow_scene_given
                                                                                    : scene.get();
-  const FootprintOptions disc = footprint_options(mesh, transfer.header, origin, options);
-  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, shadows, disc.options));
+  const auto footprints = mesh::footprints_for(mesh, baked_footprint(transfer.header, origin));
+  DiscShadingOptions disc = options;
+  disc.footprints = footprints.get();
+  add_into(out, disc_direct_diffuse(mesh, surface_albedo(mesh, transfer.header, origin), lighting.discs, shadows, disc));
   return clamped(std::move(out), lighting);
 }
 
@@ -104,8 +88,10 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
     view[v] = glm::length(d) > 0.0f ? glm::normalize(d) : mesh.normals[v];
   }
   const auto scene = shadow_scene(mesh, transfer.header, options.threads);
-  const FootprintOptions disc = footprint_options(mesh, transfer.header, origin, options);
-  add_into(out, disc_direct_glossy(mesh, surface, lighting.discs, view, scene.get(), disc.options));
+  const auto footprints = mesh::footprints_for(mesh, baked_footprint(transfer.header, origin));
+  DiscShadingOptions disc = options;
+  disc.footprints = footprints.get();
+  add_into(out, disc_direct_glossy(mesh, surface, lighting.discs, view, scene.get(), disc));
   return clamped(std::move(out), lighting);
 }
 

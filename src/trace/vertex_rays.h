@@ -35,21 +35,17 @@ namespace prt::trace {
 /// Vertices per parallel_for chunk of trace_vertex_rays.
 inline constexpr std::size_t kVerticesPerChunk = 64;
 
-
 /// Salt of the hash (core/hash.h) that scrambles a vertex's footprint points.
 inline constexpr std::uint32_t kFootprintSalt = 0xf0070000u;
 
 /// The first `count` (<= mesh::kMaxFootprintPoints) ray origins of vertex v with a footprint: point k =
-/// footprints.point(v, sh::sobol_2d(k, hash_to_u32(seed, v, kFootprintSalt))), stratified over the
-/// footprint, lifted off the surface along the vertex normal n as Scene::offset_origin does (the lift
+/// footprints.stratified_point(v, k, hash_to_u32(seed, v, kFootprintSalt)), lifted off the surface along the vertex normal n as Scene::offset_origin does (the lift
 /// stays above every one-ring face whose normal is within 90 degrees of n).
 inline void footprint_origins(const mesh::VertexFootprints& footprints, const Scene& scene, std::uint32_t v,
                               const glm::vec3& n, std::uint32_t seed, std::size_t count, glm::vec3* out) {
   const std::uint32_t scramble = hash_to_u32(seed, v, kFootprintSalt);
-  for (std::size_t k = 0; k < count; ++k) {
-    const glm::dvec2 uw = sh::sobol_2d(static_cast<std::uint32_t>(k), scramble);
-    out[k] = scene.offset_origin(footprints.point(v, uw.x, uw.y), n);
-  }
+  for (std::size_t k = 0; k < count; ++k)
+    out[k] = scene.offset_origin(footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble), n);
 }
 
 /// Which query a pass runs on its rays.
