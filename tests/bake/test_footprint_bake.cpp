@@ -20,6 +20,7 @@
 #include "mesh/vertex_footprint.h"
 #include "shade/disc_direct.h"
 #include "shade/surface_albedo.h"
+#include "support/shapes.h"
 #include "trace/scene.h"
 
 using namespace prt;
@@ -178,29 +179,9 @@ namespace {
 constexpr double kLidHalf = 0.1, kLidHeight = 0.05;
 const double kLidX[5] = {-6, -3, 0, 3, 6};
 
-// A floor x in [-8, 8], z in [-2, 2] (normal +y) and the five lids, each two triangles facing down.
+// A floor x in [-8, 8], z in [-2, 2] (normal +y) and the five lids (test::floor_with_lids).
 mesh::Mesh floor_with_lids() {
-  mesh::Mesh m;
-  for (int r = -2; r <= 2; ++r)
-    for (int i = -kHalf; i <= kHalf; ++i) {
-      m.positions.emplace_back(i, 0, r);
-      m.normals.emplace_back(0, 1, 0);
-    }
-  const int columns = 2 * kHalf + 1;
-  auto at = [columns](int i, int r) { return std::uint32_t((r + 2) * columns + i + kHalf); };
-  for (int r = -2; r < 2; ++r)
-    for (int i = -kHalf; i < kHalf; ++i)
-      m.indices.insert(m.indices.end(), {at(i, r), at(i, r + 1), at(i + 1, r + 1), at(i, r), at(i + 1, r + 1), at(i + 1, r)});
-  for (double x : kLidX) {
-    const auto first = std::uint32_t(m.positions.size());
-    for (int k = 0; k < 4; ++k) {
-      const double dx = (k == 1 || k == 2) ? kLidHalf : -kLidHalf, dz = k >= 2 ? kLidHalf : -kLidHalf;
-      m.positions.emplace_back(x + dx, kLidHeight, dz);
-      m.normals.emplace_back(0, -1, 0);
-    }
-    m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
-  }
-  return m;
+  return test::floor_with_lids(kHalf, std::vector<double>(std::begin(kLidX), std::end(kLidX)), kLidHalf, kLidHeight);
 }
 
 bool escapes_lids(const glm::dvec3& q, const glm::dvec3& w, bool, bool) {

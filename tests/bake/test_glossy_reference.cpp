@@ -90,7 +90,10 @@ TEST_CASE("glossy PRT agrees with the glossy reference under band-limited lighti
   // the BRDF at the interpolated normal, and near a 45-degree crease normal a glossy lobe differs a lot
   // between the two (reported in the note; Lambert shows 0.8% there).
   const int bands = 5;
-  const mesh::Mesh surface = test::bowl(10, 20);
+  const mesh::Mesh bowl = test::bowl(10, 20);
+  // For --footprint area: a floor with small lids over five vertices, which darken those vertices far
+  // more than the surface around them (so a reference that ignored the footprint would fail).
+  const mesh::Mesh lids = test::floor_with_lids(8, {-6, -3, 0, 3, 6}, 0.1, 0.05);
   const light::Environment env = sky();
   const sh::RgbCoefficients lighting = light::project(env, bands);
   const reference::EnvironmentSampler limited(reference::band_limited_environment(env, bands));
@@ -99,13 +102,16 @@ TEST_CASE("glossy PRT agrees with the glossy reference under band-limited lighti
     transfer::Kind kind;
     int bounces, bake_samples, reference_samples;
     mesh::Footprint footprint;
+    const mesh::Mesh* surface;
   };
   // --footprint area (both sides: the average over each vertex's one-ring) is noisier per sample where
   // visibility varies across the ring: 4x the samples.
-  for (const Case& c : {Case{"phong:exponent=16,ks=0.5,kd=0.4", transfer::Kind::glossy_shadowed, 0, 4096, 2048, mesh::Footprint::vertex},
-                        Case{"ggx:roughness=0.4,f0=0.5/0.4/0.3,albedo=0.3", transfer::Kind::glossy_interreflected, 1, 8192, 8192,
-                             mesh::Footprint::vertex},
-                        Case{"phong:exponent=16,ks=0.5,kd=0.4", transfer::Kind::glossy_shadowed, 0, 16384, 8192, mesh::Footprint::area}}) {
+  for (const Case& c :
+       {Case{"phong:exponent=16,ks=0.5,kd=0.4", transfer::Kind::glossy_shadowed, 0, 4096, 2048, mesh::Footprint::vertex, &bowl},
+        Case{"ggx:roughness=0.4,f0=0.5/0.4/0.3,albedo=0.3", transfer::Kind::glossy_interreflected, 1, 8192, 8192, mesh::Footprint::vertex,
+             &bowl},
+        Case{"phong:exponent=16,ks=0.5,kd=0.4", transfer::Kind::glossy_shadowed, 0, 16384, 8192, mesh::Footprint::area, &lids}}) {
+    const mesh::Mesh& surface = *c.surface;
     bake::BakeOptions o;
     o.kind = c.kind;
     o.bands = bands;

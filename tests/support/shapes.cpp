@@ -109,4 +109,28 @@ mesh::Mesh bowl(int rings, int segments) {
   return m;
 }
 
+mesh::Mesh floor_with_lids(int half, const std::vector<double>& lid_x, double lid_half, double lid_height) {
+  mesh::Mesh m;
+  for (int r = -2; r <= 2; ++r)
+    for (int i = -half; i <= half; ++i) {
+      m.positions.emplace_back(i, 0, r);
+      m.normals.emplace_back(0, 1, 0);
+    }
+  const int columns = 2 * half + 1;
+  auto at = [columns, half](int i, int r) { return std::uint32_t((r + 2) * columns + i + half); };
+  for (int r = -2; r < 2; ++r)
+    for (int i = -half; i < half; ++i)
+      m.indices.insert(m.indices.end(), {at(i, r), at(i, r + 1), at(i + 1, r + 1), at(i, r), at(i + 1, r + 1), at(i + 1, r)});
+  for (double x : lid_x) {
+    const auto first = std::uint32_t(m.positions.size());
+    for (int k = 0; k < 4; ++k) {
+      const double dx = (k == 1 || k == 2) ? lid_half : -lid_half, dz = k >= 2 ? lid_half : -lid_half;
+      m.positions.emplace_back(x + dx, lid_height, dz);
+      m.normals.emplace_back(0, -1, 0);
+    }
+    m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+  }
+  return m;
+}
+
 }  // namespace prt::test

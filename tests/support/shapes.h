@@ -1,6 +1,8 @@
 #pragma once
 // Meshes generated in code for tests: shapes whose geometry gives known answers.
 // All are counter-clockwise seen from the side their normals point to.
+#include <vector>
+
 #include "mesh/mesh.h"
 
 namespace prt::test {
@@ -18,6 +20,11 @@ mesh::Mesh open_box(float height, int cells);
 /// The inside of the lower unit hemisphere (a bowl open toward +Y), `rings` x `segments` vertices plus
 /// the pole (last), normals toward the centre: smooth and concave. Ring 0 is the rim.
 mesh::Mesh bowl(int rings, int segments);
+
+/// A unit-grid floor y = 0 over x in [-half, half], z in [-2, 2] (normal +Y), with a small square lid
+/// (side 2 lid_half, facing down, normal -Y) lid_height above the floor vertex (x, 0, 0) for each x in
+/// lid_x (integers in (-half, half)): each lid darkens its vertex far more than the surface around it.
+mesh::Mesh floor_with_lids(int half, const std::vector<double>& lid_x, double lid_half, double lid_height);
 
 /// A closed mesh seen from inside is not something the baker handles (single-sided); these shapes
 /// are all meant to be seen from the side of their normals.
