@@ -87,79 +87,60 @@ PRT_SH_INLINE void for_each_block(std::size_t count, std::size_t width, std::siz
   }
 }
 
-// Crowded strides beyond kMaxFastBands bands (the generic recurrence). A tile of kStageBytes worth of
-// consecutive directions is evaluated
-// column group by column group (columns m, all l, at most kStageRows rows per group) into a small
-// scratch block in L1, and each scratch row is then copied to its output row: the output stores run
-// along rows (8 cache lines at a time) instead of down the crowded column of rows. The recurrence is
-// the generic one; the memory traffic, not the arithmetic, bounds this path.
-constexpr std::size_t kStageBytes = 512;
-constexpr int kStageRows = 64;  // >= 2 (kMaxBands - 1), the largest column
-
-int column_rows(int bands, int m) { return m == 0 ? bands : 2 * (bands - m); }
+// Crowded strides beyond kMaxFastBands bands (the generic recurrence). A tile of kColumnTileBytes of
+// consecutive directions is evaluated one step (l, m) after another across the whole tile, with each
+// block's state ((C_m, S_m) and the column's last two F) kept in arrays between steps, so that the stores
+// run along one row at a time (the tile's lines of Y_l,m, then those of Y_l,-m) instead of down the crowded
+// column of rows. The arithmetic is eval_generic's, in the same order: the direct path's bits. Measured on
+// Zen 5 (AVX-512, 1024 directions, stride = count, paired against the padded direct path; bench_sh_eval):
+// 0.9-1.1x at 17-32 bands, where staging the tile in an L1 scratch block and copying its rows out took 2x;
+// two rows at a time (Y_l,m and Y_l,-m per block) 1.0-1.25x; tiles of 256 bytes 3.2-3.6x and of 1 KiB
+// 1.4-1.9x (the state arrays and the tile's lines then collide in L1: fewer sets, or more state).
+constexpr std::size_t kColumnTileBytes = 512;
 
 template <typename T>
-void staged_tile(int bands, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
+void column_tile(int bands, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
   using V = Vec<T>;
-  constexpr std::size_t lanes = kLanes<T>, width = kStageBytes / sizeof(T), blocks = width / lanes;
-  constexpr std::size_t scratch_stride = width + kCacheLine / sizeof(T);  // rows padded off one another's sets
-  alignas(64) T scratch[kStageRows * scratch_stride];
-  int row_index[kStageRows];  // output row of each scratch row
-  V c[blocks] = {}, s[blocks] = {};  // (C_m, S_m) of the last column done, per block
+  constexpr std::size_t lanes = kLanes<T>, blocks = kColumnTileBytes / sizeof(V);
   const RecurrenceTables& r = kRecurrence;
-  for (int m_begin = 0; m_begin < bands;) {
-    int m_end = m_begin, rows = 0;
-    while (m_end < bands && rows + column_rows(bands, m_end) <= kStageRows) rows += column_rows(bands, m_end++);
-    int* next_index = row_index;  // the order in which the kernel below emits rows
-    for (int m = m_begin; m < m_end; ++m)
-      for (int l = m; l < bands; ++l) {
-        *next_index++ = index(l, m);
-        if (m > 0) *next_index++ = index(l, -m);
+  V vx[blocks], vy[blocks], vz[blocks], c[blocks] = {}, s[blocks] = {}, f1[blocks] = {}, f2[blocks] = {};
+  for (std::size_t b = 0; b < blocks; ++b) {
+    vx[b] = load<V>(x + b * lanes);
+    vy[b] = load<V>(y + b * lanes);
+    vz[b] = load<V>(z + b * lanes);
+  }
+  for (int m = 0; m < bands; ++m) {
+    for (std::size_t b = 0; b < blocks && m >= 1; ++b) {
+      if (m == 1) {
+        c[b] = vx[b];
+        s[b] = vy[b];
+      } else {
+        V c_next = vx[b] * c[b] - vy[b] * s[b];
+        s[b] = vx[b] * s[b] + vy[b] * c[b];
+        c[b] = c_next;
       }
-    for (std::size_t b = 0; b < blocks; ++b) {
-      const V vx = load<V>(x + b * lanes), vy = load<V>(y + b * lanes), vz = load<V>(z + b * lanes);
-      V cm = c[b], sm = s[b];
-      T* dst = scratch + b * lanes;  // next scratch row, in row_index order
-      auto put = [&](V value) {
-        store(dst, value);
-        dst += scratch_stride;
-      };
-      for (int m = m_begin; m < m_end; ++m) {
-        if (m == 1) {
-          cm = vx;
-          sm = vy;
-        } else if (m > 1) {
-          V c_next = vx * cm - vy * sm;
-          sm = vx * sm + vy * cm;
-          cm = c_next;
-        }
-        auto emit = [&](V f) {
-          if (m == 0) {
-            put(f);
-          } else {
-            put(f * cm);
-            put(f * sm);
-          }
-        };
-        V f2 = splat<V>(static_cast<T>(r.f_mm[m]));
-        emit(f2);
-        if (m + 1 >= bands) continue;
-        V f1 = static_cast<T>(r.f_m1[m]) * vz;
-        emit(f1);
-        for (int l = m + 2; l < bands; ++l) {
-          V f = (static_cast<T>(r.a[l][m]) * vz) * f1 + static_cast<T>(r.b[l][m]) * f2;
-          f2 = f1;
-          f1 = f;
-          emit(f);
-        }
-      }
-      c[b] = cm;
-      s[b] = sm;
     }
-    for (int row = 0; row < rows; ++row)
-      std::memcpy(out + static_cast<std::size_t>(row_index[row]) * stride, scratch + row * scratch_stride,
-                  sizeof(T) * width);
-    m_begin = m_end;
+    for (int l = m; l < bands; ++l) {
+      T* const plus = out + static_cast<std::size_t>(index(l, m)) * stride;
+      const T a = static_cast<T>(r.a[l][m]), bl = static_cast<T>(r.b[l][m]);
+      for (std::size_t b = 0; b < blocks; ++b) {
+        V f;
+        if (l == m) {
+          f = splat<V>(static_cast<T>(r.f_mm[m]));
+          f1[b] = f;
+        } else if (l == m + 1) {
+          f = static_cast<T>(r.f_m1[m]) * vz[b];
+        } else {
+          f = (a * vz[b]) * f1[b] + bl * f2[b];
+        }
+        f2[b] = f1[b];
+        f1[b] = f;
+        store(plus + b * lanes, m == 0 ? f : f * c[b]);
+      }
+      if (m == 0) continue;
+      T* const minus = out + static_cast<std::size_t>(index(l, -m)) * stride;
+      for (std::size_t b = 0; b < blocks; ++b) store(minus + b * lanes, f1[b] * s[b]);
+    }
   }
 }
 
@@ -454,10 +435,10 @@ void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, 
 
 template <typename T>
 void batch_generic(int bands, std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
-  constexpr std::size_t tile = kStageBytes / sizeof(T);
+  constexpr std::size_t tile = kColumnTileBytes / sizeof(T);
   if (count >= tile && rows_share_cache_sets<T>(bands * bands, stride)) {
     for_each_block(count, tile, alignment_peel(out, kCacheLine), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
-      staged_tile<T>(bands, x + j, y + j, z + j, out + j, stride);
+      column_tile<T>(bands, x + j, y + j, z + j, out + j, stride);
     });
     return;
   }
@@ -499,7 +480,7 @@ void eval_batch_generic(int bands, std::size_t count, const double* x, const dou
 }
 
 std::size_t staged_tile_directions(int bands, std::size_t count, std::size_t element_bytes) {
-  if (bands > kMaxFastBands) return kStageBytes / element_bytes;
+  if (bands > kMaxFastBands) return kColumnTileBytes / element_bytes;
   return element_bytes == sizeof(double) ? pieces_tile_length<double>(count) : pieces_tile_length<float>(count);
 }
 

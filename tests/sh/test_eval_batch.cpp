@@ -242,7 +242,8 @@ TEST_CASE("float paths match the reference to float precision", "[sh][eval]") {
 
 TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the reference values", "[sh][eval]") {
   // Up to 16 bands eval_batch cuts the kernel into pieces of a few rows run over tiles of up to 2 KiB of
-  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond, it stages tiles of 512 bytes. These
+  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond, it runs the recurrence a step at a time
+  // across tiles of 512 bytes. These
   // counts cover fewer directions than one vector (the scalar path), one partial tile, one whole tile and
   // several of them (1024, 1100 and 2500 floats, 512 and more doubles: tiles of equal length, the last one
   // overlapping), with out 64-byte aligned or not (offset 1). Directions repeat with a period of 1009 (prime): a misplaced
@@ -290,8 +291,12 @@ TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
   // fails here and in the test case above. Strides (in elements): multiples of
   // 4 KiB (every row on one cache-set position) and 128 (at 16 bands crowded too: 512 bytes for float, 32
   // rows on each of 8 positions; 1 KiB for double).
+  // Beyond kMaxFastBands (the generic recurrence stepped across tiles) at 17, 24 and 32 bands.
   const auto dirs = rounded_to_float(test_directions(1100));
-  for (int bands = 1; bands <= sh::kMaxFastBands; ++bands) {
+  std::vector<int> band_counts;
+  for (int bands = 1; bands <= sh::kMaxFastBands; ++bands) band_counts.push_back(bands);
+  for (int bands : {17, 24, sh::kMaxBands}) band_counts.push_back(bands);
+  for (int bands : band_counts) {
     for (std::size_t count : {16, 100, 1024, 1100}) {
       for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}, std::size_t{128}}) {
         if (crowded < count) continue;
