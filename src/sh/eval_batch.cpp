@@ -9,6 +9,7 @@
 // stride, measured (Zen 3, Xeon). Such strides take a path that writes the same bytes in another order
 // (batch_pieces: a few rows at a time along long runs of directions); padded_stride() gives a stride
 // that needs none of it.
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -87,21 +88,24 @@ PRT_SH_INLINE void for_each_block(std::size_t count, std::size_t width, std::siz
   }
 }
 
-// Crowded strides beyond kMaxFastBands bands (the generic recurrence). A tile of kColumnTileBytes of
-// consecutive directions is evaluated one step (l, m) after another across the whole tile, with each
-// block's state ((C_m, S_m) and the column's last two F) kept in arrays between steps, so that the stores
-// run along one row at a time (the tile's lines of Y_l,m, then those of Y_l,-m) instead of down the crowded
-// column of rows. The arithmetic is eval_generic's, in the same order: the direct path's bits. Measured on
-// Zen 5 (AVX-512, 1024 directions, stride = count, paired against the padded direct path; bench_sh_eval):
-// 0.9-1.1x at 17-32 bands, where staging the tile in an L1 scratch block and copying its rows out took 2x;
-// two rows at a time (Y_l,m and Y_l,-m per block) 1.0-1.25x; tiles of 256 bytes 3.2-3.6x and of 1 KiB
-// 1.4-1.9x (the state arrays and the tile's lines then collide in L1: fewer sets, or more state).
+// Crowded strides, the column-step path. A tile of kColumnTileBytes of consecutive directions is evaluated
+// one step (l, m) after another across the whole tile, with each block's state ((C_m, S_m) and the column's
+// last two F) kept in arrays between steps, so that the stores run along one row at a time (the tile's
+// lines of Y_l,m, then those of Y_l,-m) instead of down the crowded column of rows. The arithmetic is that of
+// the direct path it stands in for, in the same order, on the same value type V: eval_generic's
+// (kFixedForm false, V = Vec<T>) or eval_fixed's (kFixedForm true, V = Block<T>), whose step l = m + 2 is a
+// polynomial in z^2 (column_value): the direct path's bits either way.
+// Measured on Zen 5 (AVX-512, 1024 directions, stride = count, paired against the padded direct path;
+// bench_sh_eval 'inputs placed'): 0.73-1.05x at 6-16 bands (PieceRule::columns_bands), 0.9-1.1x at 17-32
+// bands, where staging the tile in an L1 scratch block and
+// copying its rows out took 2x; two rows at a time (Y_l,m and Y_l,-m per block) 1.0-1.25x; tiles of 256
+// or 384 bytes 1.2-3.6x and of 640 bytes to 4 KiB 1.1-1.9x (the state arrays, the inputs and the tile's
+// lines in L1 collide or outgrow it).
 constexpr std::size_t kColumnTileBytes = 512;
 
-template <typename T>
-void column_tile(int bands, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
-  using V = Vec<T>;
-  constexpr std::size_t lanes = kLanes<T>, blocks = kColumnTileBytes / sizeof(V);
+template <typename T, typename V, bool kFixedForm>
+PRT_SH_INLINE void column_tile(int bands, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
+  constexpr std::size_t lanes = sizeof(V) / sizeof(T), blocks = kColumnTileBytes / sizeof(V);
   const RecurrenceTables& r = kRecurrence;
   V vx[blocks], vy[blocks], vz[blocks], c[blocks] = {}, s[blocks] = {}, f1[blocks] = {}, f2[blocks] = {};
   for (std::size_t b = 0; b < blocks; ++b) {
@@ -109,39 +113,50 @@ void column_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
     vy[b] = load<V>(y + b * lanes);
     vz[b] = load<V>(z + b * lanes);
   }
-  for (int m = 0; m < bands; ++m) {
-    for (std::size_t b = 0; b < blocks && m >= 1; ++b) {
-      if (m == 1) {
-        c[b] = vx[b];
-        s[b] = vy[b];
-      } else {
-        V c_next = vx[b] * c[b] - vy[b] * s[b];
-        s[b] = vx[b] * s[b] + vy[b] * c[b];
-        c[b] = c_next;
-      }
+  int m = 0;
+  // Step (l, m) across the tile: F_l^m = value(b) per block, then the tile's lines of Y_l,m and Y_l,-m.
+  auto step = [&](int l, auto&& value) PRT_SH_LAMBDA_INLINE {
+    T* const plus = out + static_cast<std::size_t>(index(l, m)) * stride;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const V f = value(b);
+      f2[b] = f1[b];
+      f1[b] = f;
+      store(plus + b * lanes, m == 0 ? f : f * c[b]);
     }
-    for (int l = m; l < bands; ++l) {
-      T* const plus = out + static_cast<std::size_t>(index(l, m)) * stride;
+    if (m == 0) return;
+    T* const minus = out + static_cast<std::size_t>(index(l, -m)) * stride;
+    for (std::size_t b = 0; b < blocks; ++b) store(minus + b * lanes, f1[b] * s[b]);
+  };
+  for (; m < bands; ++m) {
+    if (m == 1) {
+      std::copy(vx, vx + blocks, c);
+      std::copy(vy, vy + blocks, s);
+    } else if (m > 1) {
+      for (std::size_t b = 0; b < blocks; ++b) advance_cs(vx[b], vy[b], c[b], s[b]);
+    }
+    const T f_mm = static_cast<T>(r.f_mm[m]), f_m1 = static_cast<T>(r.f_m1[m]);
+    step(m, [&](std::size_t) PRT_SH_LAMBDA_INLINE { return splat<V>(f_mm); });
+    if (m + 1 < bands) step(m + 1, [&](std::size_t b) PRT_SH_LAMBDA_INLINE { return f_m1 * vz[b]; });
+    int l = m + 2;
+    if (kFixedForm && l < bands) {
+      // column_value's F_{m+2}^m = p2 z^2 + p0, its constants rounded from the same double products.
+      const T p2 = static_cast<T>(r.a[l][m] * r.f_m1[m]), p0 = static_cast<T>(r.b[l][m] * r.f_mm[m]);
+      step(l++, [&](std::size_t b) PRT_SH_LAMBDA_INLINE { return z2_polynomial(p2, vz[b] * vz[b], p0); });
+    }
+    for (; l < bands; ++l) {
       const T a = static_cast<T>(r.a[l][m]), bl = static_cast<T>(r.b[l][m]);
-      for (std::size_t b = 0; b < blocks; ++b) {
-        V f;
-        if (l == m) {
-          f = splat<V>(static_cast<T>(r.f_mm[m]));
-          f1[b] = f;
-        } else if (l == m + 1) {
-          f = static_cast<T>(r.f_m1[m]) * vz[b];
-        } else {
-          f = (a * vz[b]) * f1[b] + bl * f2[b];
-        }
-        f2[b] = f1[b];
-        f1[b] = f;
-        store(plus + b * lanes, m == 0 ? f : f * c[b]);
-      }
-      if (m == 0) continue;
-      T* const minus = out + static_cast<std::size_t>(index(l, -m)) * stride;
-      for (std::size_t b = 0; b < blocks; ++b) store(minus + b * lanes, f1[b] * s[b]);
+      step(l, [&](std::size_t b) PRT_SH_LAMBDA_INLINE { return recurrence_step(a, bl, vz[b], f1[b], f2[b]); });
     }
   }
+}
+
+// eval_batch for crowded strides through column_tile, count >= the tile, tile by tile.
+template <typename T, typename V, bool kFixedForm>
+PRT_SH_INLINE void batch_columns(int bands, std::size_t count, const T* x, const T* y, const T* z, T* out,
+                                 std::size_t stride) {
+  for_each_block(count, kColumnTileBytes / sizeof(T), alignment_peel(out, kCacheLine), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+    column_tile<T, V, kFixedForm>(bands, x + j, y + j, z + j, out + j, stride);
+  });
 }
 
 // Crowded strides with the band count's own kernel (up to kMaxFastBands bands): the kernel cut into pieces.
@@ -168,7 +183,11 @@ void column_tile(int bands, const T* x, const T* y, const T* z, T* out, std::siz
 //   with input copies from 6 bands, 0.7-1.06x at 4-7, 9 and 11-16 bands and 1.15-1.2x at 8 and 10 (1.0-1.25x
 //   at 8-16 with page-aligned rows and the strides timed in pairs), where keeping everything from column 2 /
 //   depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector per cache line the arithmetic per
-//   stored line is half AVX2's.
+//   stored line is half AVX2's. From 6 bands on Zen 5 the column tiles above beat the pieces: 0.73-1.05x the
+//   padded batch at 6-16 bands (two runs, paired), where the pieces took 0.98-1.17x; below 6 the pieces
+//   (0.65-0.9x at 4-5 bands; the column tiles 0.92-1.14x there, 1.7x at 3).
+// - The column tiles on AVX2 (an AVX2 build run on Zen 5): 2.1-3.7x the padded batch at 3-16 bands (eight
+//   blocks of Pairs do not fit 16 registers), against the pieces' 1.0-1.4x. Not measured on a Xeon.
 // The default follows the build's target (__znverN__: GCC and clang tuning for AMD Zen, which -march=native
 // picks on any Zen); PRT_SH_PIECE_RULE (0 recompute, 1 keep deep, 2 keep) overrides it, for the tests.
 struct PieceRule {
@@ -179,13 +198,14 @@ struct PieceRule {
                            // the recurrence reads neither, and resuming at l = m + 2 replays one multiply)
   std::size_t tile_bytes;  // directions per tile, in bytes of one input stream
   int copy_inputs_bands;   // the pieces read copies of x, y, z (kCopyInputs) from this band count on
+  int columns_bands;       // from this band count on column tiles (column_tile) instead of pieces
 };
 // 2 KiB tiles keep a tile's seven scratch streams (x, y, z, C, S and two F) at 14 KiB of L1; 4 KiB tiles were
 // 1.1-1.2x slower on Zen 3 at 9-16 bands, 1 KiB within noise. On Zen 5 (48 KiB L1), keeping deep, 2 KiB
 // tiles were 1.1-1.3x slower than 4 KiB at 4-10 bands and the same within noise at 13-16.
-constexpr PieceRule kRecomputeRule{14, false, 2, 3, 4096, 4};
-constexpr PieceRule kKeepDeepRule{1, true, 4, 5, 4096, 6};
-constexpr PieceRule kKeepRule{1, true, 2, 3, 2048, 4};
+constexpr PieceRule kRecomputeRule{14, false, 2, 3, 4096, 4, kMaxFastBands + 1};
+constexpr PieceRule kKeepDeepRule{1, true, 4, 5, 4096, 6, 6};
+constexpr PieceRule kKeepRule{1, true, 2, 3, 2048, 4, kMaxFastBands + 1};
 #if defined(PRT_SH_PIECE_RULE)
 constexpr int kPieceRuleIndex = PRT_SH_PIECE_RULE;
 #elif defined(__znver1__) || defined(__znver2__) || defined(__znver3__) || defined(__znver4__) || \
@@ -425,7 +445,10 @@ PRT_SH_INLINE void run_batch(std::size_t count, const T* x, const T* y, const T*
 template <int N, typename T>
 void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
   if (count >= kBlockLanes<T> && rows_share_cache_sets<T>(N * N, stride)) {
-    batch_pieces<N, T>(count, x, y, z, out, stride);
+    if (N >= kPieceRule.columns_bands && count >= kColumnTileBytes / sizeof(T))
+      batch_columns<T, Block<T>, true>(N, count, x, y, z, out, stride);
+    else
+      batch_pieces<N, T>(count, x, y, z, out, stride);
     return;
   }
   run_batch<T, true>(count, x, y, z, out, stride, [](auto vx, auto vy, auto vz, StridedStore<T>& put) PRT_SH_LAMBDA_INLINE {
@@ -435,11 +458,8 @@ void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, 
 
 template <typename T>
 void batch_generic(int bands, std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
-  constexpr std::size_t tile = kColumnTileBytes / sizeof(T);
-  if (count >= tile && rows_share_cache_sets<T>(bands * bands, stride)) {
-    for_each_block(count, tile, alignment_peel(out, kCacheLine), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
-      column_tile<T>(bands, x + j, y + j, z + j, out + j, stride);
-    });
+  if (count >= kColumnTileBytes / sizeof(T) && rows_share_cache_sets<T>(bands * bands, stride)) {
+    batch_columns<T, Vec<T>, false>(bands, count, x, y, z, out, stride);
     return;
   }
   run_batch<T, false>(count, x, y, z, out, stride,

@@ -22,7 +22,8 @@
 // - eval_generic: runtime loops over the same tables; for any band count up to kMaxBands.
 // Both are written over a value type V that is either a scalar (float, double) or a GCC/Clang vector
 // extension type holding several directions (one per lane), so one source gives the single-direction
-// path and the path vectorised across directions. The arithmetic is plain + and *; no intrinsics.
+// path and the path vectorised across directions. The arithmetic is plain + and *, and the sums of two
+// products are madd() (below): the one place with intrinsics.
 // GCC contracts a * b + c into a fused multiply-add where the target has one (C++ default
 // -ffp-contract=fast), so FMA and non-FMA builds differ in the last bits.
 //
@@ -30,10 +31,15 @@
 // within 1e-13 up to 32 bands; float grows as bands^1.5: over 130 000 random directions (GCC 12 with FMA,
 // clang 14 without) the worst was 9.4e-8 * bands^1.5 (5.2e-8 at 1 band, 1.6e-6 at 9, 5.0e-6 at 16,
 // 1.6e-5 at 32), from the float recurrence and the float input.
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <type_traits>
 #include <utility>
+
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__FMA__)
+#include <immintrin.h>
+#endif
 
 #include "core/constants.h"
 #include "sh/basis.h"
@@ -145,6 +151,88 @@ template <typename V, typename T>
 PRT_SH_INLINE Pair<V> operator+(Pair<V> p, T t) { return {p.a + t, p.b + t}; }
 
 // ---------------------------------------------------------------------------------------------
+// Multiply-adds written out. Left to itself, GCC fuses x * y + v * w into a multiply-add on whichever
+// product its passes happen to leave first, and in some loops not at all: eval_batch's column tiles (the
+// recurrence stepped across a tile, eval_batch.cpp) came out unfused, or fused the other way in some unrolled
+// copies, so a few values differed in the last bit from the direct path's kernel (7 bands and up). So the
+// kernels' sums of products are madd(x, y, z): on vectors of directions x * y + z rounded once, by the target's
+// fused multiply-add instruction, on x86 with FMA (the one place with intrinsics: a loop of std::fma over the
+// lanes, which GCC 12 -O3 turns into one instruction, was miscompiled by its SLP vectoriser inside the column
+// tiles); on scalars and elsewhere x * y + z as written, which the compiler may fuse as it sees fit. The order
+// is the one GCC chose by itself in the vector kernels, so no bits change (tests/sh, and bench files checked
+// bit for bit against the build before).
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__FMA__)
+#define PRT_SH_FMA_INTRINSICS 1
+inline constexpr bool kHasFma = true;
+#if defined(__AVX512F__)
+inline constexpr std::size_t kFmaBytes = 64;  // the widest vector one instruction takes
+#else
+inline constexpr std::size_t kFmaBytes = 32;
+#endif
+#else
+inline constexpr bool kHasFma = false;
+inline constexpr std::size_t kFmaBytes = 0;
+#endif
+
+/// x * y + z (kSubtract: x * y - z) on vectors of directions, rounded once where kHasFma.
+template <bool kSubtract = false, typename V>
+PRT_SH_INLINE V madd(V x, V y, V z) {
+  if constexpr (IsPair<V>::value) {
+    return V{madd<kSubtract>(x.a, y.a, z.a), madd<kSubtract>(x.b, y.b, z.b)};
+  } else if constexpr (!kHasFma || std::is_arithmetic_v<V>) {
+    if constexpr (kSubtract) return x * y - z;
+    else return x * y + z;
+#if defined(PRT_SH_FMA_INTRINSICS)
+  } else if constexpr (sizeof(V) > kFmaBytes) {
+    // Wider than the target's vectors (PRT_SH_VECTOR_BYTES above them): half at a time.
+    using E = std::remove_cv_t<std::remove_reference_t<decltype(x[0])>>;
+    typedef E Half __attribute__((vector_size(sizeof(V) / 2)));
+    Half h[3][2];
+    std::memcpy(h[0], &x, sizeof(V));
+    std::memcpy(h[1], &y, sizeof(V));
+    std::memcpy(h[2], &z, sizeof(V));
+    const Half r[2] = {madd<kSubtract>(h[0][0], h[1][0], h[2][0]), madd<kSubtract>(h[0][1], h[1][1], h[2][1])};
+    V out;
+    std::memcpy(&out, r, sizeof(V));
+    return out;
+  } else {
+    constexpr bool kFloat = std::is_same_v<std::remove_cv_t<std::remove_reference_t<decltype(x[0])>>, float>;
+    const V w = kSubtract ? -z : z;  // exact: fma(x, y, -z) is x y - z rounded once
+#if defined(__AVX512F__)
+    if constexpr (sizeof(V) == 64 && kFloat) return (V)_mm512_fmadd_ps((__m512)x, (__m512)y, (__m512)w);
+    if constexpr (sizeof(V) == 64 && !kFloat) return (V)_mm512_fmadd_pd((__m512d)x, (__m512d)y, (__m512d)w);
+#endif
+    if constexpr (sizeof(V) == 32 && kFloat) return (V)_mm256_fmadd_ps((__m256)x, (__m256)y, (__m256)w);
+    if constexpr (sizeof(V) == 32 && !kFloat) return (V)_mm256_fmadd_pd((__m256d)x, (__m256d)y, (__m256d)w);
+    if constexpr (sizeof(V) == 16 && kFloat) return (V)_mm_fmadd_ps((__m128)x, (__m128)y, (__m128)w);
+    if constexpr (sizeof(V) == 16 && !kFloat) return (V)_mm_fmadd_pd((__m128d)x, (__m128d)y, (__m128d)w);
+    static_assert(sizeof(V) == 16 || sizeof(V) == 32 || sizeof(V) == 64, "vectors of 16, 32 or 64 bytes");
+#endif
+  }
+}
+
+/// Whether the kernels' sums of products on V go through madd. Scalars (the single-direction path, which
+/// has no column tiles) keep the expressions as written, in that order: GCC fuses by statement order, and
+/// products passed as madd's arguments come first (its fusing, and for (C_2, S_2) its x y + y x -> 2 x y,
+/// changed with them: other bits in sh::eval and in bakes).
+template <typename V>
+inline constexpr bool kExplicitMadd = kHasFma && !std::is_arithmetic_v<V>;
+
+/// p2 z^2 + p0 (F_{m+2}^m), as madd(p2, z^2, p0).
+template <typename T, typename V>
+PRT_SH_INLINE V z2_polynomial(T p2, V z2, T p0) {
+  if constexpr (kExplicitMadd<V>) return madd(splat<V>(p2), z2, splat<V>(p0));
+  else return p2 * z2 + p0;
+}
+
+/// The three-term recurrence F_l = (a z) F_{l-1} + b F_{l-2}, as madd(a z, F_{l-1}, b F_{l-2}).
+template <typename T, typename V>
+PRT_SH_INLINE V recurrence_step(T a, T b, V z, V f1, V f2) {
+  if constexpr (kExplicitMadd<V>) return madd(a * z, f1, b * f2);
+  else return (a * z) * f1 + b * f2;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Recurrence constants (double; the float kernels round each to float once).
 
 /// Square root usable in constant expressions: Newton's iteration in long double, rounded once to
@@ -239,21 +327,29 @@ PRT_SH_INLINE V column_value(V z, V z2, V f1, V f2) {
     // F_{M+2}^M = a z (f_m1 z) + b f_mm, a polynomial in z^2: one multiply-add.
     constexpr T p2 = static_cast<T>(kRecurrence.a[M + 2][M] * kRecurrence.f_m1[M]);
     constexpr T p0 = static_cast<T>(kRecurrence.b[M + 2][M] * kRecurrence.f_mm[M]);
-    return p2 * z2 + p0;
+    return z2_polynomial(p2, z2, p0);
   } else {
-    constexpr T a = static_cast<T>(kRecurrence.a[L][M]);
-    constexpr T b = static_cast<T>(kRecurrence.b[L][M]);
-    return (a * z) * f1 + b * f2;
+    return recurrence_step(static_cast<T>(kRecurrence.a[L][M]), static_cast<T>(kRecurrence.b[L][M]), z, f1, f2);
   }
 }
 
-// (C_m, S_m) -> (C_{m+1}, S_{m+1}): one complex multiplication by (x + i y).
+/// (C_m, S_m) -> (C_{m+1}, S_{m+1}) in place: one complex multiplication by (x + i y), each part as
+/// madd(x, C or S, -+ y (S or C)).
+template <typename V>
+PRT_SH_INLINE void advance_cs(V x, V y, V& c, V& s) {
+  if constexpr (kExplicitMadd<V>) {
+    const V c_next = madd<true>(x, c, y * s);
+    s = madd(x, s, y * c);
+    c = c_next;
+  } else {
+    const V c_next = x * c - y * s;
+    s = x * s + y * c;
+    c = c_next;
+  }
+}
 template <typename V>
 PRT_SH_INLINE void advance_cs(V x, V y, KernelState<V>& st) {
-  V c_next = x * st.c - y * st.s;
-  V s_next = x * st.s + y * st.c;
-  st.c = c_next;
-  st.s = s_next;
+  advance_cs(x, y, st.c, st.s);
 }
 
 // Step E: F_L^M, with (C, S) advanced by one power of (x + i y) at the start of each column m >= 1
@@ -332,11 +428,7 @@ PRT_SH_INLINE void eval_generic(int bands, V x, V y, V z, Put& put) {
   const RecurrenceTables& r = kRecurrence;
   V c = splat<V>(T(1)), s = splat<V>(T(0));  // (C_m, S_m), starting at m = 0
   for (int m = 0; m < bands; ++m) {
-    if (m > 0) {
-      V c_next = x * c - y * s;
-      s = x * s + y * c;
-      c = c_next;
-    }
+    if (m > 0) advance_cs(x, y, c, s);
     V f2 = splat<V>(static_cast<T>(r.f_mm[m]));
     V f1 = f2;
     for (int l = m; l < bands; ++l) {
@@ -346,7 +438,7 @@ PRT_SH_INLINE void eval_generic(int bands, V x, V y, V z, Put& put) {
       } else if (l == m + 1) {
         f = static_cast<T>(r.f_m1[m]) * z;
       } else {
-        f = (static_cast<T>(r.a[l][m]) * z) * f1 + static_cast<T>(r.b[l][m]) * f2;
+        f = recurrence_step(static_cast<T>(r.a[l][m]), static_cast<T>(r.b[l][m]), z, f1, f2);
       }
       f2 = f1;
       f1 = f;

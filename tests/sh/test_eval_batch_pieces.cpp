@@ -2,7 +2,8 @@
 // is built with its own copy of the SH kernels, compiled with PRT_SH_VECTOR_BYTES-wide vectors (GCC splits
 // wider ones into the machine's own registers) and the piece rule PRT_SH_PIECE_RULE (eval_batch.cpp: 0
 // recomputes the resume state, as on a Xeon with AVX-512; 1 keeps (C, S) from column 4 and deep F, as on
-// Zen 5; 2 keeps both from column 2, as with AVX2). The main SH tests exercise only the machine's own rule.
+// Zen 5, where from 6 bands column tiles replace the pieces; 2 keeps both from column 2, as with AVX2). The
+// main SH tests exercise only the machine's own rule.
 // Checked: the pieces give the direct path's bits, and both the reference values (sh::eval_reference,
 // through theta and phi: another algorithm than the kernels' recurrence in z).
 #include <catch2/catch.hpp>
@@ -50,7 +51,12 @@ TEST_CASE("crowded strides give the direct path's bits and the reference values 
   for (int j = 0; j < 1100; ++j) dirs.push_back(prt::test::random_direction(rng));
   // Counts within one tile and over several (tiles of 2 or 4 KiB of directions), strides of 4 KiB multiples
   // (every row on one cache-set position).
-  for (int bands = 1; bands <= sh::kMaxFastBands; ++bands)
+  // Beyond kMaxFastBands (17 and 24 bands) the generic recurrence's column tiles, with this build's vectors.
+  std::vector<int> band_counts;
+  for (int bands = 1; bands <= sh::kMaxFastBands; ++bands) band_counts.push_back(bands);
+  band_counts.push_back(17);
+  band_counts.push_back(24);
+  for (int bands : band_counts)
     for (std::size_t count : {32, 100, 1024, 1100})
       for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}}) {
         if (crowded < count) continue;
