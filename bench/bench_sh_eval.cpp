@@ -371,8 +371,8 @@ void print_batch_table(const SummaryReporter& r, std::size_t batch, std::size_t 
               "batch figure is that bound plus a little, and the targets are bounds on memory, not on evaluation.\n"
               "'s=c bound': std::fill of the same bytes with out_stride = count, whole rows one after another ('rows'), "
               "and in the order of eval_batch's path for crowded strides ('tiled': tiles of the shown number of "
-              "directions, up to 16 bands 4 rows at a time, a vector of directions into each in turn; beyond, "
-              "whole rows of the tile): that path cannot beat 'tiled'.\n"
+              "directions, 4 rows at a time, a vector of directions into each in turn, where it runs pieces; one "
+              "row's run of the tile at a time where it runs column tiles): that path cannot beat 'tiled'.\n"
               "Peer figures in parentheses are CONSTANTS (Sloan, JCGT 2013, SSE x4 0.61 / 1.58 / 3.35 / 6.0 ns and "
               "scalar 2.1 / 6.4 / 13.6 / 23.2 ns for 3 / 5 / 7 / 9 bands, measured once on this machine kind), not "
               "measured in this run.\n", batch);

@@ -7,8 +7,8 @@
 // (count = 1024 or 4096 with out_stride = count, the natural choice), all those stores fall into the
 // same L1 cache set, a burst of bands^2 lines into one set of 8-12 ways: 2-3.5x slower than with a good
 // stride, measured (Zen 3, Xeon). Such strides take a path that writes the same bytes in another order
-// (batch_pieces: a few rows at a time along long runs of directions); padded_stride() gives a stride
-// that needs none of it.
+// (batch_pieces: a few rows at a time along long runs of directions; batch_columns: one row at a time
+// along short tiles); padded_stride() gives a stride that needs none of it.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -218,6 +218,8 @@ static_assert(0 <= kPieceRuleIndex && kPieceRuleIndex <= 2, "PRT_SH_PIECE_RULE i
 constexpr PieceRule kPieceRule =
     kPieceRuleIndex == 0 ? kRecomputeRule : kPieceRuleIndex == 1 ? kKeepDeepRule : kKeepRule;
 constexpr int kPieceRows = 4;
+// Whether eval_batch's crowded strides run column tiles (else pieces) at this band count (count >= a tile).
+constexpr bool crowded_by_columns(int bands) { return bands > kMaxFastBands || bands >= kPieceRule.columns_bands; }
 constexpr std::size_t kPieceTileBytes = kPieceRule.tile_bytes;
 template <int N>
 inline constexpr bool kKeepsCs = N >= kPieceRule.keep_cs_bands;
@@ -445,7 +447,7 @@ PRT_SH_INLINE void run_batch(std::size_t count, const T* x, const T* y, const T*
 template <int N, typename T>
 void batch_fixed(std::size_t count, const T* x, const T* y, const T* z, T* out, std::size_t stride) {
   if (count >= kBlockLanes<T> && rows_share_cache_sets<T>(N * N, stride)) {
-    if (N >= kPieceRule.columns_bands && count >= kColumnTileBytes / sizeof(T))
+    if (crowded_by_columns(N) && count >= kColumnTileBytes / sizeof(T))
       batch_columns<T, Block<T>, true>(N, count, x, y, z, out, stride);
     else
       batch_pieces<N, T>(count, x, y, z, out, stride);
@@ -500,11 +502,11 @@ void eval_batch_generic(int bands, std::size_t count, const double* x, const dou
 }
 
 std::size_t staged_tile_directions(int bands, std::size_t count, std::size_t element_bytes) {
-  if (bands > kMaxFastBands) return kColumnTileBytes / element_bytes;
+  if (crowded_by_columns(bands)) return kColumnTileBytes / element_bytes;
   return element_bytes == sizeof(double) ? pieces_tile_length<double>(count) : pieces_tile_length<float>(count);
 }
 
-int staged_pass_rows(int bands) { return bands <= kMaxFastBands ? kPieceRows : 1; }
+int staged_pass_rows(int bands) { return crowded_by_columns(bands) ? 1 : kPieceRows; }
 
 void eval_one_generic(int bands, float x, float y, float z, float* out) {
   auto put = [out](int k, float v) { out[k] = v; };

@@ -242,8 +242,8 @@ TEST_CASE("float paths match the reference to float precision", "[sh][eval]") {
 
 TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the reference values", "[sh][eval]") {
   // Up to 16 bands eval_batch cuts the kernel into pieces of a few rows run over tiles of up to 2 KiB of
-  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond, it runs the recurrence a step at a time
-  // across tiles of 512 bytes. These
+  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond (and from 6 bands in AVX-512 builds for
+  // AMD Zen), it runs the recurrence a step at a time across tiles of 512 bytes. These
   // counts cover fewer directions than one vector (the scalar path), one partial tile, one whole tile and
   // several of them (1024, 1100 and 2500 floats, 512 and more doubles: tiles of equal length, the last one
   // overlapping), with out 64-byte aligned or not (offset 1). Directions repeat with a period of 1009 (prime): a misplaced
