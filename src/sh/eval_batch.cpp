@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <type_traits>
 #include <utility>
 
@@ -86,6 +87,19 @@ PRT_SH_INLINE void for_each_block(std::size_t count, std::size_t width, std::siz
     j = next < last ? next : last;
     next += width;
   }
+}
+
+// for_each_block's blocks, the same starts, from the last down to 0.
+template <typename Block>
+PRT_SH_INLINE void for_each_block_backwards(std::size_t count, std::size_t width, std::size_t peel, Block&& block) {
+  const std::size_t last = count - width;
+  const std::size_t second = peel > 0 && peel < width ? peel : width;
+  if (last > 0) {
+    block(last);
+    // The starts second + i * width below last, highest first.
+    for (std::size_t i = last > second ? (last - second - 1) / width + 1 : 0; i-- > 0;) block(second + i * width);
+  }
+  block(0);
 }
 
 // Crowded strides, the column-step path. A tile of kColumnTileBytes of consecutive directions is evaluated
@@ -185,7 +199,8 @@ PRT_SH_INLINE void batch_columns(int bands, std::size_t count, const T* x, const
 //   depth 3 cost 1.05-1.3x at 4-7 bands (kKeepDeepRule). With a vector per cache line the arithmetic per
 //   stored line is half AVX2's. From 6 bands on Zen 5 the column tiles above beat the pieces: 0.73-1.05x the
 //   padded batch at 6-16 bands (two runs, paired), where the pieces took 0.98-1.17x; below 6 the pieces
-//   (0.65-0.9x at 4-5 bands; the column tiles 0.92-1.14x there, 1.7x at 3).
+//   (0.65-0.9x at 4-5 bands, 0.94-1.03x at 3 with piece_rows and runs_backwards below; the column tiles
+//   0.92-1.14x at 4-5, 1.7x at 3).
 // - The column tiles on AVX2 (an AVX2 build run on Zen 5): 2.1-3.7x the padded batch at 3-16 bands (eight
 //   blocks of Pairs do not fit 16 registers), against the pieces' 1.0-1.4x. Not measured on a Xeon.
 // The default follows the build's target (__znverN__: GCC and clang tuning for AMD Zen, which -march=native
@@ -218,6 +233,11 @@ static_assert(0 <= kPieceRuleIndex && kPieceRuleIndex <= 2, "PRT_SH_PIECE_RULE i
 constexpr PieceRule kPieceRule =
     kPieceRuleIndex == 0 ? kRecomputeRule : kPieceRuleIndex == 1 ? kKeepDeepRule : kKeepRule;
 constexpr int kPieceRows = 4;
+// Rows per piece at this band count: kPieceRows, except two pieces of 5 and 4 rows at 3 bands (instead of 4, 3
+// and 2: one pass over the inputs fewer; the tile's rows and inputs stay in L1 there): 0.98-1.03x the padded
+// batch against 0.97-1.05x on Zen 5 (AVX-512; inputs 1024-3072 bytes past the rows' page offset, three paired
+// runs), within noise on AVX2 (an AVX2 build on Zen 5). A small gain, kept.
+constexpr int piece_rows(int bands) { return bands == 3 ? 5 : kPieceRows; }
 // Whether eval_batch's crowded strides run column tiles (else pieces) at this band count (count >= a tile).
 constexpr bool crowded_by_columns(int bands) { return bands > kMaxFastBands || bands >= kPieceRule.columns_bands; }
 constexpr std::size_t kPieceTileBytes = kPieceRule.tile_bytes;
@@ -239,10 +259,34 @@ constexpr std::size_t kInputShift = 1024;
 template <int N>
 inline constexpr bool kCopyInputs = N >= kPieceRule.copy_inputs_bands;
 
+// At 3 bands, where the pieces read the caller's inputs in place, a tile whose inputs lie just below the rows'
+// page offset runs its blocks backwards: going forward, the loads of the blocks just ahead match the page
+// offsets of stores still pending from the blocks just written (4K aliasing); backwards they meet those of
+// stores long done. Inputs 128 bytes below the rows: 1.10-1.18x -> 0.95-0.98x the padded batch on Zen 5
+// (AVX-512, five paired runs each), 1.10-1.16x -> 1.05-1.07x with AVX2 (an AVX2 build on Zen 5). At 4 and 5
+// bands backwards was slower (4 bands, 0.74-0.77x against 0.63-0.68x: there the output outgrows L1).
+template <int N>
+inline constexpr bool kMayRunBackwards = N == 3 && !kCopyInputs<N>;
+constexpr std::size_t kBackwardsWindow = 512;  // bytes
+
+// Whether a tile of the pieces runs backwards: some input's page offset lies up to kBackwardsWindow bytes below
+// that of the rows (out) and none lies at or less than that above it (where backwards the loads would meet the
+// pending stores instead).
+template <typename T>
+bool runs_backwards(const T* out, const T* x, const T* y, const T* z) {
+  bool below = false, above = false;
+  for (const T* in : {x, y, z}) {
+    const std::size_t up = (reinterpret_cast<std::uintptr_t>(in) - reinterpret_cast<std::uintptr_t>(out)) % kPage;
+    below = below || (up != 0 && kPage - up <= kBackwardsWindow);
+    above = above || up < kBackwardsWindow;
+  }
+  return below && !above;
+}
+
 // Output rows of one kernel step: Y_l,0, or Y_l,m and Y_l,-m.
 constexpr int step_rows(const KernelStep& step) { return step.m == 0 ? 1 : 2; }
 
-// The pieces of the N-band kernel: steps [begin[p], begin[p + 1]), at most kPieceRows rows each.
+// The pieces of the N-band kernel: steps [begin[p], begin[p + 1]), at most piece_rows(N) rows each.
 template <int N>
 struct Pieces {
   int count = 0;
@@ -258,7 +302,7 @@ constexpr Pieces<N> make_pieces() {
     do {
       rows += step_rows(kernel_step<N>(e));
       ++e;
-    } while (e < kKernelSteps<N> && rows + step_rows(kernel_step<N>(e)) <= kPieceRows);
+    } while (e < kKernelSteps<N> && rows + step_rows(kernel_step<N>(e)) <= piece_rows(N));
   }
   p.begin[p.count] = kKernelSteps<N>;
   return p;
@@ -319,12 +363,13 @@ struct TileInputs {
 // AVX2), and the crowded stride's bits differed from the padded stride's; speed was the same within noise
 // (Zen 3).
 template <int N, int P, typename T>
-PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride) {
+PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride,
+                              bool backwards) {
   using V = Block<T>;
   constexpr int e0 = kPieces<N>.begin[P], e1 = kPieces<N>.begin[P + 1];
   constexpr PiecePlan plan = kPlan<N, P>;
-  std::size_t kept = 0;  // where in the scratch streams this block's state is
-  for_each_block(n, kBlockLanes<T>, peel, [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+  std::size_t kept = 0;  // where in the scratch streams this block's state is (every piece visits the blocks alike)
+  auto block = [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
     const V vx = load<V>(in.x + j), vy = load<V>(in.y + j), vz = load<V>(in.z + j);
     KernelState<V> st{vx, vy, vx, vy};  // what the steps read before writing is set below
     if constexpr (plan.loads_cs) {
@@ -350,13 +395,20 @@ PRT_SH_INLINE void piece_pass(std::size_t n, std::size_t peel, const TileInputs<
       store(in.s + kept, st.s);
     }
     kept += kBlockLanes<T>;
-  });
+  };
+  if constexpr (kMayRunBackwards<N>) {
+    if (backwards) {
+      for_each_block_backwards(n, kBlockLanes<T>, peel, block);
+      return;
+    }
+  }
+  for_each_block(n, kBlockLanes<T>, peel, block);
 }
 
 template <int N, typename T, int... P>
 PRT_SH_INLINE void pieces_tile(std::size_t n, std::size_t peel, const TileInputs<T>& in, T* out, std::size_t stride,
-                               std::integer_sequence<int, P...>) {
-  (piece_pass<N, P, T>(n, peel, in, out, stride), ...);
+                               bool backwards, std::integer_sequence<int, P...>) {
+  (piece_pass<N, P, T>(n, peel, in, out, stride, backwards), ...);
 }
 
 // Directions per tile for count >= kBlockLanes: the fewest tiles of at most kPieceTileBytes of directions, of
@@ -409,7 +461,8 @@ PRT_SH_NOINLINE void batch_pieces(std::size_t count, const T* x, const T* y, con
       in.f1 = take();
       in.f2 = take();
     }
-    pieces_tile<N, T>(tile, alignment_peel(out + j, kCacheLine), in, out + j, stride, pieces);
+    const bool backwards = kMayRunBackwards<N> && runs_backwards(out + j, in.x, in.y, in.z);
+    pieces_tile<N, T>(tile, alignment_peel(out + j, kCacheLine), in, out + j, stride, backwards, pieces);
   }
 }
 
@@ -506,7 +559,7 @@ std::size_t staged_tile_directions(int bands, std::size_t count, std::size_t ele
   return element_bytes == sizeof(double) ? pieces_tile_length<double>(count) : pieces_tile_length<float>(count);
 }
 
-int staged_pass_rows(int bands) { return crowded_by_columns(bands) ? 1 : kPieceRows; }
+int staged_pass_rows(int bands) { return crowded_by_columns(bands) ? 1 : piece_rows(bands); }
 
 void eval_one_generic(int bands, float x, float y, float z, float* out) {
   auto put = [out](int k, float v) { out[k] = v; };

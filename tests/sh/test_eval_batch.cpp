@@ -308,6 +308,26 @@ TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
   }
 }
 
+TEST_CASE("crowded strides give the direct path's bits wherever the inputs lie", "[sh][eval]") {
+  // Where the caller's inputs lie just below the rows' page offset the 3-band pieces run their blocks backwards
+  // (eval_batch.cpp, runs_backwards): every block must still be written once, with the same bits, for counts of
+  // one tile and of several, with and without an alignment peel (rows 0, 16 or 200 bytes past a page boundary),
+  // and for the other placements and band counts, forwards.
+  const auto dirs = rounded_to_float(test_directions(1100));
+  for (int bands = 1; bands <= 8; ++bands)
+    for (std::size_t count : {16, 100, 1024, 1100})
+      for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}})
+        for (std::size_t rows_offset : {0, 16, 200})
+          for (std::size_t inputs_below : {0, 8, 128, 512, 520, 3968, 4096}) {
+            if (crowded < count) continue;
+            INFO("bands " << bands << ", count " << count << ", stride " << crowded << ", rows at +" << rows_offset
+                          << ", inputs " << inputs_below << " bytes below");
+            const prt::test::Placement placement{rows_offset, inputs_below};
+            REQUIRE(prt::test::eval_in_two_layouts<float>(bands, count, crowded, dirs, &placement).differing_rows == 0);
+            REQUIRE(prt::test::eval_in_two_layouts<double>(bands, count, crowded, dirs, &placement).differing_rows == 0);
+          }
+}
+
 TEST_CASE("padded_stride is a nearby odd number of cache lines", "[sh][eval]") {
   for (std::size_t count : {0, 1, 15, 16, 17, 100, 1024, 4096, 4097}) {
     for (std::size_t bytes : {sizeof(float), sizeof(double)}) {

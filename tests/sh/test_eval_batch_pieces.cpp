@@ -68,4 +68,13 @@ TEST_CASE("crowded strides give the direct path's bits and the reference values 
         CHECK(d.differing_rows == 0);
         CHECK(worst_error(bands, count, d) <= prt::test::kDoubleTolerance);
       }
+  // The inputs just below the rows' page offset (the 3-band pieces run backwards) and elsewhere, 1-5 bands.
+  for (int bands = 1; bands <= 5; ++bands)
+    for (std::size_t count : {100, 1024, 1100})
+      for (std::size_t inputs_below : {0, 128, 512, 3968}) {
+        INFO("bands " << bands << ", count " << count << ", inputs " << inputs_below << " bytes below the rows");
+        const prt::test::Placement placement{16, inputs_below};
+        CHECK(prt::test::eval_in_two_layouts<float>(bands, count, 2048, dirs, &placement).differing_rows == 0);
+        CHECK(prt::test::eval_in_two_layouts<double>(bands, count, 2048, dirs, &placement).differing_rows == 0);
+      }
 }
