@@ -52,14 +52,16 @@ inline constexpr std::size_t kBlockLanes = sizeof(Block<T>) / sizeof(T);
 // positions of a 4 KiB page (a power of two: 4 KiB over the largest power of two dividing the stride's
 // bytes, at least a line). Crowded: more than 4 rows per position when they fall on 1 or 2 positions (Zen 3,
 // 8-way L1: 9 rows on one position, stride = count = 1024 floats, 3.5x the padded figure; Xeon, 12-way:
-// 9 rows 1.3x), or more than 16 per position on more (Xeon: 16 bands at stride 512 bytes, 32 rows per
-// position, 1.4x; 9 bands there, 10 per position, as fast as padded).
+// 9 rows 1.3x), or more than 12 per position on more (Xeon: 16 bands at stride 512 bytes, 32 rows per
+// position, 1.4x; 9 bands there, 10 per position, as fast as padded; Zen 5, 12-way: stride = count = 256
+// floats, 4 positions, 8 bands (16 rows per position) 1.5-2.2x the padded batch on the direct path, 1.05x on
+// the crowded one, while at 6 bands (9 per position) the direct path is the faster).
 template <typename T>
 bool rows_share_cache_sets(int rows, std::size_t stride) {
   const std::size_t offset = (stride * sizeof(T)) % kPage;
   const std::size_t step = offset == 0 ? kPage : offset & (~offset + 1);  // lowest set bit
   const std::size_t positions = kPage / (step > kCacheLine ? step : kCacheLine);
-  const std::size_t per_position = positions <= 2 ? 4 : 16;
+  const std::size_t per_position = positions <= 2 ? 4 : 12;
   return static_cast<std::size_t>(rows) > per_position * positions;
 }
 

@@ -289,8 +289,8 @@ TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
   // from the piece before: its values are the direct path's to the bit, so results do not depend on the
   // stride. Counts of one and of several tiles; keeping a wrong value (F_{l-2} for F_{l-1}, or S for C)
   // fails here and in the test case above. Strides (in elements): multiples of
-  // 4 KiB (every row on one cache-set position) and 128 (at 16 bands crowded too: 512 bytes for float, 32
-  // rows on each of 8 positions; 1 KiB for double).
+  // 4 KiB (every row on one cache-set position), 128 (at 16 bands crowded too: 512 bytes for float, 32
+  // rows on each of 8 positions; 1 KiB for double) and 256 (float: 4 positions, crowded from 7 bands).
   // Beyond kMaxFastBands (the generic recurrence stepped across tiles) at 17, 24 and 32 bands.
   const auto dirs = rounded_to_float(test_directions(1100));
   std::vector<int> band_counts;
@@ -298,7 +298,7 @@ TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
   for (int bands : {17, 24, sh::kMaxBands}) band_counts.push_back(bands);
   for (int bands : band_counts) {
     for (std::size_t count : {16, 100, 1024, 1100}) {
-      for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}, std::size_t{128}}) {
+      for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}, std::size_t{128}, std::size_t{256}}) {
         if (crowded < count) continue;
         INFO("bands " << bands << ", count " << count << ", stride " << crowded);
         REQUIRE(prt::test::eval_in_two_layouts<float>(bands, count, crowded, dirs).differing_rows == 0);
