@@ -323,8 +323,9 @@ TEST_CASE("crowded strides give the direct path's bits wherever the inputs lie",
             INFO("bands " << bands << ", count " << count << ", stride " << crowded << ", rows at +" << rows_offset
                           << ", inputs " << inputs_below << " bytes below");
             const prt::test::Placement placement{rows_offset, inputs_below};
-            REQUIRE(prt::test::eval_in_two_layouts<float>(bands, count, crowded, dirs, &placement).differing_rows == 0);
-            REQUIRE(prt::test::eval_in_two_layouts<double>(bands, count, crowded, dirs, &placement).differing_rows == 0);
+            using prt::test::eval_in_two_layouts;
+            REQUIRE(eval_in_two_layouts<float>(bands, count, crowded, dirs, &placement).differing_rows == 0);
+            REQUIRE(eval_in_two_layouts<double>(bands, count, crowded, dirs, &placement).differing_rows == 0);
           }
 }
 

@@ -68,7 +68,8 @@ TwoLayouts<T> eval_in_two_layouts(int bands, std::size_t count, std::size_t crow
   const std::size_t span = (count + 2 * page - 1) / page * page;
   t.input_storage.resize(3 * span + 2 * page);
   T* x = t.input_storage.data();
-  if (placement) x = page_start(t.input_storage) + (4096 + placement->rows_offset - placement->inputs_below) / sizeof(T);
+  if (placement)
+    x = page_start(t.input_storage) + (4096 + placement->rows_offset - placement->inputs_below) / sizeof(T);
   T *y = x + span, *z = y + span;
   for (std::size_t j = 0; j < count; ++j) {
     x[j] = static_cast<T>(dirs[j].x);
@@ -82,7 +83,8 @@ TwoLayouts<T> eval_in_two_layouts(int bands, std::size_t count, std::size_t crow
   t.crowded_stride = crowded_stride;
   t.padded_stride = sh::padded_stride(count, sizeof(T));
   t.crowded_storage.resize(rows * t.crowded_stride + 2 * page);
-  T* crowded = placement ? page_start(t.crowded_storage) + placement->rows_offset / sizeof(T) : t.crowded_storage.data();
+  T* crowded = t.crowded_storage.data();
+  if (placement) crowded = page_start(t.crowded_storage) + placement->rows_offset / sizeof(T);
   t.crowded = crowded;
   t.padded.resize(rows * t.padded_stride);
   sh::eval_batch(bands, count, x, y, z, crowded, t.crowded_stride);
