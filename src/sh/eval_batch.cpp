@@ -112,11 +112,14 @@ PRT_SH_INLINE void for_each_block_backwards(std::size_t count, std::size_t width
 // (kFixedForm false, V = Vec<T>) or eval_fixed's (kFixedForm true, V = Block<T>), whose step l = m + 2 is a
 // polynomial in z^2 (column_value): the direct path's bits either way.
 // Measured on Zen 5 (AVX-512, 1024 directions, stride = count, paired against the padded direct path;
-// bench_sh_eval 'inputs placed'): 0.73-1.05x at 6-16 bands (PieceRule::columns_bands), 0.9-1.1x at 17-32
-// bands, where staging the tile in an L1 scratch block and
-// copying its rows out took 2x; two rows at a time (Y_l,m and Y_l,-m per block) 1.0-1.25x; tiles of 256
-// or 384 bytes 1.2-3.6x and of 640 bytes to 4 KiB 1.1-1.9x (the state arrays, the inputs and the tile's
-// lines in L1 collide or outgrow it).
+// bench_sh_eval 'inputs placed'): 0.73-1.05x at 6-16 bands (PieceRule::columns_bands), 0.86-1.14x at 17-32
+// bands (their 1.2-4 MiB of output beyond the 1 MiB L2; 0.62-0.84x with 256 directions, in L2), where staging
+// the tile in an L1 scratch block and copying its rows out took 2x; two rows at a time (Y_l,m and Y_l,-m per
+// block) 1.0-1.25x; tiles of 256 or 384 bytes 1.2-3.6x and of 640 bytes to 4 KiB 1.1-1.9x (the state no
+// longer fits the registers: every spilled store queues behind the output's missing ones). Also slower at
+// 20-28 bands: prefetching the rows 1, 2 or 4 steps ahead (1.0-1.66x), the columns outermost over up to 16
+// tiles with (C, S) kept in L1 (1.07-1.24x), runs of whole rows a few at a time with F and (C, S) kept in L1
+// (the pieces' order for the generic recurrence: 1.45-2.4x), and the direct path (10-15x).
 constexpr std::size_t kColumnTileBytes = 512;
 
 template <typename T, typename V, bool kFixedForm>
