@@ -116,7 +116,8 @@ PRT_SH_INLINE void for_each_block_backwards(std::size_t count, std::size_t width
 // bands (their 1.2-4 MiB of output beyond the 1 MiB L2; 0.62-0.84x with 256 directions, in L2), where staging
 // the tile in an L1 scratch block and copying its rows out took 2x; two rows at a time (Y_l,m and Y_l,-m per
 // block) 1.0-1.25x; tiles of 256 or 384 bytes 1.2-3.6x and of 640 bytes to 4 KiB 1.1-1.9x (the state no
-// longer fits the registers: every spilled store queues behind the output's missing ones). Also slower at
+// longer fits the registers: every spilled store queues behind the output's missing ones; 768 and 1024 bytes
+// with x, y, z, C and S reloaded from L1 at each step, so that only F stays in registers, 1.0-1.56x). Also slower at
 // 20-28 bands: prefetching the rows 1, 2 or 4 steps ahead (1.0-1.66x), the columns outermost over up to 16
 // tiles with (C, S) kept in L1 (1.07-1.24x), runs of whole rows a few at a time with F and (C, S) kept in L1
 // (the pieces' order for the generic recurrence: 1.45-2.4x), and the direct path (10-15x).
