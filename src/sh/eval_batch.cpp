@@ -117,8 +117,8 @@ PRT_SH_INLINE void for_each_block_backwards(std::size_t count, std::size_t width
 // the tile in an L1 scratch block and copying its rows out took 2x; two rows at a time (Y_l,m and Y_l,-m per
 // block) 1.0-1.25x; tiles of 256 or 384 bytes 1.2-3.6x and of 640 bytes to 4 KiB 1.1-1.9x (the state no
 // longer fits the registers: every spilled store queues behind the output's missing ones; 768 and 1024 bytes
-// with x, y, z, C and S reloaded from L1 at each step, so that only F stays in registers, 1.0-1.56x). Also slower at
-// 20-28 bands: prefetching the rows 1, 2 or 4 steps ahead (1.0-1.66x), the columns outermost over up to 16
+// with x, y, z, C and S reloaded from L1 at each step, so that only F stays in registers, 1.0-1.56x). Also
+// slower at 20-28 bands: prefetching the rows 1, 2 or 4 steps ahead (1.0-1.66x), the columns outermost over up to 16
 // tiles with (C, S) kept in L1 (1.07-1.24x), runs of whole rows a few at a time with F and (C, S) kept in L1
 // (the pieces' order for the generic recurrence: 1.45-2.4x), and the direct path (10-15x).
 constexpr std::size_t kColumnTileBytes = 512;
@@ -174,7 +174,8 @@ PRT_SH_INLINE void column_tile(int bands, const T* x, const T* y, const T* z, T*
 template <typename T, typename V, bool kFixedForm>
 PRT_SH_INLINE void batch_columns(int bands, std::size_t count, const T* x, const T* y, const T* z, T* out,
                                  std::size_t stride) {
-  for_each_block(count, kColumnTileBytes / sizeof(T), alignment_peel(out, kCacheLine), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
+  const std::size_t tile = kColumnTileBytes / sizeof(T);
+  for_each_block(count, tile, alignment_peel(out, kCacheLine), [&](std::size_t j) PRT_SH_LAMBDA_INLINE {
     column_tile<T, V, kFixedForm>(bands, x + j, y + j, z + j, out + j, stride);
   });
 }

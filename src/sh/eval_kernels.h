@@ -31,13 +31,14 @@
 // within 1e-13 up to 32 bands; float grows as bands^1.5: over 130 000 random directions (GCC 12 with FMA,
 // clang 14 without) the worst was 9.4e-8 * bands^1.5 (5.2e-8 at 1 band, 1.6e-6 at 9, 5.0e-6 at 16,
 // 1.6e-5 at 32), from the float recurrence and the float input.
-#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <type_traits>
 #include <utility>
 
+// x86 with FMA: madd (below) uses the fused multiply-add intrinsics.
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__FMA__)
+#define PRT_SH_FMA_INTRINSICS 1
 #include <immintrin.h>
 #endif
 
@@ -161,8 +162,7 @@ PRT_SH_INLINE Pair<V> operator+(Pair<V> p, T t) { return {p.a + t, p.b + t}; }
 // tiles); on scalars and elsewhere x * y + z as written, which the compiler may fuse as it sees fit. The order
 // is the one GCC chose by itself in the vector kernels, so no bits change (tests/sh, and bench files checked
 // bit for bit against the build before).
-#if (defined(__x86_64__) || defined(__i386__)) && defined(__FMA__)
-#define PRT_SH_FMA_INTRINSICS 1
+#if defined(PRT_SH_FMA_INTRINSICS)
 inline constexpr bool kHasFma = true;
 #if defined(__AVX512F__)
 inline constexpr std::size_t kFmaBytes = 64;  // the widest vector one instruction takes
