@@ -5,7 +5,7 @@
 # as lit in the README and with the lighting rotated. Outputs in out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh --target prt   # only what the demo runs: the libraries and the prt executable
 prt=build/src/cli/prt
 mesh=assets/meshes/guardian_lion_10k.ply
 env=assets/env/sunrise.exr

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs prt's Debian packages (idempotently: `apt-get update` runs once, and only if something is
-# missing), then configures a Release build with Ninja in build/ and builds everything.
-# Usage: scripts/setup.sh [--tests] [--no-build] [extra cmake -D options...]
+# missing), then configures a Release build with Ninja in build/ and builds everything, or only the
+# targets named with --target (scripts/demo.sh builds only `prt`).
+# Usage: scripts/setup.sh [--tests] [--no-build] [--target NAME]... [extra cmake -D options...]
 #   --tests     also install what the tests need beyond the build: Xvfb (viewer smoke test), Chromium,
 #               mono-mcs (compiles and runs the Unity importer against stand-in Unity types),
 #               Node.js and the npm packages of probes/threejs (the three.js browser test) and
@@ -9,6 +10,7 @@
 #               Khronos glTF validator), each from its package-lock.json; clang 14 with libFuzzer and
 #               llvm-cov (the fuzz targets of tests/fuzz, scripts/fuzz.sh).
 #   --no-build  install only.
+#   --target    build only this target (repeatable); default: everything (libraries, prt, tests, benches).
 # Environment: PRT_BUILD_DIR (default build), PRT_EXTRA_PACKAGES (more packages to install).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,12 +25,15 @@ packages=(
 with_tests=0
 build=1
 cmake_args=()
-for arg in "$@"; do
-  case "$arg" in
+targets=()
+while (($#)); do
+  case "$1" in
     --tests) with_tests=1 ;;
     --no-build) build=0 ;;
-    *) cmake_args+=("$arg") ;;
+    --target) targets+=(--target "$2"); shift ;;
+    *) cmake_args+=("$1") ;;
   esac
+  shift
 done
 if ((with_tests)); then
   packages+=(xvfb xauth chromium mono-mcs clang-14 libfuzzer-14-dev llvm-14)
@@ -65,4 +70,4 @@ if ((build == 0)); then exit 0; fi
 build_dir="${PRT_BUILD_DIR:-build}"
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" 2>&1 | grep -v -e PyImath -e '^$' >&2 || true
 test -f "$build_dir/build.ninja"
-cmake --build "$build_dir"
+cmake --build "$build_dir" "${targets[@]}"

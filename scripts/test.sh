@@ -1,7 +1,15 @@
 #!/usr/bin/env bash
-# Installs, builds and runs every test (ctest). Usage: scripts/test.sh [ctest options...]
+# Installs, builds and runs every test (ctest). Usage: scripts/test.sh [ctest options...], e.g.
+# scripts/test.sh -L unit for the quick CPU-only tests; labels: unit, slow, gpu, mpi, node
+# (tests/CMakeLists.txt).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh --tests
 cd build
+unlabelled=$(ctest -N -LE '^(unit|slow|gpu|mpi|node)$' | grep -E '^ *Test +#' || true)
+if [ -n "$unlabelled" ]; then
+  echo "test: these tests have none of the labels unit, slow, gpu, mpi, node:" >&2
+  echo "$unlabelled" >&2
+  exit 1
+fi
 ctest --output-on-failure -j"$(nproc)" "$@"

@@ -27,12 +27,13 @@ std::string executable_folder() {
 }
 
 // Loads libprt_image_oiio.so once: $PRT_IMAGE_BACKEND, else the path of the module this build made,
-// else the folder of the running executable.
+// else where `cmake --install` puts it, else the folder of the running executable.
 const backend::Functions& functions() {
   static const backend::Functions* table = [] {
     std::vector<std::string> candidates;
     if (const char* env = std::getenv("PRT_IMAGE_BACKEND")) candidates.emplace_back(env);
     candidates.emplace_back(PRT_IMAGE_BACKEND_PATH);
+    candidates.emplace_back(PRT_IMAGE_BACKEND_INSTALLED_PATH);
     candidates.push_back(executable_folder() + "/libprt_image_oiio.so");
     std::string errors;
     for (const std::string& path : candidates) {
