@@ -24,18 +24,18 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 void validate_options(const BakeOptions& o) {
   if (o.bands < 1 || o.bands > sh::kMaxBands)
-    fail("--bands " + std::to_string(o.bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
+    fail_option("bands", " " + std::to_string(o.bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
   if (transfer::is_glossy(o.kind)) {
-    if (o.brdf.empty()) fail(std::string("--transfer ") + transfer::kind_name(o.kind) + " needs --brdf SPEC");
+    if (o.brdf.empty()) fail_option("brdf", std::string(": ") + transfer::kind_name(o.kind) + " transfer needs a BRDF spec");
     if (o.bands_out < 0 || o.bands_out > o.bands)
-      fail("--bands-out " + std::to_string(o.bands_out) + " is out of range 1..--bands (" + std::to_string(o.bands) + ")");
+      fail_option("bands_out", " " + std::to_string(o.bands_out) + " is out of range 1..bands (" + std::to_string(o.bands) + ")");
   } else if (o.bands_out != 0) {
-    fail("--bands-out applies to glossy transfer only");
+    fail_option("bands_out", " applies to glossy transfer only");
   }
-  if (o.samples < 1 || o.samples > (1 << 20)) fail("--samples " + std::to_string(o.samples) + " is out of range 1..1048576");
-  if (o.bounces < -1 || o.bounces > 64) fail("--bounces " + std::to_string(o.bounces) + " is out of range 0..64");
+  if (o.samples < 1 || o.samples > (1 << 20)) fail_option("samples", " " + std::to_string(o.samples) + " is out of range 1..1048576");
+  if (o.bounces < -1 || o.bounces > 64) fail_option("bounces", " " + std::to_string(o.bounces) + " is out of range 0..64");
   for (int c = 0; c < 3; ++c)
-    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
+    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail_option("albedo", " components must lie in [0, 1]");
 }
 
 bool all_grey(const std::vector<glm::vec3>& albedo) {

@@ -182,7 +182,7 @@ std::vector<double> project_shape(Shape shape, double parameter, int bands, cons
 BrdfMatrix project(const Brdf& brdf, int bands, const ProjectionQuality& quality) {
   if (brdf.empty()) fail("brdf: empty BRDF (no lobes)");
   if (bands < 1 || bands > sh::kMaxBands)
-    fail("--bands " + std::to_string(bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
+    fail_option("bands", " " + std::to_string(bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
   BrdfMatrix out;
   out.bands = bands;
   out.channels = brdf.is_grey() ? 1 : 3;

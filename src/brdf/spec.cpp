@@ -38,11 +38,23 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-double parse_number(const std::string& text, const std::string& context) {
+// Where a spec's problem lies, as messages name it: the field `brdf` of a spec string (an OptionError,
+// field "brdf", the rest " '<spec>'..."), or a material file's path (an Error "<path>...").
+struct Where {
+  std::string field, text;
+  Where operator+(const std::string& more) const { return {field, text + more}; }
+};
+
+[[noreturn]] void fail_at(const Where& where, const std::string& problem) {
+  if (where.field.empty()) fail(where.text + problem);
+  fail_option(where.field, where.text + problem);
+}
+
+double parse_number(const std::string& text, const Where& context) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(value))
-    fail(context + ": expected a number, got '" + text + "'");
+    fail_at(context, ": expected a number, got '" + text + "'");
   return value;
 }
 
@@ -50,7 +62,7 @@ double parse_number(const std::string& text, const std::string& context) {
 using Parameters = std::map<std::string, std::vector<double>>;
 
 // Builds lobes of type `type` from `params`, checking keys and ranges; `where` prefixes messages.
-void add_lobes(const std::string& type_name, Parameters params, const std::string& where, Brdf& out) {
+void add_lobes(const std::string& type_name, Parameters params, const Where& where, Brdf& out) {
   auto take = [&](const std::vector<std::string>& names, std::vector<double> fallback) {
     for (const std::string& name : names) {
       auto it = params.find(name);
@@ -63,32 +75,32 @@ void add_lobes(const std::string& type_name, Parameters params, const std::strin
     return fallback;
   };
   auto scalar = [&](const std::string& name, const std::vector<double>& v) {
-    if (v.size() != 1) fail(where + ": " + type_name + ": " + name + " takes one number, not a colour");
+    if (v.size() != 1) fail_at(where, ": " + type_name + ": " + name + " takes one number, not a colour");
     return v[0];
   };
   auto colour = [&](const std::string& name, const std::vector<double>& v) {
     const glm::dvec3 c = v.size() == 1 ? glm::dvec3(v[0]) : glm::dvec3(v[0], v[1], v[2]);
     for (int k = 0; k < 3; ++k)
-      if (!(c[k] >= 0.0 && c[k] <= 1.0)) fail(where + ": " + type_name + ": " + name + " components must lie in [0, 1]");
+      if (!(c[k] >= 0.0 && c[k] <= 1.0)) fail_at(where, ": " + type_name + ": " + name + " components must lie in [0, 1]");
     return c;
   };
   auto in_range = [&](const std::string& name, double v, double lo, double hi) {
     if (!(v >= lo && v <= hi)) {
       char buffer[160];
       std::snprintf(buffer, sizeof buffer, "%s: %s %g is out of range [%g, %g]", type_name.c_str(), name.c_str(), v, lo, hi);
-      fail(where + ": " + buffer);
+      fail_at(where, std::string(": ") + buffer);
     }
     return v;
   };
   auto finish = [&](const std::string& expected) {
     if (!params.empty())
-      fail(where + ": " + type_name + ": unknown parameter '" + params.begin()->first + "' (expected " + expected + ")");
+      fail_at(where, ": " + type_name + ": unknown parameter '" + params.begin()->first + "' (expected " + expected + ")");
   };
 
   if (type_name == "lambert") {
     Lobe lobe{LobeType::lambert, colour("albedo", take({"albedo", "kd"}, {0.8})), 0.0, 0.0};
     const double fresnel = scalar("fresnel_mix", take({"fresnel_mix"}, {0.0}));
-    if (fresnel != 0.0 && fresnel != 1.0) fail(where + ": lambert: fresnel_mix must be 0 or 1");
+    if (fresnel != 0.0 && fresnel != 1.0) fail_at(where, ": lambert: fresnel_mix must be 0 or 1");
     lobe.fresnel_mix = fresnel == 1.0;
     finish("albedo, fresnel_mix");
     out.lobes.push_back(lobe);
@@ -119,7 +131,7 @@ void add_lobes(const std::string& type_name, Parameters params, const std::strin
     out.lobes.push_back({LobeType::ggx, glm::dvec3(0.04) * (1.0 - metallic) + base * metallic, 0.0,
                          std::max(roughness, kMinRoughness)});
   } else {
-    fail(where + ": unknown BRDF '" + type_name + "' (expected lambert, phong, blinn, ggx, gltf or a .json material file)");
+    fail_at(where, ": unknown BRDF '" + type_name + "' (expected lambert, phong, blinn, ggx, gltf or a .json material file)");
   }
 }
 
@@ -130,23 +142,23 @@ std::string lower(std::string s) {
 }
 
 Brdf parse_spec_string(const std::string& spec) {
-  const std::string where = "--brdf '" + spec + "'";
+  const Where where{"brdf", " '" + spec + "'"};
   Brdf out;
   for (const std::string& lobe_text : split(spec, '+')) {
-    if (lobe_text.empty()) fail(where + ": empty lobe (expected TYPE[:KEY=VALUE,...] joined by '+')");
+    if (lobe_text.empty()) fail_at(where, ": empty lobe (expected TYPE[:KEY=VALUE,...] joined by '+')");
     const std::size_t colon = lobe_text.find(':');
     const std::string type_name = lower(lobe_text.substr(0, colon));
     Parameters params;
     if (colon != std::string::npos) {
       for (const std::string& pair : split(lobe_text.substr(colon + 1), ',')) {
         const std::size_t eq = pair.find('=');
-        if (eq == std::string::npos || eq == 0) fail(where + ": expected KEY=VALUE, got '" + pair + "'");
+        if (eq == std::string::npos || eq == 0) fail_at(where, ": expected KEY=VALUE, got '" + pair + "'");
         const std::string key = lower(pair.substr(0, eq));
         const std::vector<std::string> parts = split(pair.substr(eq + 1), '/');
-        if (parts.size() != 1 && parts.size() != 3) fail(where + ": " + key + ": expected a number or R/G/B, got '" + pair.substr(eq + 1) + "'");
+        if (parts.size() != 1 && parts.size() != 3) fail_at(where, ": " + key + ": expected a number or R/G/B, got '" + pair.substr(eq + 1) + "'");
         std::vector<double> values;
         for (const std::string& part : parts) values.push_back(parse_number(part, where + ": " + key));
-        if (params.count(key)) fail(where + ": " + key + " given twice");
+        if (params.count(key)) fail_at(where, ": " + key + " given twice");
         params[key] = values;
       }
     }
@@ -177,7 +189,7 @@ void add_json_lobe(const nlohmann::json& object, const std::string& path, Brdf& 
     if (pbr.contains("baseColorFactor")) params["basecolor"] = json_values(pbr["baseColorFactor"], path, "baseColorFactor");
     if (pbr.contains("metallicFactor")) params["metallic"] = json_values(pbr["metallicFactor"], path, "metallicFactor");
     if (pbr.contains("roughnessFactor")) params["roughness"] = json_values(pbr["roughnessFactor"], path, "roughnessFactor");
-    add_lobes("gltf", params, path, out);
+    add_lobes("gltf", params, Where{"", path}, out);
     return;
   }
   if (!object.contains("type") || !object["type"].is_string())
@@ -185,7 +197,7 @@ void add_json_lobe(const nlohmann::json& object, const std::string& path, Brdf& 
   Parameters params;
   for (auto it = object.begin(); it != object.end(); ++it)
     if (it.key() != "type") params[lower(it.key())] = json_values(it.value(), path, it.key());
-  add_lobes(lower(object["type"].get<std::string>()), params, path, out);
+  add_lobes(lower(object["type"].get<std::string>()), params, Where{"", path}, out);
 }
 
 Brdf parse_material_file(const std::string& path) {
@@ -210,7 +222,7 @@ Brdf canonical(const Brdf& in) {
     if (lambert_weight(in, fresnel, lambert)) out.lobes.push_back({LobeType::lambert, lambert, 0.0, 0.0, fresnel});
     total += lambert;
   }
-  if (!(total.r <= 1.0 && total.g <= 1.0 && total.b <= 1.0)) fail("--brdf: the lambert albedos (albedo, kd) sum to more than 1");
+  if (!(total.r <= 1.0 && total.g <= 1.0 && total.b <= 1.0)) fail_option("brdf", ": the lambert albedos (albedo, kd) sum to more than 1");
   for (const Lobe& lobe : in.lobes)
     if (lobe.type != LobeType::lambert) out.lobes.push_back(lobe);
   return out;
@@ -230,13 +242,13 @@ std::string colour_text(const glm::dvec3& c) {
 }  // namespace
 
 Brdf parse_brdf(const std::string& spec) {
-  if (spec.empty()) fail("--brdf: empty BRDF spec (e.g. lambert:albedo=0.8, phong:exponent=32,ks=0.5,kd=0.3)");
+  if (spec.empty()) fail_option("brdf", ": empty BRDF spec (e.g. lambert:albedo=0.8, phong:exponent=32,ks=0.5,kd=0.3)");
   const bool file = ends_with(spec, ".json");
   Brdf out = canonical(file ? parse_material_file(spec) : parse_spec_string(spec));
   // Projection cost grows with the lobe count; a cap keeps a hostile spec from running for minutes.
   if (out.lobes.size() > static_cast<std::size_t>(kMaxLobes))
-    fail((file ? spec : std::string("--brdf")) + ": " + std::to_string(out.lobes.size()) + " lobes, more than " +
-         std::to_string(kMaxLobes) + " (lambert lobes count as one)");
+    fail_at(file ? Where{"", spec} : Where{"brdf", ""}, ": " + std::to_string(out.lobes.size()) + " lobes, more than " +
+                                                          std::to_string(kMaxLobes) + " (lambert lobes count as one)");
   return out;
 }
 

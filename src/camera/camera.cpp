@@ -43,16 +43,16 @@ Camera parse_camera(const std::string& text) {
   Camera camera;
   if (text == "auto") return camera;
   const std::vector<std::string> parts = split(text, ',');
-  if (parts.size() != 3) fail("--camera: expected AZ,EL,DIST or auto, got '" + text + "'");
+  if (parts.size() != 3) fail_option("camera", ": expected AZ,EL,DIST or auto, got '" + text + "'");
   if (!parse_number(parts[0], camera.azimuth_degrees) || !parse_number(parts[1], camera.elevation_degrees))
-    fail("--camera: azimuth and elevation must be numbers (degrees), got '" + text + "'");
+    fail_option("camera", ": azimuth and elevation must be numbers (degrees), got '" + text + "'");
   if (std::fabs(camera.elevation_degrees) >= 89.9)
-    fail("--camera: elevation must be between -89.9 and 89.9 degrees, got '" + parts[1] + "'");
+    fail_option("camera", ": elevation must be between -89.9 and 89.9 degrees, got '" + parts[1] + "'");
   if (parts[2] == "auto") {
     camera.distance = 0.0;
   } else if (!parse_number(parts[2], camera.distance) || !(camera.distance >= mesh::kMinExtent) ||
              !(camera.distance <= mesh::kMaxCoordinate)) {
-    fail("--camera: distance must be a number from 1e-9 to 1e12 (mesh units) or auto, got '" + parts[2] + "'");
+    fail_option("camera", ": distance must be a number from 1e-9 to 1e12 (mesh units) or auto, got '" + parts[2] + "'");
   }
   return camera;
 }
@@ -65,7 +65,7 @@ void parse_size(const std::string& text, int& width, int& height) {
     return out >= 1 && out <= 16384;
   };
   if (x == std::string::npos || !parse_int(text.substr(0, x), width) || !parse_int(text.substr(x + 1), height))
-    fail("--size: expected WxH with integers from 1 to 16384, got '" + text + "'");
+    fail_option("size", ": expected WxH with integers from 1 to 16384, got '" + text + "'");
 }
 
 ViewMatrices orbit_view(const Camera& camera, const mesh::Bounds& bounds, int width, int height,

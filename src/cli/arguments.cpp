@@ -1,5 +1,6 @@
 #include "cli/arguments.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -43,6 +44,13 @@ bool want_progress(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
 
 void add_footprint_option(CLI::App* cmd, std::string& value, const std::string& what) {
   cmd->add_option("--footprint", value, "area or vertex: " + what)->capture_default_str();
+}
+
+std::string flag_of_field(const std::string& field) {
+  if (field == "max_backface_fraction") return "--max-backface";
+  std::string flag = "--" + field;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
 }
 
 }  // namespace prt::cli

@@ -31,4 +31,8 @@ image::ToneMap parse_tone_map(const std::string& name);
 /// True if stderr is a terminal and `quiet` is not set: whether to draw progress bars.
 bool want_progress(bool quiet);
 
+/// The command-line flag of an options field named in a library's OptionError: "--" and the field with
+/// '_' as '-' ("sun_samples" -> "--sun-samples"), except the fields whose flag is spelled otherwise.
+std::string flag_of_field(const std::string& field);
+
 }  // namespace prt::cli

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli/arguments.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -40,6 +41,10 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // CLI11 prints two lines and exits with its own codes (104-109); prt's rule is one line, status 1.
     std::fprintf(stderr, "prt: %s (see prt --help)\n", prt::Error(e.what()).what());
+    return prt::dist::finish_after_error(1, false);
+  } catch (const prt::OptionError& e) {
+    // A library names the field of its options struct; the user typed the flag.
+    std::fprintf(stderr, "prt: %s%s\n", prt::cli::flag_of_field(e.field()).c_str(), e.rest().c_str());
     return prt::dist::finish_after_error(1, false);
   } catch (const prt::Error& e) {
     std::fprintf(stderr, "prt: %s\n", e.what());

@@ -8,7 +8,7 @@ namespace prt {
 
 namespace {
 std::string format_seconds(double s) {
-  if (!(s >= 0) || s > 359999) return "--:--";
+  if (!(s >= 0) || s > 359999) return "?:??";  // unknown or beyond 99 hours
   int total = static_cast<int>(s + 0.5);
   char buf[32];
   if (total >= 3600)

@@ -15,9 +15,9 @@ WindowRequest parse_window_request(const std::string& name, double param) {
   try {
     request.window = sh::parse_window(name);
   } catch (const Error&) {
-    fail("--window: unknown window '" + name + "' (expected auto, none, hanning, lanczos or laplacian)");
+    fail_option("window", ": unknown window '" + name + "' (expected auto, none, hanning, lanczos or laplacian)");
   }
-  if (!std::isfinite(param)) fail("--window-param: must be finite");
+  if (!std::isfinite(param)) fail_option("window_param", ": must be finite");
   request.param = param;
   return request;
 }

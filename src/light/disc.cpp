@@ -26,10 +26,10 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
     const double x = std::strtod(item.c_str(), &end);
     // Beyond 1e18 a disc's radiance and its SH overflow float coefficients (a value of 1e308 did).
     if (item.empty() || end == item.c_str() || *end != '\0' || !(std::abs(x) <= kMaxLightValue))
-      fail(option + ": " + usage + " (numbers of magnitude at most 1e18)");
+      fail_option(option, ": " + usage + " (numbers of magnitude at most 1e18)");
     v.push_back(x);
   }
-  if ((v.size() != 5 && v.size() != 7) || text.empty() || text.back() == ',') fail(option + ": " + usage);
+  if ((v.size() != 5 && v.size() != 7) || text.empty() || text.back() == ',') fail_option(option, ": " + usage);
   return v;
 }
 }  // namespace
@@ -47,15 +47,15 @@ Disc parse_disc(const std::string& text, const std::string& option) {
   Disc disc;
   const glm::dvec3 d(v[0], v[1], v[2]);
   const double length = glm::length(d);
-  if (!(length > 0.0) || !std::isfinite(length)) fail(option + ": the direction must be finite and not zero");
+  if (!(length > 0.0) || !std::isfinite(length)) fail_option(option, ": the direction must be finite and not zero");
   disc.direction = d / length;
   disc.irradiance = v.size() == 5 ? glm::dvec3(v[3]) : glm::dvec3(v[3], v[4], v[5]);
   for (int c = 0; c < 3; ++c)
-    if (disc.irradiance[c] < 0.0) fail(option + ": the irradiance R,G,B must be >= 0");
+    if (disc.irradiance[c] < 0.0) fail_option(option, ": the irradiance R,G,B must be >= 0");
   if (!(disc.irradiance.x + disc.irradiance.y + disc.irradiance.z > 0.0))
-    fail(option + ": the irradiance must not be zero (use --sun none for no disc)");
+    fail_option(option, ": the irradiance must not be zero (give no disc instead)");
   const double degrees = v.back();
-  if (!(degrees > 0.0 && degrees <= 45.0)) fail(option + ": the angular radius must lie in (0, 45] degrees");
+  if (!(degrees > 0.0 && degrees <= 45.0)) fail_option(option, ": the angular radius must lie in (0, 45] degrees");
   disc.angular_radius = degrees * kPi / 180.0;
   return disc;
 }

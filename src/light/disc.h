@@ -37,9 +37,10 @@ struct Disc {
 /// Largest angular radius a disc may have: 45 degrees, in radians.
 inline constexpr double kMaxDiscRadius = 0.78539816339744831;
 
-/// Parses the TEXT FORM. Throws prt::Error("<option>: ...") for a wrong count, a non-finite value, a zero
-/// direction, a negative or all-zero irradiance, or a radius outside (0, 45] degrees.
-Disc parse_disc(const std::string& text, const std::string& option = "--sun");
+/// Parses the TEXT FORM. Throws prt::OptionError(option, ": ...") for a wrong count, a non-finite value, a
+/// zero direction, a negative or all-zero irradiance, or a radius outside (0, 45] degrees; `option` names
+/// the field the text came from.
+Disc parse_disc(const std::string& text, const std::string& option = "sun");
 
 /// The TEXT FORM of `disc` (17 significant digits; parse_disc reads it back exactly up to rounding of
 /// the normalised direction).

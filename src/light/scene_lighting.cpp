@@ -34,7 +34,7 @@ SunRequest parse_sun_request(const std::string& text) {
     return request;
   }
   request.mode = SunRequest::Mode::given;
-  request.disc = parse_disc(text, "--sun");
+  request.disc = parse_disc(text, "sun");
   return request;
 }
 

@@ -38,10 +38,10 @@ void parse_lightmap_size(const std::string& text, int& width, int& height) {
   const std::size_t x = text.find('x');
   const bool ok = x == std::string::npos ? parse_side(text, width) && parse_side(text, height = width)
                                          : parse_side(text.substr(0, x), width) && parse_side(text.substr(x + 1), height);
-  if (!ok) fail("--lightmap: expected WxH or SIZE (texels), got '" + text + "'");
+  if (!ok) fail_option("lightmap", ": expected WxH or SIZE (texels), got '" + text + "'");
   const int side_max = static_cast<int>(transfer::kMaxTexelSide);
   if (width < 1 || height < 1 || width > side_max || height > side_max)
-    fail("--lightmap " + text + ": each side must be 1.." + std::to_string(side_max) + " texels");
+    fail_option("lightmap", " " + text + ": each side must be 1.." + std::to_string(side_max) + " texels");
 }
 
 std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions& o, int channels) {
@@ -59,9 +59,9 @@ void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int chan
   if (need > available / 10 * 8) {
     const double gib = double(1ull << 30);
     char text[160];
-    std::snprintf(text, sizeof text, "--lightmap %s: needs about %.1f GiB, more than 80%% of this machine's %.1f GiB", size_text(l).c_str(),
+    std::snprintf(text, sizeof text, " %s: needs about %.1f GiB, more than 80%% of this machine's %.1f GiB", size_text(l).c_str(),
                   double(need) / gib, double(available) / gib);
-    fail(text);
+    fail_option("lightmap", text);
   }
 }
 
@@ -110,13 +110,13 @@ BakedLightmap baked_lightmap(const transfer::Header& header, const std::string& 
 void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap) {
   bake::validate_options(options);
   if (transfer::is_glossy(options.kind))
-    fail(std::string("--lightmap: ") + transfer::kind_name(options.kind) +
+    fail_option("lightmap", std::string(": ") + transfer::kind_name(options.kind) +
          " transfer per texel is not supported (glossy matrices per texel wait for transfer compression); use unshadowed, "
          "shadowed or interreflected");
-  if (lightmap.gutter < 0 || lightmap.gutter > 64) fail("--gutter " + std::to_string(lightmap.gutter) + " is out of range 0..64");
+  if (lightmap.gutter < 0 || lightmap.gutter > 64) fail_option("gutter", " " + std::to_string(lightmap.gutter) + " is out of range 0..64");
   const int side_max = static_cast<int>(transfer::kMaxTexelSide);
   if (lightmap.width < 1 || lightmap.height < 1 || lightmap.width > side_max || lightmap.height > side_max)
-    fail("--lightmap " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
+    fail_option("lightmap", " " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
   check_memory(lightmap, options, bake::all_grey(bake::effective_albedo(mesh, options.albedo)) ? 1 : 3);
 }

@@ -65,18 +65,18 @@ std::string parameters_json(const ProbeBakeOptions& o, const SceneLight& light, 
 }  // namespace
 
 void check_options(const ProbeBakeOptions& o) {
-  if (o.bands < 1 || o.bands > 16) fail("--bands " + std::to_string(o.bands) + " is out of range 1..16");
-  if (o.rays < 1 || o.rays > (1 << 20)) fail("--rays " + std::to_string(o.rays) + " is out of range 1..1048576");
+  if (o.bands < 1 || o.bands > 16) fail_option("bands", " " + std::to_string(o.bands) + " is out of range 1..16");
+  if (o.rays < 1 || o.rays > (1 << 20)) fail_option("rays", " " + std::to_string(o.rays) + " is out of range 1..1048576");
   if (static_cast<double>(o.rays) * o.bands * o.bands > static_cast<double>(1 << 26))
-    fail("--rays x --bands^2 is too large (more than 2^26 basis values)");
-  if (o.bounces < 0 || o.bounces > 64) fail("--bounces " + std::to_string(o.bounces) + " is out of range 0..64");
+    fail_option("rays", " x bands^2 is too large (more than 2^26 basis values)");
+  if (o.bounces < 0 || o.bounces > 64) fail_option("bounces", " " + std::to_string(o.bounces) + " is out of range 0..64");
   if (o.surface_samples < 1 || o.surface_samples > 65536)
-    fail("--surface-samples " + std::to_string(o.surface_samples) + " is out of range 1..65536");
-  if (o.sun_samples < 1 || o.sun_samples > 4096) fail("--sun-samples " + std::to_string(o.sun_samples) + " is out of range 1..4096");
-  if (!(o.max_backface_fraction >= 0.0 && o.max_backface_fraction <= 1.0)) fail("--max-backface must lie in [0, 1]");
-  if (o.transfer_bands < 0 || o.transfer_bands > 8) fail("--transfer-bands " + std::to_string(o.transfer_bands) + " is out of range 1..8");
+    fail_option("surface_samples", " " + std::to_string(o.surface_samples) + " is out of range 1..65536");
+  if (o.sun_samples < 1 || o.sun_samples > 4096) fail_option("sun_samples", " " + std::to_string(o.sun_samples) + " is out of range 1..4096");
+  if (!(o.max_backface_fraction >= 0.0 && o.max_backface_fraction <= 1.0)) fail_option("max_backface_fraction", " must lie in [0, 1]");
+  if (o.transfer_bands < 0 || o.transfer_bands > 8) fail_option("transfer_bands", " " + std::to_string(o.transfer_bands) + " is out of range 1..8");
   for (int c = 0; c < 3; ++c)
-    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
+    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail_option("albedo", " components must lie in [0, 1]");
 }
 
 namespace {
@@ -428,7 +428,7 @@ ProbeSet bake_probes(const mesh::Mesh& mesh, const SceneLight& light, const std:
 }
 
 void relight(ProbeSet& p, const sh::RgbCoefficients& environment) {
-  if (p.transfer_bands == 0) fail("the probe file has no transfer (bake it with --transfer)");
+  if (p.transfer_bands == 0) fail("the probe file has no transfer (it was baked with transfer_bands 0)");
   const int n = static_cast<int>(p.coefficient_count()), ne = p.transfer_bands * p.transfer_bands;
   std::vector<glm::dvec3> lighting(ne, glm::dvec3(0.0));
   for (int j = 0; j < ne && j < static_cast<int>(environment.values.size()); ++j) lighting[j] = environment.values[j];

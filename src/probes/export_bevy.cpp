@@ -53,7 +53,7 @@ std::vector<glm::vec3> dilate_invalid(const ProbeSet& p) {
 
 std::string format_bevy_ktx2(const ProbeSet& p) {
   check_probe_set(p, "Bevy export");
-  if (p.layout != ProbeSet::Layout::grid) fail("--format bevy needs a probe grid (--grid): an irradiance volume is a 3D texture");
+  if (p.layout != ProbeSet::Layout::grid) fail_option("format", " bevy needs a probe grid: an irradiance volume is a 3D texture");
   const std::vector<glm::vec3> values = dilate_invalid(p);
   const std::size_t nx = p.grid.counts[0], ny = p.grid.counts[1], nz = p.grid.counts[2];
   const std::size_t width = nx, height = 2 * ny, depth = 3 * nz, n = p.coefficient_count();

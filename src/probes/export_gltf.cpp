@@ -296,7 +296,7 @@ void check_gltf_options(const std::string& path, const ExportOptions& options) {
     fail_file(path, "the gltf export writes a binary glTF: the output must end in .glb");
   const int size = options.specular_size;
   if (size < 1 || size > 1024 || (size & (size - 1)) != 0)
-    fail("--specular-size: expected a power of two in 1..1024, got " + std::to_string(size));
+    fail_option("specular_size", ": expected a power of two in 1..1024, got " + std::to_string(size));
   if (options.scene_path.empty()) fail("gltf export: no scene file given");
 }
 

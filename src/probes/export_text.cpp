@@ -53,7 +53,7 @@ Format parse_format(const std::string& name) {
   if (name == "filament") return Format::filament;
   if (name == "gltf") return Format::gltf;
   if (name == "bevy") return Format::bevy;
-  fail("--format: unknown format '" + name + "' (expected prt, threejs, unity, godot, filament, gltf or bevy)");
+  fail_option("format", ": unknown format '" + name + "' (expected prt, threejs, unity, godot, filament, gltf or bevy)");
 }
 
 const char* format_name(Format format) {
@@ -150,9 +150,9 @@ std::string format_filament(const ProbeSet& p, const std::string& probe) {
     char* end = nullptr;
     const long index = std::strtol(probe.c_str(), &end, 10);
     if (probe.empty() || *end != '\0' || index < 0 || static_cast<std::size_t>(index) >= p.count())
-      fail("--probe: expected 'sky' or a probe index in 0.." + std::to_string(p.count() - 1) + ", got '" + probe + "'");
+      fail_option("probe", ": expected 'sky' or a probe index in 0.." + std::to_string(p.count() - 1) + ", got '" + probe + "'");
     if (!p.valid[static_cast<std::size_t>(index)])
-      fail("--probe: probe " + probe + " is invalid (inside geometry); choose another");
+      fail_option("probe", ": probe " + probe + " is invalid (inside geometry); choose another");
     chosen = p.probe(static_cast<std::size_t>(index));
   }
   const Sh9 c = filament_coefficients(chosen);

@@ -12,7 +12,7 @@
 
 namespace prt::probes {
 
-Sun parse_sun(const std::string& text) { return light::parse_disc(text, "--sun"); }
+Sun parse_sun(const std::string& text) { return light::parse_disc(text, "sun"); }
 
 sh::RgbCoefficients sun_coefficients(int bands, const Sun& sun) { return light::disc_coefficients(bands, sun); }
 

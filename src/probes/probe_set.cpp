@@ -92,15 +92,15 @@ std::vector<glm::dvec3> read_points_json(const std::string& path, const std::str
 void check_grid(const Grid& grid) {
   for (int a = 0; a < 3; ++a)
     if (grid.counts[a] < 1)
-      fail("--grid: every count must be >= 1, got " + std::to_string(grid.counts[0]) + "," +
+      fail_option("grid", ": every count must be >= 1, got " + std::to_string(grid.counts[0]) + "," +
            std::to_string(grid.counts[1]) + "," + std::to_string(grid.counts[2]));
   const double total = static_cast<double>(grid.counts[0]) * grid.counts[1] * grid.counts[2];
-  if (total > static_cast<double>(1 << 26)) fail("--grid: " + std::to_string(total) + " probes is more than 2^26");
+  if (total > static_cast<double>(1 << 26)) fail_option("grid", ": " + std::to_string(total) + " probes is more than 2^26");
   for (int a = 0; a < 3; ++a) {
     if (!(std::abs(grid.lo[a]) <= mesh::kMaxCoordinate && std::abs(grid.hi[a]) <= mesh::kMaxCoordinate))
-      fail("--bounds: values must be finite and within +-1e12 (the coordinate range of meshes)");
+      fail_option("bounds", ": values must be finite and within +-1e12 (the coordinate range of meshes)");
     if (!(grid.lo[a] < grid.hi[a]))
-      fail("--bounds: the box " + format_point(grid.lo) + " - " + format_point(grid.hi) + " is empty along " +
+      fail_option("bounds", ": the box " + format_point(grid.lo) + " - " + format_point(grid.hi) + " is empty along " +
            std::string(1, "xyz"[a]) + " (need lo < hi on every axis)");
   }
 }

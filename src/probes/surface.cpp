@@ -58,9 +58,9 @@ std::uint64_t for_each_vertex_rays(const Context& ctx, const char* label, Visit 
 }
 
 void check_surface_options(const SurfaceOptions& o) {
-  if (o.samples < 1 || o.samples > 65536) fail("--surface-samples " + std::to_string(o.samples) + " is out of range 1..65536");
-  if (o.sun_samples < 1 || o.sun_samples > 4096) fail("--sun-samples " + std::to_string(o.sun_samples) + " is out of range 1..4096");
-  if (o.bounces < 0 || o.bounces > 64) fail("--bounces " + std::to_string(o.bounces) + " is out of range 0..64");
+  if (o.samples < 1 || o.samples > 65536) fail_option("surface_samples", " " + std::to_string(o.samples) + " is out of range 1..65536");
+  if (o.sun_samples < 1 || o.sun_samples > 4096) fail_option("sun_samples", " " + std::to_string(o.sun_samples) + " is out of range 1..4096");
+  if (o.bounces < 0 || o.bounces > 64) fail_option("bounces", " " + std::to_string(o.bounces) + " is out of range 0..64");
 }
 
 // The pilot pass: per vertex, whether at most half of kPilotRays cosine-distributed occlusion rays (their

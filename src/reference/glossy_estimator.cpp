@@ -112,7 +112,7 @@ GlossyTracer::GlossyTracer(const mesh::Mesh& mesh, const trace::Scene& scene, co
                            const GlossyEstimatorOptions& options) {
   if (options.brdf.empty()) fail("glossy reference: empty BRDF");
   if (options.brdf_bands < 0 || options.brdf_bands > sh::kMaxBands)
-    fail("--brdf-bands " + std::to_string(options.brdf_bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
+    fail_option("brdf_bands", " " + std::to_string(options.brdf_bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
   impl_ = std::make_unique<Impl>(mesh, scene, environment, options);
 }
 

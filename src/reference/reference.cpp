@@ -57,11 +57,11 @@ std::vector<glm::vec3> reference_albedo(const mesh::Mesh& mesh, const glm::vec3&
 
 void check_options(const ReferenceOptions& o) {
   if (o.samples < 1 || o.samples > kMaxSamples)
-    fail("--samples " + std::to_string(o.samples) + " is out of range 1.." + std::to_string(kMaxSamples));
+    fail_option("samples", " " + std::to_string(o.samples) + " is out of range 1.." + std::to_string(kMaxSamples));
   if (o.bounces < 0 || o.bounces > kMaxBounces)
-    fail("--bounces " + std::to_string(o.bounces) + " is out of range 0.." + std::to_string(kMaxBounces));
+    fail_option("bounces", " " + std::to_string(o.bounces) + " is out of range 0.." + std::to_string(kMaxBounces));
   for (int c = 0; c < 3; ++c)
-    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail("--albedo components must lie in [0, 1]");
+    if (!(o.albedo[c] >= 0.0f && o.albedo[c] <= 1.0f)) fail_option("albedo", " components must lie in [0, 1]");
 }
 
 namespace {
@@ -129,7 +129,7 @@ int band_limited_height(int bands) { return std::max(256, 16 * bands); }
 
 light::Environment band_limited_environment(const light::Environment& environment, int bands, int threads) {
   if (bands < 1 || bands > sh::kMaxBands)
-    fail("--band-limit: expected a band count in 1.." + std::to_string(sh::kMaxBands) + ", got " + std::to_string(bands));
+    fail_option("band_limit", ": expected a band count in 1.." + std::to_string(sh::kMaxBands) + ", got " + std::to_string(bands));
   const sh::RgbCoefficients coefficients = light::project(environment, bands, threads);
   const int height = band_limited_height(bands);
   light::Environment out;

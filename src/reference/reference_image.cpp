@@ -123,7 +123,7 @@ ReferenceImage render_image(const mesh::Mesh& original_mesh, const EnvironmentSa
                             const ImageOptions& options, const light::Environment* background) {
   check_options(options.reference);
   if (options.width < 1 || options.height < 1)
-    fail("--size: expected at least 1x1 pixels, got " + std::to_string(options.width) + "x" +
+    fail_option("size", ": expected at least 1x1 pixels, got " + std::to_string(options.width) + "x" +
          std::to_string(options.height));
   if (original_mesh.indices.empty()) fail("the mesh has no triangles to render");
   const int width = options.width, height = options.height;

@@ -37,7 +37,7 @@ void render_to_file(const RenderOptions& options) {
   const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path});
   const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
   if (options.bands < 0 || options.bands > transfer_bands)
-    fail("--bands: must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
+    fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
          std::to_string(options.bands));
   light::WindowRequest window = options.window;
   window.radiance = transfer::is_glossy(scene.transfers[0].header.kind);  // the glossy criterion (light/deringing.h)
@@ -45,7 +45,7 @@ void render_to_file(const RenderOptions& options) {
   const Background background =
       options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
   if (background == Background::environment && !lighting.has_image)
-    fail_file(options.environment, "--background env needs an environment image, this is an SH lighting file");
+    fail_file(options.environment, "the environment background needs an environment image, this is an SH lighting file");
 
   // Glossy transfer: the BRDF matrix, before any GL work.
   std::optional<brdf::BrdfMatrix> glossy;
@@ -55,7 +55,7 @@ void render_to_file(const RenderOptions& options) {
     glossy = brdf::project(surface, static_cast<int>(scene.transfers[0].header.bands_out));
   }
   else if (!options.brdf.empty())
-    fail_file(scene.transfer_paths[0], "--brdf applies to glossy transfer; this one is " +
+    fail_file(scene.transfer_paths[0], "a BRDF applies to glossy transfer only; this one is " +
                                            std::string(transfer::kind_name(scene.transfers[0].header.kind)));
 
   HeadlessContext context;

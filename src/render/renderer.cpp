@@ -48,7 +48,7 @@ Background parse_background(const std::string& name) {
   if (name == "black") return Background::black;
   if (name == "env") return Background::environment;
   if (name == "sh") return Background::sh;
-  fail("--background: expected env, sh or black, got '" + name + "'");
+  fail_option("background", ": expected env, sh or black, got '" + name + "'");
 }
 
 const char* background_name(Background background) {
@@ -302,14 +302,14 @@ void Renderer::render(const FrameSettings& settings, int width, int height) {
     const transfer::Header& header = transfer_header(settings.transfer);
     const int transfer_bands = static_cast<int>(header.bands);
     if (settings.bands < 0 || settings.bands > transfer_bands)
-      fail("--bands: must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
+      fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
            std::to_string(settings.bands));
     bands = settings.bands == 0 ? transfer_bands : settings.bands;
   } else {
     bands = settings.bands > 0 ? std::min(settings.bands, lighting_bands_) : lighting_bands_;
   }
   if (settings.background == Background::environment && environment_texture_ == 0)
-    fail("--background env: the lighting has no environment image (an SH lighting file); use sh or black");
+    fail_option("background", " env: the lighting has no environment image (an SH lighting file); use sh or black");
 
   resize(width, height);
   view_ = orbit_view(settings.camera, bounds_, width, height, settings.object_rotation);

@@ -238,7 +238,7 @@ void Renderer::render_texels(const FrameSettings& settings) {
   const transfer::Header& header = lightmap_header(settings.transfer);
   const int transfer_bands = static_cast<int>(header.bands);
   if (settings.bands < 0 || settings.bands > transfer_bands)
-    fail("--bands: must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
+    fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
          std::to_string(settings.bands));
   const int bands = settings.bands == 0 ? transfer_bands : settings.bands;
   const int width = static_cast<int>(header.texel_width), height = static_cast<int>(header.texel_height);

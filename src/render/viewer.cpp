@@ -256,7 +256,7 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
 // Refuses a --screenshot the scripted run cannot honour, before anything is loaded.
 void check_screenshot_option(const ViewerOptions& options) {
   if (options.screenshot.empty()) return;
-  if (options.frames <= 0) fail("--screenshot needs --frames N (the frame to save)");
+  if (options.frames <= 0) fail_option("screenshot", " needs a frame count (the frame to save)");
   if (!image::is_display_format(options.screenshot) && std::filesystem::path(options.screenshot).extension() != ".exr")
     fail_file(options.screenshot, "screenshot must be .png (tone mapped) or .exr (linear radiance)");
 }
@@ -294,7 +294,7 @@ void init_state(ViewerState& state, const SceneInputs& scene, const ViewerOption
   state.light_angles = options.rotate;
   state.object_angles = options.object_rotate;
   if (options.bands < 0 || options.bands > state.current_bands())
-    fail("--bands: must be between 1 and the transfer's " + std::to_string(state.current_bands()) + " bands");
+    fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(state.current_bands()) + " bands");
 }
 
 // Uploads the mesh and every transfer (with its BRDF or surface albedo) to the renderer.

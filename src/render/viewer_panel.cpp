@@ -25,7 +25,7 @@ void draw_sun_controls(ViewerState& state) {
   const Lighting& lighting = state.environments[static_cast<std::size_t>(state.environment)];
   ImGui::Separator();
   if (lighting.discs.empty()) {
-    ImGui::TextDisabled("sun: none (--sun)");
+    ImGui::TextDisabled("sun: none");
   } else {
     ImGui::Checkbox("sun, exact with shadows (U)", &state.settings.sun);
     for (const light::Disc& disc : lighting.discs) {

@@ -17,7 +17,7 @@ namespace prt::shade {
 namespace {
 
 int side_of(int samples) {
-  if (samples < 1 || samples > 65536) fail("--sun-samples " + std::to_string(samples) + " is out of range 1..65536");
+  if (samples < 1 || samples > 65536) fail_option("sun_samples", " " + std::to_string(samples) + " is out of range 1..65536");
   int k = 1;
   while (k * k < samples) ++k;
   return k;

@@ -91,7 +91,7 @@ brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what) {
     fail_file(what, "bake parameters are not valid JSON");
   }
   if (!j.is_object() || !j.contains("brdf") || !j["brdf"].is_string())
-    fail_file(what, "the transfer records no BRDF; give --brdf SPEC");
+    fail_file(what, "the transfer records no BRDF; give one");
   return brdf::parse_brdf(j["brdf"].get<std::string>());
 }
 
