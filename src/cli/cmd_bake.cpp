@@ -100,9 +100,12 @@ void run_bake(const BakeCommandOptions& o) {
 
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
-  check_memory_need("--bands " + std::to_string(o.bands) + (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(options.bands_out) : "") +
-                        " --samples " + std::to_string(o.samples) + " for " + std::to_string(mesh.positions.size()) + " vertices",
-                    estimated_bake_bytes(options, mesh.positions.size()));
+  const int bands_out = options.bands_out ? options.bands_out : o.bands;
+  const std::string sized_by = "--bands " + std::to_string(o.bands) +
+                               (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
+                               " --samples " + std::to_string(o.samples) + " for " +
+                               std::to_string(mesh.positions.size()) + " vertices";
+  check_memory_need(sized_by, estimated_bake_bytes(options, mesh.positions.size()));
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   bake::BakeReport report;

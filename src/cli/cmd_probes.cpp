@@ -161,8 +161,8 @@ void run_probes(ProbesCommandOptions o) {
   if (sun.mode == light::SunRequest::Mode::given) light.sun = sun.disc;
   std::vector<glm::dvec3> points;
   if (!o.points.empty()) points = probes::read_points_file(o.points);
-  const std::uint64_t count = o.points.empty() ? std::uint64_t(layout.grid.counts[0]) * std::uint64_t(layout.grid.counts[1]) *
-                                                     std::uint64_t(layout.grid.counts[2])
+  const probes::Grid& g = layout.grid;
+  const std::uint64_t count = o.points.empty() ? std::uint64_t(g.counts[0]) * std::uint64_t(g.counts[1]) * std::uint64_t(g.counts[2])
                                                : points.size();
   check_memory_need((o.points.empty() ? "--grid " + o.grid : "--points " + o.points) + " at --bands " +
                         std::to_string(o.bake.bands) + (o.bake.transfer_bands ? " with --transfer" : ""),

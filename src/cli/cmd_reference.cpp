@@ -111,7 +111,8 @@ reference::ImageOptions image_options(const ReferenceCommandOptions& o, const st
   camera::parse_size(o.size, image.width, image.height);
   // Per pixel: the radiance, standard error and coverage the tracer fills, the image written from
   // them and the encoder's copy: at most 64 bytes.
-  check_memory_need("--size " + o.size, saturating_product(std::uint64_t(image.width) * std::uint64_t(image.height), 64));
+  const std::uint64_t pixels = std::uint64_t(image.width) * std::uint64_t(image.height);
+  check_memory_need("--size " + o.size, saturating_product(pixels, 64));
   if (!o.rotate.empty()) {
     const glm::dvec3 a = parse_angles(o.rotate, "--rotate");
     image.environment_rotation = sh::rotation_from_yaw_pitch_roll(a.x, a.y, a.z);

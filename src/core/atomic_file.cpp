@@ -128,8 +128,8 @@ void check_output_target(const std::string& path) {
   if (stat(path.c_str(), &info) != 0) return;  // not there yet (or unreachable: the write will say)
   if (S_ISDIR(info.st_mode)) fail_file(path, "is a folder; an output must be a file path");
   if (!S_ISREG(info.st_mode))
-    fail_file(path, "is not a regular file (a pipe, socket or device); prt replaces an output by renaming a new file over "
-                    "it and refuses to do that to one of these: write to a file instead");
+    fail_file(path, "is not a regular file (a pipe, socket or device); prt replaces an output by renaming a new "
+                    "file over it and refuses to do that to one of these: write to a file instead");
 }
 
 std::ifstream open_input(const std::string& path) {

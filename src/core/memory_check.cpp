@@ -18,8 +18,8 @@ void check_memory_need(const std::string& what, std::uint64_t need_bytes, std::u
   if (need_bytes <= available_bytes / 10 * 8) return;
   const double gib = double(1ull << 30);
   char text[128];
-  std::snprintf(text, sizeof text, ": needs about %.1f GiB, more than 80%% of this machine's %.1f GiB", double(need_bytes) / gib,
-                double(available_bytes) / gib);
+  std::snprintf(text, sizeof text, ": needs about %.1f GiB, more than 80%% of this machine's %.1f GiB",
+                double(need_bytes) / gib, double(available_bytes) / gib);
   fail(what + text);
 }
 

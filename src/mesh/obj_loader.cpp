@@ -99,8 +99,9 @@ struct StrictLine {
   const char* value;
   int required, checked;
 };
-constexpr StrictLine kStrictLines[] = {
-    {"v", "vertex", "position", 3, 3}, {"vt", "texture coordinate", "value", 1, 3}, {"vn", "normal", "direction", 3, 3}};
+constexpr StrictLine kStrictLines[] = {{"v", "vertex", "position", 3, 3},
+                                       {"vt", "texture coordinate", "value", 1, 3},
+                                       {"vn", "normal", "direction", 3, 3}};
 
 /// The numbers of the line text[start, end) after its tag (which ends at `at`), or prt::Error naming
 /// the file, the line and the element (1-based `number` of its kind) for a missing, malformed or
@@ -111,8 +112,8 @@ glm::vec3 strict_numbers(const std::string& path, const std::string& text, std::
   for (int c = 0; c < kind.checked; ++c) {
     const Number n = next_float(text, at, end, values[c]);
     if (n == Number::ok || (n == Number::missing && c >= kind.required)) continue;
-    fail_file(path, "line " + std::to_string(line_number) + ": " + kind.what + " " + std::to_string(number) + " (1-based) has " +
-                        (n == Number::non_finite ? "a non-finite " : "a malformed ") + kind.value + " \"" +
+    fail_file(path, "line " + std::to_string(line_number) + ": " + kind.what + " " + std::to_string(number) +
+                        " (1-based) has " + (n == Number::non_finite ? "a non-finite " : "a malformed ") + kind.value + " \"" +
                         text.substr(start, std::min<std::size_t>(end - start, 60)) + "\"");
   }
   return values;
@@ -134,7 +135,8 @@ std::vector<glm::vec3> strict_positions(const std::string& path, const std::stri
     std::size_t tag_end = i;
     while (tag_end < end && text[tag_end] != ' ' && text[tag_end] != '\t') ++tag_end;
     const std::string_view tag = std::string_view(text).substr(i, tag_end - i);
-    if (tag == "f" && tag_end < end) check_face_indices(path, std::string_view(text).substr(tag_end, end - tag_end), line_number);
+    if (tag == "f" && tag_end < end)
+      check_face_indices(path, std::string_view(text).substr(tag_end, end - tag_end), line_number);
     for (std::size_t k = 0; k < std::size(kStrictLines); ++k) {
       if (tag != kStrictLines[k].tag || tag_end == end) continue;
       const glm::vec3 values = strict_numbers(path, text, i, tag_end, end, kStrictLines[k], line_number, ++counts[k]);
@@ -169,8 +171,8 @@ std::string obj_folder(const std::string& path) {
 class MtlReader : public tinyobj::MaterialReader {
  public:
   explicit MtlReader(std::string folder) : folder_(std::move(folder)) {}
-  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* names,
-                  std::string* warn, std::string* err) override {
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* names, std::string* warn, std::string* err) override {
     const std::string file = folder_ + name;
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) {
