@@ -14,6 +14,7 @@
 #include "compress/cprt_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory_check.h"
 #include "mesh/mesh.h"
 #include "mesh/writers.h"
 #include "transfer/transfer_file.h"
@@ -54,6 +55,17 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
          " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair);
 }
 
+// Bytes a per-vertex bake of `vertices` needs at most: the sample set's basis (samples x bands^2
+// floats), per vertex the transfer (three channels; glossy: bands_out^2 x bands^2 per channel) in up
+// to four buffers with bounces (values, bounce-only, previous and next pass), and the file's copy.
+std::uint64_t estimated_bake_bytes(const bake::BakeOptions& b, std::uint64_t vertices) {
+  const std::uint64_t n = std::uint64_t(b.bands) * std::uint64_t(b.bands);
+  const std::uint64_t out = transfer::is_glossy(b.kind) ? std::uint64_t(b.bands_out ? b.bands_out : b.bands) : 1;
+  const std::uint64_t per_vertex = 4 * 3 * n * out * out;
+  const bool bounces = b.kind == transfer::Kind::interreflected || b.kind == transfer::Kind::glossy_interreflected;
+  return std::uint64_t(b.samples) * n * 4 + saturating_product(vertices, per_vertex * (bounces ? 5 : 2));
+}
+
 void run_bake(const BakeCommandOptions& o) {
   bake::BakeOptions options;
   options.kind = transfer::parse_kind(o.kind);
@@ -88,6 +100,12 @@ void run_bake(const BakeCommandOptions& o) {
 
   mesh::LoadReport load_report;
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
+  const int bands_out = options.bands_out ? options.bands_out : o.bands;
+  const std::string sized_by = std::to_string(o.bands) +
+                               (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
+                               " --samples " + std::to_string(o.samples) + " for " +
+                               std::to_string(mesh.positions.size()) + " vertices";
+  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh.positions.size()));
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   bake::BakeReport report;

@@ -9,9 +9,9 @@
 #include "cli/arguments.h"
 #include "cli/commands.h"
 #include "cli/lighting_input.h"
+#include "cli/output_paths.h"
 #include "compress/cprt_file.h"
 #include "light/disc.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace prt::cli {
@@ -47,7 +47,7 @@ void print_worst_clusters(const compress::CompressedTransfer& c, int count) {
 
 void run_compress(const CompressCommandOptions& o) {
   if (!o.env.empty() && !o.light.empty()) fail("compress: give at most one of --env ENV and --light LIGHT.json");
-  { AtomicFile probe(o.output); }  // check the output folder before the work
+  check_outputs({o.output}, {o.transfer_path, o.env, o.light});  // before the work
   const transfer::TransferData transfer = transfer::read_transfer(o.transfer_path);
   CompressionRequest request;
   request.options = {o.clusters, o.pca, o.iterations, o.seed, o.threads};

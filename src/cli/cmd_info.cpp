@@ -8,6 +8,7 @@
 #include "brdf/brdf_file.h"
 #include "cli/commands.h"
 #include "compress/cprt_file.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "light/light_file.h"
 #include "probes/probe_file.h"
@@ -39,15 +40,14 @@ void print_brdf(const std::string& path) {
 
 // The "format" member of a JSON file, or "" if it has none (or is not JSON).
 std::string json_format(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in = open_input(path);
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("format") || !j["format"].is_string()) return "";
   return j["format"].get<std::string>();
 }
 
 void run_info(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, "cannot open");
+  std::ifstream in = open_input(path);
   char magic[8] = {};
   in.read(magic, 8);
   const std::string head(magic, static_cast<std::size_t>(in.gcount()));

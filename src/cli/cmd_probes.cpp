@@ -12,6 +12,7 @@
 #include "cli/distributed.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory_check.h"
 #include "light/environment.h"
 #include "light/scene_lighting.h"
 #include "light/sun_extraction.h"
@@ -160,6 +161,13 @@ void run_probes(ProbesCommandOptions o) {
   if (sun.mode == light::SunRequest::Mode::given) light.sun = sun.disc;
   std::vector<glm::dvec3> points;
   if (!o.points.empty()) points = probes::read_points_file(o.points);
+  const probes::Grid& g = layout.grid;
+  const std::uint64_t count = o.points.empty() ? std::uint64_t(g.counts[0]) * std::uint64_t(g.counts[1]) * std::uint64_t(g.counts[2])
+                                               : points.size();
+  check_memory_need(o.points.empty() ? "grid" : "points",
+                    (o.points.empty() ? o.grid : o.points) + " at --bands " + std::to_string(o.bake.bands) +
+                        (o.bake.transfer_bands ? " with --transfer" : ""),
+                    probes::estimated_bytes(count, o.bake));
   if (job().is_root()) check_outputs({o.output}, {o.scene_path, o.environment, o.points});  // rank 0 alone writes
 
   mesh::LoadReport load_report;

@@ -17,6 +17,7 @@
 #include "cli/distributed.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory_check.h"
 #include "core/text.h"
 #include "image/image.h"
 #include "light/environment.h"
@@ -108,6 +109,10 @@ reference::ImageOptions image_options(const ReferenceCommandOptions& o, const st
     fail_file(o.output, "--image output must be .exr (linear radiance) or .png (tone mapped)");
   image.camera = camera::parse_camera(o.camera);
   camera::parse_size(o.size, image.width, image.height);
+  // Per pixel: the radiance, standard error and coverage the tracer fills, the image written from
+  // them and the encoder's copy: at most 64 bytes.
+  const std::uint64_t pixels = std::uint64_t(image.width) * std::uint64_t(image.height);
+  check_memory_need("size", o.size, saturating_product(pixels, 64));
   if (!o.rotate.empty()) {
     const glm::dvec3 a = parse_angles(o.rotate, "--rotate");
     image.environment_rotation = sh::rotation_from_yaw_pitch_roll(a.x, a.y, a.z);

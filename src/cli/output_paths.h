@@ -10,10 +10,13 @@ namespace prt::cli {
 
 /// Throws prt::Error, before anything is computed or written, if an output (empty strings are
 /// skipped):
-/// - is the same file as an input or as another output, compared after canonicalising both
-///   ("dir/./x", "a/../x", symbolic links): "<output>: is also the input <input>; ...";
+/// - is the same file as an input or as another output: by device and inode where both exist (hard
+///   links), else after canonicalising both ("dir/./x", "a/../x", symbolic links):
+///   "<output>: is also the input <input>; ...". A mesh input's referenced files (its MTL files,
+///   glTF buffers and images: mesh::referenced_files) are inputs too;
 /// - lies in a folder that does not exist or that this process cannot write to;
-/// - is an existing folder, or has a file name longer than 224 characters (room for the temporary's).
+/// - exists and is not a regular file (check_output_target: a folder, device, FIFO or socket), or
+///   has a file name longer than 224 characters (room for the temporary's).
 void check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
 /// Writes one of several outputs into `file`'s temporary with `write` (a writer that takes a path),

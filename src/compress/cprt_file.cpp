@@ -1,9 +1,12 @@
 #include "compress/cprt_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -137,6 +140,30 @@ std::vector<float> get_values(const std::string& path, const unsigned char*& at,
   return values;
 }
 
+/// The .prt reader's bound (transfer::kMaxTransferMagnitude, M) for the model: means and directions
+/// |v| <= M, and per point sum_n |w_pn| max_d |b_knd| <= 4M (room for a point 2M from its mean
+/// when the metric stretches its directions), so a reconstructed value is at most 5M, relit with
+/// lighting <= 1e18 below 1.6e37 < FLT_MAX (docs/formats.md, "Limits").
+void check_model_range(const std::string& path, const CompressedTransfer& c) {
+  const double M = transfer::kMaxTransferMagnitude;
+  for (const auto& [values, what] : {std::pair{&c.means, "cluster mean"}, std::pair{&c.bases, "cluster direction"}})
+    for (std::size_t i = 0; i < values->size(); ++i)
+      if (!(std::abs((*values)[i]) <= M))
+        fail_file(path, std::string(what) + " value " + std::to_string(i) + " is out of range (|v| > 1e15)");
+  const std::size_t N = static_cast<std::size_t>(c.pca), D = c.point_dimension();
+  std::vector<double> largest(static_cast<std::size_t>(c.clusters) * N, 0.0);  // max_d |b_knd|
+  for (std::size_t i = 0; i < c.bases.size(); ++i)
+    largest[i / D] = std::max(largest[i / D], double(std::abs(c.bases[i])));
+  for (std::size_t p = 0; p < c.cluster.size(); ++p) {
+    double bound = 0.0;
+    for (std::size_t n = 0; n < N; ++n) bound += std::abs(double(c.weights[p * N + n])) * largest[c.cluster[p] * N + n];
+    if (!(bound <= 4.0 * M))
+      fail_file(path, std::string(c.source.is_texel() ? "texel point " : "vertex ") + std::to_string(p) +
+                          ": its weights times its cluster's directions reach " + std::to_string(bound) +
+                          ", more than the 4e15 a .cprt allows");
+  }
+}
+
 struct Decoded {
   CompressedTransfer c;
   std::uint64_t header_bytes = 0, payload_bytes = 0, payload_checksum = 0;
@@ -194,17 +221,6 @@ Decoded decode_header(const std::string& path, std::ifstream& in, std::uint64_t 
   return d;
 }
 
-std::ifstream open_sized(const std::string& path, std::uint64_t& size) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
-  in.seekg(0, std::ios::end);
-  const auto end = in.tellg();
-  in.seekg(0, std::ios::beg);
-  if (end < 0) fail_file(path, "cannot determine file size");
-  size = static_cast<std::uint64_t>(end);
-  return in;
-}
-
 }  // namespace
 
 std::uint64_t payload_bytes(const CompressedTransfer& c) { return payload_size(c); }
@@ -234,15 +250,13 @@ void write_cprt(const std::string& path, const CompressedTransfer& c) {
 }
 
 CompressedTransfer read_cprt_header(const std::string& path) {
-  std::uint64_t size = 0;
-  std::ifstream in = open_sized(path, size);
-  return decode_header(path, in, size).c;
+  std::ifstream in = open_input(path);
+  return decode_header(path, in, input_size(path, in)).c;
 }
 
 CompressedTransfer read_cprt(const std::string& path) {
-  std::uint64_t size = 0;
-  std::ifstream in = open_sized(path, size);
-  Decoded d = decode_header(path, in, size);
+  std::ifstream in = open_input(path);
+  Decoded d = decode_header(path, in, input_size(path, in));
   std::string payload(static_cast<std::size_t>(d.payload_bytes), '\0');
   in.read(payload.data(), static_cast<std::streamsize>(payload.size()));
   if (!in) fail_file(path, "truncated payload");
@@ -273,6 +287,7 @@ CompressedTransfer read_cprt(const std::string& path) {
     at += 32;
     if (!finite_sums(s)) fail_file(path, "per-cluster error statistics are negative or not finite");
   }
+  check_model_range(path, c);
   return c;
 }
 
@@ -290,7 +305,7 @@ std::string describe(const CompressedTransfer& c) {
 }
 
 bool is_cprt_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in = open_input(path);
   char magic[8] = {};
   in.read(magic, 8);
   return in.gcount() == 8 && std::memcmp(magic, kCprtMagic, 8) == 0;

@@ -28,7 +28,8 @@ std::uint64_t payload_bytes(const CompressedTransfer& compressed);
 /// Multi-line description for `prt info`: the source transfer, K, N, iterations, sizes and errors.
 std::string describe(const CompressedTransfer& compressed);
 
-/// True if the file at `path` starts with kCprtMagic (false if it cannot be read or is shorter).
+/// True if the file at `path` starts with kCprtMagic (false if it is shorter). Throws Error, as every
+/// reader does (open_input), if `path` is not a readable regular file.
 bool is_cprt_file(const std::string& path);
 
 /// The transfer a file stands for: read_transfer of a .prt file, or decompress(read_cprt(...)) of a

@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -74,6 +75,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   fs::path target(path_);
   fs::path dir = target.parent_path();
   if (!dir.empty() && !fs::is_directory(dir)) fail_file(path_, "output folder does not exist");
+  check_output_target(path_);
   std::ostringstream name;
   name << "." << target.stem().string() << ".tmp-" << getpid() << "-" << g_counter.fetch_add(1)
        << target.extension().string();
@@ -105,6 +107,7 @@ void AtomicFile::commit() {
     out_.close();
     if (!ok) fail_file(path_, "write failed (disk full?)");
   }
+  check_output_target(path_);  // it may have appeared since the constructor
   if (std::rename(temp_.c_str(), path_.c_str()) != 0)
     fail_file(path_, std::string("cannot rename temporary into place: ") + std::strerror(errno));
   committed_ = true;
@@ -120,6 +123,30 @@ void check_regular_input(const std::string& path) {
     fail_file(path, "is larger than " + std::to_string(kMaxInputBytes >> 30) + " GiB, the most prt reads");
 }
 
+void check_output_target(const std::string& path) {
+  struct stat info;
+  if (stat(path.c_str(), &info) != 0) return;  // not there yet (or unreachable: the write will say)
+  if (S_ISDIR(info.st_mode)) fail_file(path, "is a folder; an output must be a file path");
+  if (!S_ISREG(info.st_mode))
+    fail_file(path, "is not a regular file (a pipe, socket or device); prt replaces an output by renaming a new "
+                    "file over it and refuses to do that to one of these: write to a file instead");
+}
+
+std::ifstream open_input(const std::string& path) {
+  check_regular_input(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  return in;
+}
+
+std::uint64_t input_size(const std::string& path, std::ifstream& in) {
+  in.seekg(0, std::ios::end);
+  const auto end = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (end < 0) fail_file(path, "cannot determine file size");
+  return static_cast<std::uint64_t>(end);
+}
+
 void write_file_atomically(const std::string& path, const std::string& bytes) {
   AtomicFile file(path);
   file.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -127,9 +154,7 @@ void write_file_atomically(const std::string& path, const std::string& bytes) {
 }
 
 std::string read_file(const std::string& path) {
-  check_regular_input(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  std::ifstream in = open_input(path);
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) fail_file(path, "read failed");

@@ -4,6 +4,9 @@
 // that pick a format from the extension still do), and commit() renames it over the target. If the
 // writer is destroyed without commit() (an error, an exception) the temporary is removed; on SIGINT or
 // SIGTERM every live temporary is removed before the process exits with 128+signal.
+// An existing target that is not a regular file (a device such as /dev/null, a FIFO, a socket, a
+// folder) is refused, never renamed over (check_output_target).
+#include <cstdint>
 #include <fstream>
 #include <string>
 
@@ -12,7 +15,7 @@ namespace prt {
 class AtomicFile {
  public:
   /// Prepares to write `path`. Nothing is created until stream() is called or a library writes to
-  /// temp_path(). Throws Error if the target's folder does not exist.
+  /// temp_path(). Throws Error if the target's folder does not exist or check_output_target refuses it.
   explicit AtomicFile(std::string path);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
@@ -24,8 +27,8 @@ class AtomicFile {
   const std::string& temp_path() const { return temp_; }
   /// A binary output stream on temp_path(), opened on first use. Throws Error if it cannot be opened.
   std::ofstream& stream();
-  /// Flushes and closes the stream (if used), then renames the temporary over path().
-  /// Throws Error naming path() if writing or renaming failed.
+  /// Flushes and closes the stream (if used), checks the target once more (check_output_target),
+  /// then renames the temporary over path(). Throws Error naming path() if any of that failed.
   void commit();
 
  private:
@@ -50,8 +53,21 @@ inline constexpr unsigned long long kMaxInputBytes = 4ull << 30;
 /// folders, FIFOs (which would block) and devices such as /dev/zero (which never end) are refused.
 void check_regular_input(const std::string& path);
 
-/// Reads a whole file (check_regular_input first). Throws Error("<path>: cannot open ...") if it
-/// cannot be read.
+/// The one way prt opens a file for reading: check_regular_input, then a binary stream positioned at
+/// the start. Throws Error("<path>: cannot open: <reason>") if it cannot be opened.
+std::ifstream open_input(const std::string& path);
+
+/// The size in bytes of a stream from open_input (left at its start). Throws Error naming `path` if
+/// it cannot be found.
+std::uint64_t input_size(const std::string& path, std::ifstream& in);
+
+/// Reads a whole file (through open_input). Throws Error("<path>: ...") if it cannot be read.
 std::string read_file(const std::string& path);
+
+/// Throws Error("<path>: ...") if `path` exists (symbolic links followed) and is not a regular file:
+/// prt writes an output by renaming a new file into place, which would replace a device such as
+/// /dev/null, a FIFO or a socket with a plain file; those and folders are refused instead
+/// (docs/formats.md, "Limits"). A path that does not exist yet is fine.
+void check_output_target(const std::string& path);
 
 }  // namespace prt

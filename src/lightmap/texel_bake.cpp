@@ -4,13 +4,12 @@
 #include <cstdlib>
 #include <memory>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
 #include "core/error.h"
+#include "core/memory_check.h"
 #include "lightmap/gutter.h"
 #include "lightmap/sample_repair.h"
 #include "lightmap/uv_validation.h"
@@ -54,15 +53,7 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
 }
 
 void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t available) {
-  if (available == 0) available = std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
-  const std::uint64_t need = estimated_bytes(l, o, channels);
-  if (need > available / 10 * 8) {
-    const double gib = double(1ull << 30);
-    char text[160];
-    std::snprintf(text, sizeof text, " %s: needs about %.1f GiB, more than 80%% of this machine's %.1f GiB", size_text(l).c_str(),
-                  double(need) / gib, double(available) / gib);
-    fail_option("lightmap", text);
-  }
+  check_memory_need("lightmap", size_text(l), estimated_bytes(l, o, channels), available);
 }
 
 TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, const std::vector<glm::vec3>& albedo,

@@ -15,6 +15,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
+#include <nlohmann/json.hpp>
 #include <sys/stat.h>
 #include <tiny_gltf.h>
 
@@ -487,6 +488,27 @@ tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bo
 }
 
 }  // namespace
+
+std::vector<std::string> gltf_referenced_files(const std::string& path, bool binary) {
+  const std::string bytes = read_file(path);
+  const std::string_view text = binary ? glb_json_chunk(path, bytes) : std::string_view(bytes);
+  check_json_depth(text, path);
+  const nlohmann::json document = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  std::vector<std::string> files;
+  if (!document.is_object()) return files;
+  // tinygltf joins a uri to the glTF's folder as written (no percent-decoding in this version).
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  for (const char* list : {"buffers", "images"}) {
+    if (!document.contains(list) || !document[list].is_array()) continue;
+    for (const nlohmann::json& item : document[list]) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (uri.empty() || uri.rfind("data:", 0) == 0) continue;
+      files.push_back(folder.empty() ? uri : folder + "/" + uri);
+    }
+  }
+  return files;
+}
 
 // The lightmap UV set: 1 if any triangle primitive has TEXCOORD_1, else 0 if any has TEXCOORD_0, else -1.
 int lightmap_uv_set(const tinygltf::Model& model) {

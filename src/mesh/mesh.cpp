@@ -1,7 +1,6 @@
 // load_mesh's dispatch and the steps shared by every format: validation, degenerate triangles,
 // normals, albedo clamping, notes; plus fingerprints and bounds.
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -24,9 +23,7 @@ namespace {
 
 /// The first bytes of the file (up to 4 KiB), or prt::Error if it cannot be read.
 std::string read_head(const std::string& path) {
-  check_regular_input(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  std::ifstream in = open_input(path);
   std::string head(4096, '\0');
   in.read(head.data(), std::streamsize(head.size()));
   head.resize(std::size_t(in.gcount()));
@@ -236,6 +233,17 @@ Mesh load_mesh(const std::string& path, LoadReport* report, bool quiet) {
   else
     raw = detail::load_gltf(path, ext == ".glb");
   return detail::finish_mesh(path, std::move(raw), report, quiet);
+}
+
+std::vector<std::string> referenced_files(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  try {
+    if (ext == ".obj") return detail::obj_referenced_files(path);
+    if (ext == ".gltf" || ext == ".glb") return detail::gltf_referenced_files(path, ext == ".glb");
+  } catch (const Error&) {
+    // Unreadable or malformed: load_mesh says why when it is called.
+  }
+  return {};
 }
 
 bool is_degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iterator>
 #include <limits>
+#include <map>
+#include <sstream>
 #include <string_view>
 #include <utility>
 
@@ -64,12 +67,64 @@ void check_face_indices(const std::string& path, std::string_view line, std::siz
   }
 }
 
-/// The "v" lines' positions, parsed strictly (tinyobjloader reads "nan" or "abc" as 0 without a
-/// word): correctly rounded to float, and prt::Error naming the line for malformed or non-finite
-/// values. Lines are split as tinyobjloader splits them (\n, \r\n or \r), and a "v" line is one
-/// whose first non-blank characters are 'v' and a space or tab.
+enum class Number { ok, missing, malformed, non_finite };
+
+/// The next blank-separated token of text[at, end) as a float, correctly rounded (from_chars; an
+/// overflow is non-finite, an underflow rounds to zero or a denormal as strtod gives it); `at` moves
+/// past it.
+Number next_float(const std::string& text, std::size_t& at, std::size_t end, float& out) {
+  while (at < end && (text[at] == ' ' || text[at] == '\t')) ++at;
+  std::size_t token_end = at;
+  while (token_end < end && text[token_end] != ' ' && text[token_end] != '\t') ++token_end;
+  if (token_end == at) return Number::missing;
+  const char* first = text.data() + at + (text[at] == '+' ? 1 : 0);
+  const char* last = text.data() + token_end;
+  at = token_end;
+  auto [ptr, ec] = std::from_chars(first, last, out);
+  if (ec == std::errc::result_out_of_range && ptr == last) {
+    const double value = std::strtod(std::string(first, last).c_str(), nullptr);
+    if (!(std::abs(value) <= double(std::numeric_limits<float>::max()))) return Number::non_finite;
+    out = float(value);
+  } else if (ec != std::errc() || ptr != last || first == last) {
+    return Number::malformed;
+  }
+  return std::isfinite(out) ? Number::ok : Number::non_finite;
+}
+
+/// The OBJ lines whose numbers prt checks itself (tinyobjloader reads "nan" or "abc" as 0 without
+/// a word): their tag, what one is called in errors, how many numbers it must have and may have.
+struct StrictLine {
+  const char* tag;
+  const char* what;
+  const char* value;
+  int required, checked;
+};
+constexpr StrictLine kStrictLines[] = {{"v", "vertex", "position", 3, 3},
+                                       {"vt", "texture coordinate", "value", 1, 3},
+                                       {"vn", "normal", "direction", 3, 3}};
+
+/// The numbers of the line text[start, end) after its tag (which ends at `at`), or prt::Error naming
+/// the file, the line and the element (1-based `number` of its kind) for a missing, malformed or
+/// non-finite one.
+glm::vec3 strict_numbers(const std::string& path, const std::string& text, std::size_t start, std::size_t at,
+                         std::size_t end, const StrictLine& kind, std::size_t line_number, std::size_t number) {
+  glm::vec3 values(0.0f);
+  for (int c = 0; c < kind.checked; ++c) {
+    const Number n = next_float(text, at, end, values[c]);
+    if (n == Number::ok || (n == Number::missing && c >= kind.required)) continue;
+    fail_file(path, "line " + std::to_string(line_number) + ": " + kind.what + " " + std::to_string(number) +
+                        " (1-based) has " + (n == Number::non_finite ? "a non-finite " : "a malformed ") + kind.value + " \"" +
+                        text.substr(start, std::min<std::size_t>(end - start, 60)) + "\"");
+  }
+  return values;
+}
+
+/// The "v" lines' positions, parsed strictly (strict_numbers; "vt" and "vn" lines are checked the
+/// same way, face indices by check_face_indices). Lines are split as tinyobjloader splits them (\n,
+/// \r\n or \r), and a line's tag is its first non-blank characters up to a space or tab.
 std::vector<glm::vec3> strict_positions(const std::string& path, const std::string& text) {
   std::vector<glm::vec3> positions;
+  std::size_t counts[std::size(kStrictLines)] = {};
   std::size_t line_number = 0, pos = 0;
   while (pos < text.size()) {
     std::size_t end = text.find_first_of("\r\n", pos);
@@ -77,35 +132,15 @@ std::vector<glm::vec3> strict_positions(const std::string& path, const std::stri
     ++line_number;
     std::size_t i = pos;
     while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
-    if (i + 1 < end && text[i] == 'f' && (text[i + 1] == ' ' || text[i + 1] == '\t'))
-      check_face_indices(path, std::string_view(text).substr(i + 2, end - i - 2), line_number);
-    if (i + 1 < end && text[i] == 'v' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
-      const std::string line = text.substr(i, std::min<std::size_t>(end - i, 60));
-      auto problem = [&](const char* what) {
-        fail_file(path, "line " + std::to_string(line_number) + ": vertex " + std::to_string(positions.size() + 1) +
-                            " (1-based) has " + what + " position \"" + line + "\"");
-      };
-      glm::vec3 p(0.0f);
-      std::size_t at = i + 2;
-      for (int c = 0; c < 3; ++c) {
-        while (at < end && (text[at] == ' ' || text[at] == '\t')) ++at;
-        std::size_t token_end = at;
-        while (token_end < end && text[token_end] != ' ' && text[token_end] != '\t') ++token_end;
-        const char* first = text.data() + at + (at < token_end && text[at] == '+' ? 1 : 0);
-        const char* last = text.data() + token_end;
-        auto [ptr, ec] = std::from_chars(first, last, p[c]);
-        if (ec == std::errc::result_out_of_range && ptr == last) {
-          // Overflow is an error; underflow rounds to zero or a denormal, as strtod gives it.
-          const double value = std::strtod(std::string(first, last).c_str(), nullptr);
-          if (!(std::abs(value) <= double(std::numeric_limits<float>::max()))) problem("a non-finite");
-          p[c] = float(value);
-        } else if (ec != std::errc() || ptr != last || first == last) {
-          problem("a malformed");
-        }
-        if (!std::isfinite(p[c])) problem("a non-finite");
-        at = token_end;
-      }
-      positions.push_back(p);
+    std::size_t tag_end = i;
+    while (tag_end < end && text[tag_end] != ' ' && text[tag_end] != '\t') ++tag_end;
+    const std::string_view tag = std::string_view(text).substr(i, tag_end - i);
+    if (tag == "f" && tag_end < end)
+      check_face_indices(path, std::string_view(text).substr(tag_end, end - tag_end), line_number);
+    for (std::size_t k = 0; k < std::size(kStrictLines); ++k) {
+      if (tag != kStrictLines[k].tag || tag_end == end) continue;
+      const glm::vec3 values = strict_numbers(path, text, i, tag_end, end, kStrictLines[k], line_number, ++counts[k]);
+      if (k == 0) positions.push_back(values);
     }
     pos = end + 1;
     if (end < text.size() && text[end] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
@@ -123,17 +158,81 @@ struct ObjData {
   std::vector<tinyobj::material_t> materials;
 };
 
+/// The OBJ's folder with a trailing '/', or "" for a file in the working folder: where MTL names resolve.
+std::string obj_folder(const std::string& path) {
+  std::string folder = std::filesystem::path(path).parent_path().string();
+  if (!folder.empty()) folder += "/";
+  return folder;
+}
+
+/// MTL files for tinyobjloader, read through read_file (so a FIFO or device is refused as every input
+/// is) and resolved against the OBJ's folder as written (tinyobjloader's own reader splits its base
+/// folder at ':'). A missing file is a warning, as in tinyobjloader; any other problem an Error.
+class MtlReader : public tinyobj::MaterialReader {
+ public:
+  explicit MtlReader(std::string folder) : folder_(std::move(folder)) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* names, std::string* warn, std::string* err) override {
+    const std::string file = folder_ + name;
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) {
+      if (warn) *warn += "Material file [ " + name + " ] not found\n";
+      return false;
+    }
+    std::istringstream text(read_file(file));
+    tinyobj::LoadMtl(names, materials, &text, warn, err);
+    return true;
+  }
+
+ private:
+  std::string folder_;
+};
+
+}  // namespace
+
+std::vector<std::string> obj_referenced_files(const std::string& path) {
+  const std::string text = read_file(path);
+  std::vector<std::string> files;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    const std::size_t i = line.find_first_not_of(" \t");
+    if (i == std::string::npos || line.compare(i, 7, "mtllib ") != 0) continue;
+    // tinyobjloader's split: names separated by spaces, a backslash escapes the next character.
+    std::string name;
+    bool escaped = false;
+    for (std::size_t k = i + 7; k <= line.size(); ++k) {
+      const char ch = k < line.size() ? line[k] : ' ';
+      if (!escaped && ch == '\\') {
+        escaped = true;
+        continue;
+      }
+      if (!escaped && ch == ' ') {
+        if (!name.empty()) files.push_back(obj_folder(path) + name);
+        name.clear();
+      } else {
+        name += ch;
+      }
+      escaped = false;
+    }
+  }
+  return files;
+}
+
+namespace {
+
 // Parses the file (and its MTL files) with tinyobjloader; the positions come from the strict scan.
 ObjData read_obj(const std::string& path, RawMesh* raw) {
-  std::vector<glm::vec3> positions = strict_positions(path, read_file(path));
+  const std::string text = read_file(path);
+  std::vector<glm::vec3> positions = strict_positions(path, text);
   ObjData obj;
   std::string warn, err;
-  std::string base_dir = std::filesystem::path(path).parent_path().string();
-  if (!base_dir.empty()) base_dir += "/";
+  std::istringstream stream(text);
+  MtlReader mtl(obj_folder(path));
   // triangulate = false: prt fan-triangulates itself (and tinyobjloader's triangulation would index
   // vertices before prt has range-checked them). default_vcols_fallback = false: colours are ignored.
-  const bool ok = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, path.c_str(),
-                                   base_dir.c_str(), /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  const bool ok = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, &stream, &mtl,
+                                   /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!ok) fail_file(path, "cannot read OBJ: " + first_line(err.empty() ? warn : err));
   if (!first_line(warn).empty()) raw->notes_only.notes.push_back("OBJ reader: " + first_line(warn));
   const std::size_t vertex_count = obj.attrib.vertices.size() / 3;

@@ -14,6 +14,7 @@
 #include "bake/bake.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/memory_check.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "dist/exchange.h"
@@ -63,6 +64,14 @@ std::string parameters_json(const ProbeBakeOptions& o, const SceneLight& light, 
 }
 
 }  // namespace
+
+std::uint64_t estimated_bytes(std::uint64_t probe_count, const ProbeBakeOptions& o) {
+  const std::uint64_t n = std::uint64_t(o.bands) * std::uint64_t(o.bands);
+  const std::uint64_t ne = std::uint64_t(o.transfer_bands) * std::uint64_t(o.transfer_bands);
+  // dvec3 + vec3 positions, valid, back-face fraction; RGB float coefficients; 3 x n x ne transfer and n RGB bias.
+  const std::uint64_t per_probe = 24 + 12 + 1 + 4 + 12 * n + (ne > 0 ? 4 * 3 * n * ne + 12 * n : 0);
+  return saturating_product(saturating_product(probe_count, per_probe), 2);
+}
 
 void check_options(const ProbeBakeOptions& o) {
   if (o.bands < 1 || o.bands > 16) fail_option("bands", " " + std::to_string(o.bands) + " is out of range 1..16");

@@ -81,6 +81,11 @@ struct ProbeBakeReport {
 /// Throws prt::Error naming the option for any option out of range.
 void check_options(const ProbeBakeOptions& options);
 
+/// Bytes `probe_count` probes need at most with these options: the positions (given and stored), the
+/// coefficients, validity and back-face fractions, the transfer matrices and bias (three channels),
+/// twice over for the copy an export makes. For the memory check before the bake.
+std::uint64_t estimated_bytes(std::uint64_t probe_count, const ProbeBakeOptions& options);
+
 /// Bakes probes at `positions` (layout and grid copied into the result from `layout`, which also gives
 /// the layout type). `light.emission` is empty or one per mesh vertex. Throws prt::Error for invalid
 /// options or inputs.

@@ -24,7 +24,6 @@ constexpr std::uint32_t kVersionTexel = 3;       // texel file (lightmap), one p
 constexpr std::uint32_t kVersionTexelBounce = 4; // texel file, two sections
 constexpr std::size_t kFixedHeaderBytes = 76;  // up to and including the parameters length
 constexpr std::uint32_t kMaxParametersBytes = 1u << 20;
-constexpr float kMaxTransferMagnitude = 1e15f;
 constexpr std::uint32_t kMaxBands = 32;
 
 struct Kinds {
@@ -156,21 +155,6 @@ DecodedHeader decode_header(const std::string& path, std::ifstream& in, std::uin
                         std::to_string(d.payload_bytes) + " bytes");
   if (file_size > d.header_bytes + d.payload_bytes) fail_file(path, "unexpected bytes after the payload");
   return d;
-}
-
-std::uint64_t file_size_of(const std::string& path, std::ifstream& in) {
-  in.seekg(0, std::ios::end);
-  auto size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  if (size < 0) fail_file(path, "cannot determine file size");
-  return static_cast<std::uint64_t>(size);
-}
-
-std::ifstream open_for_reading(const std::string& path) {
-  check_regular_input(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
-  return in;
 }
 
 }  // namespace
@@ -321,13 +305,13 @@ void check_empty_texels(const std::string& path, const TransferData& data) {
 }  // namespace
 
 Header read_transfer_header(const std::string& path) {
-  std::ifstream in = open_for_reading(path);
-  return decode_header(path, in, file_size_of(path, in)).header;
+  std::ifstream in = open_input(path);
+  return decode_header(path, in, input_size(path, in)).header;
 }
 
 TransferData read_transfer(const std::string& path) {
-  std::ifstream in = open_for_reading(path);
-  DecodedHeader d = decode_header(path, in, file_size_of(path, in));
+  std::ifstream in = open_input(path);
+  DecodedHeader d = decode_header(path, in, input_size(path, in));
   std::string payload(static_cast<std::size_t>(d.payload_bytes), '\0');
   in.read(payload.data(), static_cast<std::streamsize>(payload.size()));
   if (!in) fail_file(path, "truncated payload");

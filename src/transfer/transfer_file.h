@@ -66,6 +66,11 @@ struct Header {
   std::uint64_t values_per_vertex() const;
 };
 
+/// Largest magnitude of a stored transfer value (docs/formats.md, "Limits"): with lighting at most
+/// light::kMaxLightValue and at most 3 x 1024 coefficients, a relit value stays below FLT_MAX.
+/// Readers of every transfer format (.prt, .cprt) refuse larger values.
+inline constexpr float kMaxTransferMagnitude = 1e15f;
+
 /// Largest lightmap side a texel file may have.
 inline constexpr std::uint32_t kMaxTexelSide = 16384;
 

@@ -86,6 +86,30 @@ TEST_CASE("an OBJ face index of 4294967297 does not wrap to vertex 1", "[hardeni
               .triangle_count() == 1);
 }
 
+TEST_CASE("OBJ texture coordinates and normals are parsed as strictly as positions", "[hardening][obj]") {
+  // tinyobjloader reads "nan" and "abc" as 0: the lightmap would bake at (0, 0.7) without a word.
+  const std::string face = "f 1/1/1 2/2/1 3/3/1";
+  auto obj = [&](const std::string& vt2, const std::string& vn) {
+    return triangle_obj("0 0 0", "1 0 0", "0 1 0", "vt 0 0\n" + vt2 + "\nvt 0 1\n" + vn + "\n" + face);
+  };
+  const std::string nan = put("vt_nan.obj", obj("vt nan 0.7", "vn 0 0 1"));
+  REQUIRE_THROWS_WITH(mesh::load_mesh(nan, nullptr, true),
+                      nan + ": line 5: texture coordinate 2 (1-based) has a non-finite value \"vt nan 0.7\"");
+  const std::string word = put("vt_word.obj", obj("vt abc 0.7", "vn 0 0 1"));
+  REQUIRE_THROWS_WITH(mesh::load_mesh(word, nullptr, true),
+                      word + ": line 5: texture coordinate 2 (1-based) has a malformed value \"vt abc 0.7\"");
+  const std::string normal = put("vn_nan.obj", obj("vt 1 0", "vn 0 nan 1"));
+  REQUIRE_THROWS_WITH(mesh::load_mesh(normal, nullptr, true), Contains(normal) && Contains("line 7: normal 1 (1-based)"));
+  const std::string overflow = put("vt_1e39.obj", obj("vt 1e39 0.7", "vn 0 0 1"));
+  REQUIRE_THROWS_WITH(mesh::load_mesh(overflow, nullptr, true), Contains("non-finite value"));
+  // The control: the same file with numbers everywhere loads, with its UVs (v flipped: prt's v is down).
+  const mesh::Mesh ok = mesh::load_mesh(put("vt_ok.obj", obj("vt 1 0.25", "vn 0 0 1")), nullptr, true);
+  REQUIRE(ok.triangle_count() == 1);
+  REQUIRE(ok.lightmap_uv.size() == 3);
+  REQUIRE(ok.lightmap_uv[1].x == 1.0f);
+  REQUIRE(ok.lightmap_uv[1].y == 0.75f);
+}
+
 TEST_CASE("vertices beyond +-1e12 (3.4e38 reached Embree) are refused", "[hardening][range]") {
   const std::string path = put("huge.obj", triangle_obj("0 0 0", "3.4e38 0 0", "0 1 0"));
   REQUIRE_THROWS_WITH(mesh::load_mesh(path, nullptr, true), Contains(path) && Contains("outside +-1e12"));
