@@ -34,7 +34,7 @@ void run_relight(const RelightCommandOptions& o) {
   check_outputs({o.output}, {o.input, o.environment, o.scene});
   probes::ProbeSet set = probes::read_probe_file(o.input);
   if (set.transfer_bands == 0) fail_file(o.input, "has no transfer: bake it with prt probes --transfer");
-  const sh::RgbCoefficients lighting = load_lighting(o.environment, set.transfer_bands, ypr);
+  const sh::RgbCoefficients lighting = load_unsplit_sh_lighting(o.environment, set.transfer_bands, ypr);
   probes::relight(set, lighting);
   probes::ExportOptions export_options;
   export_options.probe = o.probe;

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/lighting_input.h"
 #include "compress/cprt_file.h"
+#include "compress/open_transfer.h"
 #include "core/error.h"
 #include "image/image.h"
 #include "lightmap/lightmap_shading.h"
@@ -45,7 +46,7 @@ void run_shade(const ShadeCommandOptions& o) {
   check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.light, o.brdf});
   const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
   const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, true);
-  const transfer::TransferData transfer = compress::read_transfer_or_cprt(o.transfer_path);  // .prt or .cprt
+  const transfer::TransferData transfer = compress::expand(compress::open_transfer(o.transfer_path));  // .prt or .cprt
   if (transfer.header.is_texel() != o.lightmap)
     fail_file(o.transfer_path, o.lightmap ? "--lightmap needs a lightmap (bake it with prt bake --lightmap WxH)"
                                           : "is a lightmap: shade it with --lightmap -o OUT.exr");

@@ -25,7 +25,7 @@ light::SceneLighting load_scene_lighting(const std::string& spec, int bands, con
   return light::load_scene_lighting(spec, bands, ypr, sun_request(a), window, threads);
 }
 
-sh::RgbCoefficients load_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, int threads) {
+sh::RgbCoefficients load_unsplit_sh_lighting(const std::string& spec, int bands, const glm::dvec3& ypr, int threads) {
   light::SunRequest none;
   none.mode = light::SunRequest::Mode::none;
   return light::load_scene_lighting(spec, bands, ypr, none, light::parse_window_request("none"), threads).sky;

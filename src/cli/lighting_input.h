@@ -34,6 +34,6 @@ light::SceneLighting load_scene_lighting(const std::string& spec, int bands, con
 /// `prt light` (truncated or zero-padded to `bands`, its discs folded in), or anything
 /// prt::light::load_environment accepts (projected to `bands`), rotated by Ry(yaw) Rx(pitch) Rz(roll)
 /// (degrees, `yaw_pitch_roll`).
-sh::RgbCoefficients load_lighting(const std::string& spec, int bands, const glm::dvec3& yaw_pitch_roll, int threads = 0);
+sh::RgbCoefficients load_unsplit_sh_lighting(const std::string& spec, int bands, const glm::dvec3& yaw_pitch_roll, int threads = 0);
 
 }  // namespace prt::cli

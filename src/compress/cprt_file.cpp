@@ -311,24 +311,5 @@ bool is_cprt_file(const std::string& path) {
   return in.gcount() == 8 && std::memcmp(magic, kCprtMagic, 8) == 0;
 }
 
-transfer::TransferData read_transfer_or_cprt(const std::string& path) {
-  return is_cprt_file(path) ? decompress(read_cprt(path)) : transfer::read_transfer(path);
-}
-
-std::shared_ptr<const CompressedTransfer> read_transfer_or_model(const std::string& path, transfer::TransferData& out) {
-  if (!is_cprt_file(path)) {
-    out = transfer::read_transfer(path);
-    return nullptr;
-  }
-  auto model = std::make_shared<const CompressedTransfer>(read_cprt(path));
-  if (model->source.is_texel()) {  // lightmaps: decompressed on load into the lightmap pass's texture arrays
-    out = decompress(*model);
-    return nullptr;
-  }
-  out = transfer::TransferData{};
-  out.header = model->source;
-  out.header.scalar = transfer::Scalar::float32;
-  return model;
-}
 
 }  // namespace prt::compress

@@ -32,15 +32,6 @@ std::string describe(const CompressedTransfer& compressed);
 /// reader does (open_input), if `path` is not a readable regular file.
 bool is_cprt_file(const std::string& path);
 
-/// The transfer a file stands for: read_transfer of a .prt file, or decompress(read_cprt(...)) of a
-/// .cprt file (told apart by the magic). What `prt shade` shades: the CPU reference of compressed
-/// transfer.
-transfer::TransferData read_transfer_or_cprt(const std::string& path);
-
-/// For renderers: a per-vertex .cprt file gives its model (returned) and `header_only` gets its source
-/// header (float32) with no values; a .prt file, and a texel (lightmap) .cprt file, give null and
-/// `header_only` the whole transfer (the lightmap decompressed on load: the renderer's lightmap pass
-/// samples texture arrays of the reconstructed texels, so it draws it as it draws a .prt lightmap).
-std::shared_ptr<const CompressedTransfer> read_transfer_or_model(const std::string& path, transfer::TransferData& header_only);
+/// (Reading any transfer file, .prt or .cprt: compress/open_transfer.h.)
 
 }  // namespace prt::compress

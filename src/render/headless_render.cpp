@@ -36,12 +36,10 @@ void render_to_file(const RenderOptions& options) {
   check_output_extension(options.output);
   const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path});
   const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
-  if (options.bands < 0 || options.bands > transfer_bands)
-    fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
-         std::to_string(options.bands));
+  used_bands(scene.transfers[0].header, options.bands);  // before any GL work
   light::WindowRequest window = options.window;
   window.radiance = transfer::is_glossy(scene.transfers[0].header.kind);  // the glossy criterion (light/deringing.h)
-  const Lighting lighting = load_lighting(options.environment, transfer_bands, options.sun, window);
+  const Lighting lighting = load_render_lighting(options.environment, transfer_bands, options.sun, window);
   const Background background =
       options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
   if (background == Background::environment && !lighting.has_image)

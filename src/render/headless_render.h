@@ -14,7 +14,7 @@ namespace prt::render {
 struct RenderOptions {
   std::string mesh_path;
   std::string transfer_path;
-  std::string environment;              ///< environment image or SH lighting JSON (see load_lighting)
+  std::string environment;              ///< environment image or SH lighting JSON (see load_render_lighting)
   std::string output;                   ///< .png (tone mapped, 8-bit sRGB) or .exr (linear radiance)
   glm::dvec3 rotate{0.0};               ///< environment yaw, pitch, roll in degrees
   glm::dvec3 object_rotate{0.0};        ///< object yaw, pitch, roll in degrees

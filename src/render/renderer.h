@@ -2,6 +2,12 @@
 // The real-time relighting renderer, shared by the window (prt view) and headless (prt render) paths.
 // Everything here needs a current OpenGL 4.5 core context (HeadlessContext, or a GLFW window's).
 //
+// STRUCTURE: one frame core (frame_core.h: the mesh, the lighting, the camera, the framebuffer, the
+// background, the tone map, and the sun's discs and shadow maps, sun_light.h) and one pass per transfer
+// kind behind one interface (transfer_pass.h: pass_diffuse.cpp, pass_glossy.cpp, pass_cpca.cpp,
+// pass_lightmap.cpp), each owning its transfer on the GPU and how the discs light it. render() draws
+// the core's background and then the pass of the frame's transfer; it never names a kind.
+//
 // PASSES (shaders/ names; see shader_program.h for how sources are found):
 //   background  fullscreen.vert + background.frag: the environment behind the mesh, per pixel along the
 //               view direction: the equirect image (bilinear, as Environment::radiance), its SH
@@ -9,7 +15,7 @@
 //               discs the frame shades drawn over them (uniform radiance L = E / (pi sin^2 a) inside the
 //               angular radius, the rim pixels weighted by how much of them it covers; a second draw with
 //               DISCS over each disc's screen rectangle, camera::cap_pixel_rect), so that the sky behind
-//               the mesh is the lighting it is shaded with (load_lighting: the image without them).
+//               the mesh is the lighting it is shaded with (load_render_lighting: the image without them).
 //   prt_diffuse prt_diffuse.vert + surface.frag (one program per channel count, transfer bands and
 //               truncation, compiled on first use): per-vertex diffuse PRT. The transfer is uploaded once
 //               into a buffer, vertex-major exactly as in the file (channels x bands^2 floats per vertex),
@@ -85,7 +91,9 @@ struct CompressedTransfer;
 
 namespace prt::render {
 
-class CpcaTransfer;
+struct FrameCore;
+class TransferPass;
+struct Frame;
 
 // The camera is prt::camera (src/camera, no GL), shared with `prt reference --image`; the renderer's
 // API keeps its names.
@@ -101,7 +109,7 @@ inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
 /// What is drawn behind the mesh.
 enum class Background { black, environment, sh };
-/// Parses "black", "env", "sh"; throws prt::Error("--background: ...") otherwise.
+/// Parses "black", "env", "sh"; throws prt::OptionError("background", ": ...") otherwise.
 Background parse_background(const std::string& name);
 const char* background_name(Background background);  ///< "black", "env", "sh"
 
@@ -166,6 +174,10 @@ struct FrameSettings {
 /// E = pi * mean radiance at normal incidence, as for a uniform environment.
 void lambert_light(const sh::RgbCoefficients& lighting, glm::dvec3& direction, glm::dvec3& radiance);
 
+/// The bands a frame of a transfer with `header` uses: `requested`, or all the transfer has for 0.
+/// Throws prt::OptionError("bands", ": ...") unless 0 <= requested <= header.bands.
+int used_bands(const transfer::Header& header, int requested);
+
 class Renderer {
  public:
   /// Compiles and links every pass (prt_diffuse for 3 channels and 5 bands; other variants on first
@@ -183,6 +195,11 @@ class Renderer {
   /// from the mesh's. (Callers check the mesh fingerprint with transfer::check_mesh_match first.) A glossy
   /// transfer needs set_brdf before it is rendered.
   int add_transfer(const transfer::TransferData& transfer, const std::string& origin, std::size_t max_range_bytes = 0);
+  /// Uploads any transfer, through the pass that draws its kind (transfer_pass.h): `transfer` (for a
+  /// compressed one its header, float32, values ignored) and `compressed`, the CPCA model of a .cprt
+  /// file, or null. add_transfer, add_compressed and add_lightmap are this. Returns its index.
+  int add(const transfer::TransferData& transfer, const compress::CompressedTransfer* compressed, const std::string& origin,
+          std::size_t max_range_bytes = 0);
   /// Uploads the BRDF matrix a glossy transfer is shaded with (replacing the previous one: live BRDF
   /// edits re-project B on the CPU and call this). Throws prt::Error unless `transfer` is a glossy
   /// transfer's index and matrix.bands equals its bands_out.
@@ -211,14 +228,14 @@ class Renderer {
   /// discs and shadow maps of `settings`; camera and background ignored). Texels no triangle's
   /// rasterisation covers stay 0 (read_triangle_ids: kNoTriangle). For tests: the GPU at texel centres.
   void render_texels(const FrameSettings& settings);
-  int transfer_count() const { return static_cast<int>(transfers_.size()); }
+  int transfer_count() const { return static_cast<int>(passes_.size()); }
   const transfer::Header& transfer_header(int index) const;
 
   /// Sets the lighting: SH radiance coefficients in the environment's own frame (any bands; missing
   /// bands count as zero, as in shade_diffuse) and, optionally, the equirect image it came from (for
   /// the "env" background; nullptr if there is none, e.g. an SH lighting file).
   void set_lighting(const sh::RgbCoefficients& lighting, const image::Image* equirect);
-  bool has_environment_image() const { return environment_texture_ != 0; }
+  bool has_environment_image() const;
   /// Sets the discs (environment frame, brightest first; only the first kMaxDiscs are shaded); empty:
   /// none. Interreflected transfer without a bounce-only section leaves their bounce light out, with
   /// one warning line on stderr per transfer.
@@ -240,10 +257,10 @@ class Renderer {
   void render(const FrameSettings& settings, int width, int height);
 
   /// The view and the model-view-projection matrix (as uploaded, float) of the last render().
-  const ViewMatrices& last_view() const { return view_; }
-  const glm::mat4& last_model_view_projection() const { return model_view_projection_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
+  const ViewMatrices& last_view() const;
+  const glm::mat4& last_model_view_projection() const;
+  int width() const;
+  int height() const;
 
   /// Linear radiance of the last frame, RGB, top row first (no exposure, no tone map).
   image::Image read_radiance() const;
@@ -255,85 +272,11 @@ class Renderer {
   void present(GLuint target, double exposure_stops, image::ToneMap tone_map);
 
  private:
-  void resize(int width, int height);
-  void draw_background(const FrameSettings& settings, int bands);
-  /// One full-viewport draw of `program` (background_ or background_discs_) with the frame's uniforms.
-  void draw_background_pass(const Program& program, const FrameSettings& settings, int bands);
-  /// The disc uniforms of background_discs_ (the discs of set_discs).
-  void bind_background_discs();
-  void draw_mesh(const FrameSettings& settings, int bands, bool sun);
-
-  /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks), compiled
-  /// on first use and kept.
-  const Program& prt_program(int channels, int coefficient_count, int used_count, int chunks, bool sun = false);
-  /// prt_glossy's compute program for (channels, in coefficients, used, out coefficients, chunks) and
-  /// its draw program for the output bands; compiled on first use and kept.
-  const Program& glossy_compute_program(int channels, int in_count, int used_count, int out_count, int chunks,
-                                        bool sun = false);
-  const Program& glossy_draw_program(int out_bands, bool sun = false);
-  /// The glossy pass (renderer_glossy.cpp): compute O for every vertex, then draw.
-  void draw_glossy(const FrameSettings& settings, int bands, bool sun);
-
-  // The sun pass (renderer_sun.cpp; PASSES: sun).
-  struct SunPass;
-  bool sun_active(const FrameSettings& settings) const;
-  /// Redraws the shadow maps and recomputes the bounce light if the lighting changed since last time.
-  void update_sun(const FrameSettings& settings, int bands);
-  void draw_shadow_maps();
-  void update_bounce(const FrameSettings& settings, int bands);
-  /// Binds the discs' uniforms, shadow maps and (for `glossy`) BRDF terms for `program`.
-  void bind_sun(const Program& program, const FrameSettings& settings, bool glossy);
-  /// Binds the glossy bounce coefficients for prt_glossy.comp with SUN.
-  void bind_sun_bounce();
-  /// Depth-only draw of the mesh before the SUN draws (each pixel then runs the discs' lookups once).
-  void draw_sun_prepass();
-  /// The discs' direct light over the pixels the diffuse mesh draw covered (renderer_sun.cpp).
-  void draw_sun_deferred(const FrameSettings& settings);
-  void bind_sun_surface(int transfer);
-  std::unique_ptr<SunPass> sun_;
-  /// The CPCA pass (renderer_cpca.cpp).
-  void draw_cpca(const FrameSettings& settings, int bands, bool sun);
-  /// set_brdf for a compressed transfer (kept on the CPU for the products); false if `transfer` is not one.
-  bool set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix);
-  /// The lightmap pass (renderer_lightmap.cpp).
-  struct LightmapPass;
-  std::unique_ptr<LightmapPass> lightmap_;
-  const transfer::Header& lightmap_header(int transfer) const;
-  const Program& lightmap_program(const transfer::Header& header, int used_count, bool sun, bool bounce, bool texel_space);
-  void upload_lightmap_disc_lighting(const FrameSettings& settings, int bands);
-  void draw_lightmap(const FrameSettings& settings, int bands, bool sun, bool texel_space);
-
-  // background_discs_: background.frag with DISCS, drawn over each shaded disc's rectangle (draw_background).
-  Program background_, background_discs_, lambert_, tonemap_;
-  std::map<std::tuple<int, int, int, int, bool>, Program> prt_programs_;
-  std::map<std::tuple<int, int, int, int, int, bool>, Program> glossy_compute_programs_;
-  std::map<std::pair<int, bool>, Program> glossy_draw_programs_;
-  std::vector<GLuint> brdf_buffers_;         // per transfer: B as vec4 per entry (0 until set_brdf)
-  std::vector<int> brdf_bands_;              // per transfer: bands of the uploaded B
-  GLuint outgoing_ = 0;                      // glossy: O of every vertex, vec4 per coefficient
-  std::size_t outgoing_bytes_ = 0;
-  GLuint empty_vao_ = 0, mesh_vao_ = 0;
-  GLuint positions_ = 0, normals_ = 0, albedo_ = 0, indices_ = 0;
-  GLsizei index_count_ = 0;
-  std::size_t vertex_count_ = 0;
-  mesh::Bounds bounds_;
-  bool has_mesh_ = false;
-  std::vector<std::unique_ptr<TransferBuffer>> transfers_;     // null for compressed transfers
-  std::vector<std::unique_ptr<CpcaTransfer>> compressed_;      // per transfer (may be shorter): non-null for CPCA
-  std::map<std::pair<int, int>, Program> cpca_programs_;       // compute by (N, output bands or 0); draw at (-1, 0)
-
-  std::vector<glm::vec3> lighting_;          // environment frame, padded to kMaxBands^2
-  int lighting_bands_ = 1;
-  std::vector<glm::vec3> rotated_;           // scratch: object frame
-  std::vector<glm::vec4> upload_;            // scratch: std140 layout
-  glm::dvec3 lambert_direction_{0.0, 1.0, 0.0}, lambert_radiance_{0.0};
-  GLuint object_lighting_ = 0, environment_lighting_ = 0;  // uniform buffers, kMaxBands^2 vec4 each
-  GLuint environment_texture_ = 0;
-
-  GLuint framebuffer_ = 0, radiance_texture_ = 0, triangle_texture_ = 0, depth_buffer_ = 0;
-  int width_ = 0, height_ = 0;
-  ViewMatrices view_;
-  glm::mat4 model_view_projection_{1.0f};
+  TransferPass& pass(int index) const;
+  /// The object-frame lighting of the frame and, with discs, the shadow maps and the pass's share.
+  void prepare(TransferPass& pass, const Frame& frame);
+  std::unique_ptr<FrameCore> core_;
+  std::vector<std::unique_ptr<TransferPass>> passes_;  // per transfer index
 };
 
 }  // namespace prt::render

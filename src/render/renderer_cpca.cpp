@@ -1,6 +1,5 @@
 // The renderer's CPCA pass (renderer_cpca.h; renderer.h, PASSES: prt_cpca).
 #include "render/renderer_cpca.h"
-#include "render/renderer_sun.h"
 #include "render/renderer_lightmap.h"
 
 #include <cstdio>
@@ -11,19 +10,15 @@
 #include "compress/cprt_file.h"
 #include "core/error.h"
 #include "render/renderer.h"
-#include "sh/rotation.h"
 
 namespace prt::render {
 
 namespace {
 
 constexpr GLuint kProductsUnit = 0;      // prt_cpca.comp: samplerBuffer products
-constexpr GLuint kPositionsBinding = 4;  // prt_cpca.comp
-constexpr GLuint kNormalsBinding = 5;
 constexpr GLuint kClustersBinding = 7;
 constexpr GLuint kWeightsBinding = 8;
 constexpr GLuint kRadianceBinding = 9;   // prt_cpca.comp (written), prt_cpca.vert (read)
-constexpr GLuint kWorkgroupSize = 64;    // prt_cpca.comp: local_size_x
 
 // Diffuse: one rgb per vector.
 glm::vec4 diffuse_product(const float* a, int channels, int in_count, int used, const glm::vec3* lighting) {
@@ -146,37 +141,9 @@ std::size_t CpcaTransfer::gpu_bytes() const {
   return vertex_bytes_ + static_cast<std::size_t>(model_.clusters) * (model_.pca + 1) * out_count * sizeof(glm::vec4);
 }
 
-int Renderer::add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin) {
-  if (!has_mesh_) fail("renderer: set_mesh before add_compressed");
-  if (compressed.source.vertex_count != vertex_count_)
-    fail_file(origin, "compressed transfer has " + std::to_string(compressed.source.vertex_count) + " vertices, the mesh " +
-                          std::to_string(vertex_count_));
-  compressed_.resize(transfers_.size());
-  compressed_.push_back(std::make_unique<CpcaTransfer>(compressed, origin));
-  transfers_.push_back(nullptr);
-  // The discs' pass: direct light with shadows unless unshadowed (glossy: through the BRDF terms that
-  // set_brdf(..., surface) records); the bounce light comes from the model's bounce-only part in the
-  // products (draw_cpca), so the sun pass's own per-vertex bounce stays 0 -- which is why `glossy` stays
-  // false here (its glossy bounce pass reads an uncompressed buffer) -- and it warns, as for a version 1
-  // .prt, only if an interreflected model has no such part.
-  SunPass::PerTransfer& discs = sun_->transfers.emplace_back();
-  const transfer::Kind kind = compressed.source.kind;
-  discs.origin = origin;
-  discs.shadows = kind != transfer::Kind::unshadowed;
-  discs.interreflected = (kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected) && !compressed.bounce;
-  brdf_buffers_.push_back(0);
-  brdf_bands_.push_back(0);
-  return static_cast<int>(transfers_.size()) - 1;
-}
-
-bool Renderer::is_compressed(int index) const {
-  return static_cast<std::size_t>(index) < compressed_.size() && compressed_[static_cast<std::size_t>(index)] != nullptr;
-}
-
 int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i) {
-  if (i < scene.compressed.size() && scene.compressed[i]) return renderer.add_compressed(*scene.compressed[i], scene.transfer_paths[i]);
-  if (scene.transfers[i].header.is_texel()) return renderer.add_lightmap(scene.transfers[i], scene.transfer_paths[i]);
-  return renderer.add_transfer(scene.transfers[i], scene.transfer_paths[i]);
+  const compress::CompressedTransfer* model = i < scene.compressed.size() ? scene.compressed[i].get() : nullptr;
+  return renderer.add(scene.transfers[i], model, scene.transfer_paths[i]);
 }
 
 namespace {
@@ -208,68 +175,6 @@ std::string transfer_memory_label(const SceneInputs& scene, std::size_t i) {
   char text[160];
   std::snprintf(text, sizeof text, ", %.1f MB", compress::uncompressed_bytes(scene.transfers[i].header, transfer::Scalar::float32) * 1e-6);
   return text;
-}
-
-bool Renderer::set_compressed_brdf(int transfer, const brdf::BrdfMatrix& matrix) {
-  if (!is_compressed(transfer)) return false;
-  compressed_[static_cast<std::size_t>(transfer)]->set_brdf(matrix);
-  return true;
-}
-
-void Renderer::draw_cpca(const FrameSettings& settings, int bands, bool sun) {
-  CpcaTransfer& t = *compressed_[static_cast<std::size_t>(settings.transfer)];
-  const bool glossy = transfer::is_glossy(t.header().kind);
-  if (glossy && !t.has_brdf()) fail("renderer: glossy transfer " + std::to_string(settings.transfer) + " has no BRDF matrix (set_brdf)");
-  // With discs: their SH in the object frame (as the sun pass turns them) for the bounce-only part.
-  std::vector<glm::vec3> discs;
-  if (sun && t.has_bounce()) {
-    discs.resize(static_cast<std::size_t>(bands * bands));
-    const glm::mat3 rotation(glm::transpose(settings.object_rotation) * settings.environment_rotation);
-    sh::rotate_rgb(bands, rotation, sun_->disc_lighting.data(), discs.data());
-  }
-  // Per vertex: blend the products (and, glossy, evaluate toward the eye) into the radiance buffer.
-  t.prepare(rotated_.data(), discs.empty() ? nullptr : discs.data(), bands);
-  const int out_bands = glossy ? static_cast<int>(t.header().bands_out) : 0;
-  auto found = cpca_programs_.find({t.pca(), out_bands});
-  if (found == cpca_programs_.end()) {
-    const std::string defines = "#define PCA " + std::to_string(t.pca()) + "\n#define OUT_BANDS " + std::to_string(out_bands) + "\n";
-    found = cpca_programs_.emplace(std::make_pair(t.pca(), out_bands), Program({"prt_cpca.comp"}, defines)).first;
-  }
-  const Program& compute = found->second;
-  glUseProgram(compute.id());
-  // The eye in mesh coordinates, as the glossy pass: p = c + R_object^T (eye - c).
-  const glm::dvec3 eye_object = view_.centre + glm::transpose(settings.object_rotation) * (view_.eye - view_.centre);
-  glUniform3f(compute.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
-              static_cast<float>(eye_object.z));
-  glUniform1i(compute.uniform("vertex_count"), static_cast<GLint>(vertex_count_));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, positions_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, normals_);
-  glDispatchCompute(static_cast<GLuint>((vertex_count_ + kWorkgroupSize - 1) / kWorkgroupSize), 1, 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
-  // Draw with the per-vertex radiance, interpolated as the diffuse pass's. With discs, diffuse: the
-  // deferred pass (draw_sun_deferred) adds their direct light per pixel as for uncompressed transfer;
-  // glossy: prt_cpca_sun.frag evaluates the BRDF toward the eye in the draw itself.
-  const bool forward_sun = sun && glossy;
-  const std::pair<int, int> key(-1, forward_sun ? 2 : 0);
-  found = cpca_programs_.find(key);
-  if (found == cpca_programs_.end())
-    found = cpca_programs_.emplace(key, forward_sun ? Program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
-                                                    : Program({"prt_cpca.vert", "surface.frag"}))
-                .first;
-  const Program& draw = found->second;
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glBindVertexArray(mesh_vao_);
-  glUseProgram(draw.id());
-  glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(model_view_projection_));
-  if (forward_sun) {
-    bind_sun(draw, settings, true);
-    glUniform3f(draw.uniform("eye_object"), static_cast<float>(eye_object.x), static_cast<float>(eye_object.y),
-                static_cast<float>(eye_object.z));
-  }
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  if (sun && !glossy) draw_sun_deferred(settings);
 }
 
 }  // namespace prt::render

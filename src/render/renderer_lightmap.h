@@ -67,24 +67,5 @@ std::string lightmap_memory_label(const transfer::Header& header);
 /// Layers a texel block of `values_per_texel` values takes: ceil(values_per_texel / 4).
 int lightmap_layers(std::uint64_t values_per_texel);
 
-/// The pass's state: the mesh's per-corner UVs, each texel transfer's textures (null for other
-/// transfers), the discs' SH for the bounce-only layers, and the compiled program variants.
-struct Renderer::LightmapPass {
-  LightmapPass();
-  ~LightmapPass();
-  LightmapPass(const LightmapPass&) = delete;
-  LightmapPass& operator=(const LightmapPass&) = delete;
-
-  /// Drops the textures and replaces the UVs with the mesh's (none when it has no lightmap UVs).
-  void set_mesh(const mesh::Mesh& mesh);
-
-  GLuint uv_buffer = 0;              ///< vec2 per triangle corner
-  std::size_t uv_corners = 0;
-  std::vector<std::unique_ptr<LightmapTextures>> textures;  ///< per transfer (may be shorter)
-  std::vector<bool> warned;          ///< per transfer: the "no bounce-only section" warning was printed
-  GLuint disc_lighting = 0;          ///< object-frame disc SH (uniform DiscLighting), kMaxBands^2 vec4
-  /// Programs by (channels, coefficients, used, layers, sun, bounce, texel space).
-  std::map<std::tuple<int, int, int, int, bool, bool, bool>, Program> programs;
-};
 
 }  // namespace prt::render

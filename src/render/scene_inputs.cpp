@@ -1,6 +1,6 @@
 #include "render/scene_inputs.h"
 
-#include "compress/cprt_file.h"
+#include "compress/open_transfer.h"
 
 #include <algorithm>
 #include <cctype>
@@ -39,18 +39,25 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
   scene.mesh = mesh::load_mesh(mesh_path, nullptr, /*quiet=*/true);
   const std::uint64_t fingerprint = mesh::fingerprint(scene.mesh);
   for (const std::string& path : transfer_paths) {
-    transfer::TransferData data;
-    scene.compressed.push_back(compress::read_transfer_or_model(path, data));
-    transfer::check_mesh_match(path, data.header, scene.mesh.vertex_count(), scene.mesh.triangle_count(),
-                               fingerprint);
-    transfer::check_uv_match(path, data.header, mesh::uv_fingerprint(scene.mesh));  // texel files only
-    scene.transfers.push_back(std::move(data));
+    compress::TransferFile file = compress::open_transfer(path);
+    const transfer::Header header = file.header();
+    transfer::check_mesh_match(path, header, scene.mesh.vertex_count(), scene.mesh.triangle_count(), fingerprint);
+    transfer::check_uv_match(path, header, mesh::uv_fingerprint(scene.mesh));  // texel files only
+    // A per-vertex model is drawn as it is (the CPCA pass); a compressed lightmap is decompressed on load
+    // (the lightmap pass samples texture arrays of the reconstructed texels, as for a .prt lightmap).
+    if (file.compressed() && !header.is_texel()) {
+      scene.compressed.push_back(std::make_shared<const compress::CompressedTransfer>(std::get<compress::CompressedTransfer>(std::move(file.contents))));
+      scene.transfers.emplace_back().header = header;
+    } else {
+      scene.compressed.push_back(nullptr);
+      scene.transfers.push_back(compress::expand(std::move(file)));
+    }
     scene.transfer_paths.push_back(path);
   }
   return scene;
 }
 
-Lighting load_lighting(const std::string& spec, int bands, const light::SunRequest& sun, const light::WindowRequest& window) {
+Lighting load_render_lighting(const std::string& spec, int bands, const light::SunRequest& sun, const light::WindowRequest& window) {
   Lighting lighting;
   lighting.source = spec;
   light::Environment environment;

@@ -27,7 +27,8 @@ struct SceneInputs {
   std::vector<std::shared_ptr<const compress::CompressedTransfer>> compressed;
 };
 
-/// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer (.prt, or .cprt: compressed), checks every transfer against the mesh
+/// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer (compress::open_transfer:
+/// .prt, or .cprt: compressed, a compressed lightmap decompressed), checks every transfer against the mesh
 /// (transfer::check_mesh_match with mesh::fingerprint). Throws prt::Error("<file>: <problem>") for the
 /// first file that fails.
 SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths);
@@ -54,7 +55,7 @@ struct Lighting {
 /// centre; with discs found, the residual is already equirect: light/sun_extraction.h). With
 /// sun none and window none the coefficients are exactly light::project's (or the file's).
 /// Throws prt::Error("<file>: <problem>").
-Lighting load_lighting(const std::string& spec, int bands, const light::SunRequest& sun = {},
+Lighting load_render_lighting(const std::string& spec, int bands, const light::SunRequest& sun = {},
                        const light::WindowRequest& window = {});
 
 /// Largest band count among the transfers (the bands lighting is projected to).

@@ -209,7 +209,7 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
   ViewerState& state = s.state;
   for (const std::string& path : state.dropped) {
     try {
-      state.environments.push_back(load_lighting(path, state.projection_bands, state.sun_request, state.window_request));
+      state.environments.push_back(load_render_lighting(path, state.projection_bands, state.sun_request, state.window_request));
       state.environment = static_cast<int>(state.environments.size()) - 1;
       state.environment_changed = true;
       state.message = "loaded " + path;
@@ -270,7 +270,7 @@ void init_state(ViewerState& state, const SceneInputs& scene, const ViewerOption
   // The auto window's glossy criterion (light/deringing.h) when any transfer is glossy, as prt render.
   for (const auto& t : scene.transfers) state.window_request.radiance |= transfer::is_glossy(t.header.kind);
   for (const std::string& spec : options.environments)
-    state.environments.push_back(load_lighting(spec, state.projection_bands, options.sun, state.window_request));
+    state.environments.push_back(load_render_lighting(spec, state.projection_bands, options.sun, state.window_request));
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const transfer::Header& h = scene.transfers[i].header;
     state.transfer_names.push_back(std::filesystem::path(scene.transfer_paths[i]).filename().string() + " (" +

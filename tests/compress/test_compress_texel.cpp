@@ -11,6 +11,7 @@
 #include <random>
 
 #include "compress/cprt_file.h"
+#include "compress/open_transfer.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/compare.h"
@@ -114,9 +115,11 @@ TEST_CASE("CPCA of texel transfer: the non-empty texels are the points, low-rank
   const std::string info = compress::describe(compress::read_cprt_header(dir + "/t.cprt"));
   CHECK(contains(info, "lightmap: 12x10 texels (UV set 1"));
   CHECK(contains(info, "compressed texels: 100"));
-  // What renderers get: the decompressed lightmap (no model).
-  transfer::TransferData loaded;
-  CHECK(compress::read_transfer_or_model(dir + "/t.cprt", loaded) == nullptr);
+  // The door for any transfer file: it holds the model; expanded, the decompressed lightmap.
+  compress::TransferFile file = compress::open_transfer(dir + "/t.cprt");
+  CHECK(file.compressed());
+  CHECK(file.header().is_texel());
+  const transfer::TransferData loaded = compress::expand(std::move(file));
   CHECK(loaded.header.is_texel());
   CHECK(max_difference(loaded.values, back.values) == 0.0);
   CHECK(max_difference(loaded.bounce_only, back.bounce_only) == 0.0);

@@ -95,7 +95,7 @@ TEST_CASE("the EXR from prt render holds exactly the renderer's float radiance",
   CHECK(fs::exists(f / "json.exr"));
 
   const render::SceneInputs scene = render::load_scene(f / "mesh.ply", {f / "transfer.prt"});
-  const render::Lighting lighting = render::load_lighting(f / "env.exr", 5);
+  const render::Lighting lighting = render::load_render_lighting(f / "env.exr", 5);
   render::HeadlessContext context;
   render::Renderer renderer;
   renderer.set_mesh(scene.mesh);

@@ -1,0 +1,34 @@
+#pragma once
+// The one door for reading a transfer file of any kind: a .prt file (transfer_file.h: per vertex or per
+// lightmap texel, diffuse or glossy) or a .cprt file (cprt_file.h: its CPCA model, per vertex or per
+// texel), told apart by their magic, not their name. Every command that reads transfer (render, view,
+// shade) opens it here and decides from what the file holds.
+#include <string>
+#include <variant>
+
+#include "compress/compressed.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::compress {
+
+/// What a transfer file holds.
+struct TransferFile {
+  std::string path;
+  /// The transfer itself (.prt), or its CPCA model (.cprt).
+  std::variant<transfer::TransferData, CompressedTransfer> contents;
+
+  bool compressed() const { return std::holds_alternative<CompressedTransfer>(contents); }
+  /// The header of the transfer the file stands for (a model's: its source header with a float32
+  /// payload, as decompress gives it).
+  transfer::Header header() const;
+};
+
+/// Reads and checks the whole file (transfer::read_transfer or read_cprt). Throws prt::Error("<path>:
+/// <problem>").
+TransferFile open_transfer(const std::string& path);
+
+/// The transfer the file stands for: its data, or its model decompressed (what `prt shade` shades, the
+/// CPU reference of compressed transfer).
+transfer::TransferData expand(TransferFile file);
+
+}  // namespace prt::compress
