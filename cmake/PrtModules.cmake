@@ -5,8 +5,8 @@
 #
 # A module's list names only its direct prt dependencies; prt_module_closure adds the rest.
 
-set(PRT_MODULES core dist image light mesh trace camera transfer shade brdf bake lightmap compress reference
-    render probes)
+set(PRT_MODULES core dist image light mesh trace camera transfer shade brdf bake lightmap compress pipeline
+    reference render probes)
 
 set(PRT_MODULE_DEPS_core "")
 set(PRT_MODULE_DEPS_dist core)
@@ -20,7 +20,8 @@ set(PRT_MODULE_DEPS_shade core transfer brdf light mesh trace)
 set(PRT_MODULE_DEPS_brdf core)
 set(PRT_MODULE_DEPS_bake core dist mesh transfer brdf trace)
 set(PRT_MODULE_DEPS_lightmap core mesh transfer bake trace shade light image)
-set(PRT_MODULE_DEPS_compress core transfer brdf shade)
+set(PRT_MODULE_DEPS_compress core transfer brdf shade light)
+set(PRT_MODULE_DEPS_pipeline core mesh transfer bake compress)
 set(PRT_MODULE_DEPS_reference core dist mesh trace light camera image brdf)
 set(PRT_MODULE_DEPS_render core camera image light mesh transfer brdf shade compress)
 set(PRT_MODULE_DEPS_probes core dist mesh light trace bake transfer image)
@@ -40,6 +41,7 @@ set(PRT_MODULE_PACKAGES_brdf nlohmann_json)
 set(PRT_MODULE_PACKAGES_bake nlohmann_json)
 set(PRT_MODULE_PACKAGES_lightmap nlohmann_json)
 set(PRT_MODULE_PACKAGES_compress Eigen3)
+set(PRT_MODULE_PACKAGES_pipeline "")
 set(PRT_MODULE_PACKAGES_reference "")
 set(PRT_MODULE_PACKAGES_render OpenGL glfw3 imgui)
 set(PRT_MODULE_PACKAGES_probes nlohmann_json)

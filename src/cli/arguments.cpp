@@ -46,6 +46,19 @@ void add_footprint_option(CLI::App* cmd, std::string& value, const std::string& 
   cmd->add_option("--footprint", value, "area or vertex: " + what)->capture_default_str();
 }
 
+bool parse_compress_setting(const std::string& text, int& clusters, int& pca) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return false;
+  try {
+    std::size_t used_k = 0, used_n = 0;
+    clusters = std::stoi(text.substr(0, comma), &used_k);
+    pca = std::stoi(text.substr(comma + 1), &used_n);
+    return used_k == comma && used_n == text.size() - comma - 1;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 std::string flag_of_field(const std::string& field) {
   if (field == "max_backface_fraction") return "--max-backface";
   std::string flag = "--" + field;

@@ -31,6 +31,9 @@ image::ToneMap parse_tone_map(const std::string& name);
 /// True if stderr is a terminal and `quiet` is not set: whether to draw progress bars.
 bool want_progress(bool quiet);
 
+/// Parses "K,N" (two integers: clusters, PCA vectors); false if the text is not of that form.
+bool parse_compress_setting(const std::string& text, int& clusters, int& pca);
+
 /// The command-line flag of an options field named in a library's OptionError: "--" and the field with
 /// '_' as '-' ("sun_samples" -> "--sun-samples"), except the fields whose flag is spelled otherwise.
 std::string flag_of_field(const std::string& field);

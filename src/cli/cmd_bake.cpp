@@ -6,17 +6,15 @@
 #include "bake/bake.h"
 #include "brdf/brdf.h"
 #include "cli/arguments.h"
-#include "cli/cmd_bake_lightmap.h"
-#include "cli/cmd_compress.h"
 #include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "cli/distributed.h"
-#include "compress/cprt_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/memory_check.h"
+#include "lightmap/texel_bake.h"
 #include "mesh/mesh.h"
-#include "mesh/writers.h"
+#include "pipeline/transfer_outputs.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::cli {
@@ -40,7 +38,7 @@ struct BakeCommandOptions {
   int threads = 0;
   bool quiet = false;
   bool float16 = false;
-  std::string lightmap;  // "WxH" or "SIZE": bake texels (cmd_bake_lightmap.h)
+  std::string lightmap;  // "WxH" or "SIZE": bake texels (src/lightmap)
   int gutter = 2;
   bool no_repair = false;
 };
@@ -66,6 +64,84 @@ std::uint64_t estimated_bake_bytes(const bake::BakeOptions& b, std::uint64_t ver
   return std::uint64_t(b.samples) * n * 4 + saturating_product(vertices, per_vertex * (bounces ? 5 : 2));
 }
 
+// The bake's summary line: what was baked, rays, bounces, time, output.
+void print_summary(const std::string& what, const bake::BakeReport& report, transfer::Kind kind, double seconds,
+                   const std::string& output) {
+  std::fprintf(stderr, "prt bake: %s", what.c_str());
+  if (report.rays_traced > 0)
+    std::fprintf(stderr, ", %llu rays (%.2f Mrays/s)", static_cast<unsigned long long>(report.rays_traced),
+                 report.rays_traced / 1e6 / std::max(1e-9, report.seconds_visibility + report.seconds_bounces));
+  if (kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected)
+    std::fprintf(stderr, ", %d bounce(s)", report.bounces_done);
+  std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, output.c_str());
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Per vertex: checks, bakes (split over the ranks of an MPI job) and writes the outputs from rank 0.
+void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options, const pipeline::TransferOutputs& out) {
+  if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
+    fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
+  // Check the outputs before spending minutes baking (rank 0 alone writes them).
+  if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
+  mesh::LoadReport load_report;
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
+  const int bands_out = options.bands_out ? options.bands_out : o.bands;
+  const std::string sized_by = std::to_string(o.bands) +
+                               (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
+                               " --samples " + std::to_string(o.samples) + " for " +
+                               std::to_string(mesh.positions.size()) + " vertices";
+  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh.positions.size()));
+  check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
+  const auto start = std::chrono::steady_clock::now();
+  bake::BakeReport report;
+  transfer::TransferData data = bake::bake(mesh, options, &report);
+  if (!job().is_root()) return;  // only rank 0 holds the whole result
+  const double seconds = seconds_since(start);
+  const transfer::Header header = data.header;
+  pipeline::write_transfer_outputs(mesh, std::move(data), out);
+  if (o.quiet) return;
+  std::string what = std::string(transfer::kind_name(options.kind)) + ", " + std::to_string(mesh.positions.size()) +
+                     " vertices, " + std::to_string(header.bands) + " bands, " + std::to_string(header.channels) +
+                     " channel(s)";
+  if (transfer::is_glossy(options.kind))
+    what += ", " + std::to_string(header.bands_out * header.bands_out) + " x " +
+            std::to_string(header.bands * header.bands) + " matrices";
+  print_summary(what, report, options.kind, seconds, o.output);
+}
+
+// Per texel of the mesh's lightmap UVs (src/lightmap): checks everything (options, outputs, UVs,
+// memory), bakes (split over the ranks) and writes the outputs from rank 0.
+void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, const pipeline::TransferOutputs& out) {
+  lightmap::LightmapOptions lightmap;
+  lightmap::parse_lightmap_size(o.lightmap, lightmap.width, lightmap.height);
+  lightmap.gutter = o.gutter;
+  lightmap.repair = !o.no_repair;
+  lightmap.mesh_path = o.mesh_path;
+  if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path});
+  mesh::LoadReport load_report;
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
+  lightmap.missing_uv_reason = load_report.missing_uv_reason;
+  lightmap::check_lightmap(mesh, options, lightmap);
+  check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
+  const auto start = std::chrono::steady_clock::now();
+  lightmap::LightmapReport report;
+  transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report);
+  if (!job().is_root()) return;  // only rank 0 holds the whole result
+  const transfer::Header header = data.header;
+  pipeline::write_transfer_outputs(mesh, std::move(data), out);
+  if (o.quiet) return;
+  char what[256];
+  std::snprintf(what, sizeof what,
+                "%s lightmap %dx%d, %zu covered texels, %zu gutter, %zu samples moved out of geometry, %zu unrecoverable, "
+                "%u bands, %u channel(s)",
+                transfer::kind_name(options.kind), lightmap.width, lightmap.height, report.covered, report.gutter,
+                report.moved, report.unrecoverable, header.bands, header.channels);
+  print_summary(what, report.bake, options.kind, seconds_since(start), o.output);
+}
+
 void run_bake(const BakeCommandOptions& o) {
   bake::BakeOptions options;
   options.kind = transfer::parse_kind(o.kind);
@@ -85,68 +161,18 @@ void run_bake(const BakeCommandOptions& o) {
   }
   options.bands_out = o.bands_out;
   bake::validate_options(options);
-  int clusters = 0, pca = 0;
-  if (!o.compress.empty() && !parse_compress_setting(o.compress, clusters, pca))
+  pipeline::TransferOutputs out;
+  out.transfer_path = o.output;
+  out.gltf_path = o.gltf_output;
+  out.float16 = o.float16;
+  out.seed = o.seed;
+  out.threads = o.threads;
+  if (!o.compress.empty() && !parse_compress_setting(o.compress, out.clusters, out.pca))
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
-  if (!o.lightmap.empty()) {
-    run_bake_lightmap(options, {o.mesh_path, o.output, o.gltf_output, o.lightmap, o.gutter, !o.no_repair, o.float16,
-                                o.quiet, clusters, pca, o.threads, canonical_options(o, options)});
-    return;
-  }
-  if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
-    fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
-  // Check the outputs before spending minutes baking (rank 0 alone writes them).
-  if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
-
-  mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
-  const int bands_out = options.bands_out ? options.bands_out : o.bands;
-  const std::string sized_by = std::to_string(o.bands) +
-                               (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
-                               " --samples " + std::to_string(o.samples) + " for " +
-                               std::to_string(mesh.positions.size()) + " vertices";
-  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh.positions.size()));
-  check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
-  const auto start = std::chrono::steady_clock::now();
-  bake::BakeReport report;
-  transfer::TransferData data = bake::bake(mesh, options, &report);
-  if (!job().is_root()) return;  // only rank 0 holds the whole result
-  if (o.float16) data.header.scalar = transfer::Scalar::float16;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // Both outputs are written to temporaries and committed together: a failing .glb leaves no .prt.
-  AtomicFile prt_file(o.output);
-  write_staged(prt_file, [&](const std::string& path) {
-    if (o.compress.empty()) {
-      transfer::write_transfer(path, data);
-      return;
-    }
-    CompressionRequest request;
-    request.options = {clusters, pca, 20, o.seed, o.threads};
-    request.scalar = data.header.scalar;
-    compress::write_cprt(path, compress_for_cli(data, o.output, request));
-  });
-  std::unique_ptr<AtomicFile> glb_file;
-  if (!o.gltf_output.empty()) {
-    glb_file = std::make_unique<AtomicFile>(o.gltf_output);
-    write_staged(*glb_file, [&](const std::string& path) {
-      mesh::write_glb(path, mesh, bake::pack_transfer_attributes(data));
-    });
-  }
-  prt_file.commit();
-  if (glb_file) glb_file->commit();
-
-  if (!o.quiet) {
-    std::fprintf(stderr, "prt bake: %s, %zu vertices, %u bands, %u channel(s)", transfer::kind_name(options.kind),
-                 mesh.positions.size(), data.header.bands, data.header.channels);
-    if (report.rays_traced > 0)
-      std::fprintf(stderr, ", %llu rays (%.2f Mrays/s)", static_cast<unsigned long long>(report.rays_traced),
-                   report.rays_traced / 1e6 / std::max(1e-9, report.seconds_visibility + report.seconds_bounces));
-    if (transfer::is_glossy(options.kind))
-      std::fprintf(stderr, ", %u x %u matrices", data.header.bands_out * data.header.bands_out, data.header.bands * data.header.bands);
-    if (options.kind == transfer::Kind::interreflected || options.kind == transfer::Kind::glossy_interreflected)
-      std::fprintf(stderr, ", %d bounce(s)", report.bounces_done);
-    std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, o.output.c_str());
-  }
+  if (o.lightmap.empty())
+    bake_vertices(o, options, out);
+  else
+    bake_texels(o, options, out);
 }
 
 }  // namespace

@@ -1,7 +1,5 @@
 // prt compress: clustered PCA of a transfer file (src/compress) into a .cprt file, with its error in
 // transfer space and, under --env/--light, in shaded radiance; overall and per cluster.
-#include "cli/cmd_compress.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,7 +9,7 @@
 #include "cli/lighting_input.h"
 #include "cli/output_paths.h"
 #include "compress/cprt_file.h"
-#include "light/disc.h"
+#include "compress/shaded_compression.h"
 #include "core/error.h"
 
 namespace prt::cli {
@@ -45,51 +43,7 @@ void print_worst_clusters(const compress::CompressedTransfer& c, int count) {
   }
 }
 
-void run_compress(const CompressCommandOptions& o) {
-  if (!o.env.empty() && !o.light.empty()) fail("compress: give at most one of --env ENV and --light LIGHT.json");
-  check_outputs({o.output}, {o.transfer_path, o.env, o.light});  // before the work
-  const transfer::TransferData transfer = transfer::read_transfer(o.transfer_path);
-  CompressionRequest request;
-  request.options = {o.clusters, o.pca, o.iterations, o.seed, o.threads};
-  request.scalar = o.float16 ? transfer::Scalar::float16 : transfer::Scalar::float32;
-  request.lighting = o.env.empty() ? o.light : o.env;
-  request.threads = o.threads;
-  request.shaded_metric = o.metric == "shaded";
-  const auto start = std::chrono::steady_clock::now();
-  const compress::CompressedTransfer c = compress_for_cli(transfer, o.transfer_path, request);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  compress::write_cprt(o.output, c);
-  if (o.quiet) return;
-  report_compression(c, seconds, o.output);
-  if (o.per_cluster) print_worst_clusters(c, c.clusters);
-}
-
-}  // namespace
-
-compress::CompressedTransfer compress_for_cli(const transfer::TransferData& transfer, const std::string& what,
-                                              const CompressionRequest& request) {
-  const transfer::Header& h = transfer.header;
-  compress::validate_cpca_options(compress::point_blocks(h, transfer.coverage).size(), static_cast<std::size_t>(h.values_per_vertex()),
-                                  request.options, what);
-  // The lighting as shading splits it (docs/conventions.md, "Sun and sky"): the transfer meets the sky's
-  // SH, its bounce-only part the discs' SH; the discs' direct light is exact and needs no transfer.
-  const bool lit = !request.lighting.empty(), glossy = transfer::is_glossy(h.kind);
-  light::SceneLighting lighting;
-  sh::RgbCoefficients discs;
-  if (lit) {
-    lighting = load_scene_lighting(request.lighting, static_cast<int>(h.bands), glm::dvec3(0.0), LightingArguments{}, request.threads, glossy);
-    discs = light::discs_coefficients(static_cast<int>(h.bands), lighting.discs);
-  }
-  compress::Metric metric;  // identity unless the shaded metric is asked for
-  compress::MetricLighting ml;
-  if (lit) ml = {&lighting.sky, lighting.discs.empty() ? nullptr : &discs};
-  if (request.shaded_metric) metric = compress::transfer_metric(transfer, ml, what);
-  compress::CompressedTransfer c = compress::compress_transfer(transfer, request.options, request.scalar, what,
-                                                               request.shaded_metric ? &metric : nullptr);
-  if (lit) compress::add_radiance_error(c, transfer, lighting.sky, what, &discs);
-  return c;
-}
-
+// The summary on stderr: sizes, iterations, time, errors.
 void report_compression(const compress::CompressedTransfer& c, double seconds, const std::string& output) {
   const std::uint64_t before = compress::uncompressed_bytes(c.source, transfer::Scalar::float32);
   const std::uint64_t after = compress::payload_bytes(c);
@@ -104,18 +58,32 @@ void report_compression(const compress::CompressedTransfer& c, double seconds, c
   std::fprintf(stderr, "  -> %s\n", output.c_str());
 }
 
-bool parse_compress_setting(const std::string& text, int& clusters, int& pca) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos) return false;
-  try {
-    std::size_t used_k = 0, used_n = 0;
-    clusters = std::stoi(text.substr(0, comma), &used_k);
-    pca = std::stoi(text.substr(comma + 1), &used_n);
-    return used_k == comma && used_n == text.size() - comma - 1;
-  } catch (const std::exception&) {
-    return false;
+void run_compress(const CompressCommandOptions& o) {
+  if (!o.env.empty() && !o.light.empty()) fail("compress: give at most one of --env ENV and --light LIGHT.json");
+  check_outputs({o.output}, {o.transfer_path, o.env, o.light});  // before the work
+  const transfer::TransferData transfer = transfer::read_transfer(o.transfer_path);
+  compress::CompressionRequest request;
+  request.options = {o.clusters, o.pca, o.iterations, o.seed, o.threads};
+  request.scalar = o.float16 ? transfer::Scalar::float16 : transfer::Scalar::float32;
+  request.shaded_metric = o.metric == "shaded";
+  const auto start = std::chrono::steady_clock::now();
+  // The lighting as shading splits it: the sun as discs, the rest as the sky's SH.
+  const std::string lighting_spec = o.env.empty() ? o.light : o.env;
+  light::SceneLighting lighting;
+  if (!lighting_spec.empty()) {
+    lighting = load_scene_lighting(lighting_spec, static_cast<int>(transfer.header.bands), glm::dvec3(0.0),
+                                   LightingArguments{}, o.threads, transfer::is_glossy(transfer.header.kind));
+    request.lighting = &lighting;
   }
+  const compress::CompressedTransfer c = compress::compress_for_shading(transfer, o.transfer_path, request);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  compress::write_cprt(o.output, c);
+  if (o.quiet) return;
+  report_compression(c, seconds, o.output);
+  if (o.per_cluster) print_worst_clusters(c, c.clusters);
 }
+
+}  // namespace
 
 void add_compress_command(CLI::App& app) {
   auto options = std::make_shared<CompressCommandOptions>();

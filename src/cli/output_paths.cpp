@@ -93,16 +93,4 @@ void check_outputs(const std::vector<std::string>& outputs, const std::vector<st
   }
 }
 
-void write_staged(AtomicFile& file, const std::function<void(const std::string&)>& write) {
-  try {
-    write(file.temp_path());
-  } catch (const Error& e) {
-    std::string message = e.what();
-    for (std::size_t at = message.find(file.temp_path()); at != std::string::npos;
-         at = message.find(file.temp_path(), at + file.path().size()))
-      message.replace(at, file.temp_path().size(), file.path());
-    throw Error(message);
-  }
-}
-
 }  // namespace prt::cli

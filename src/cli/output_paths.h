@@ -1,6 +1,5 @@
 #pragma once
-// Checks a subcommand runs on its output paths before any slow work, and two-output commits.
-#include <functional>
+// Checks a subcommand runs on its output paths before any slow work.
 #include <string>
 #include <vector>
 
@@ -18,10 +17,5 @@ namespace prt::cli {
 /// - exists and is not a regular file (check_output_target: a folder, device, FIFO or socket), or
 ///   has a file name longer than 224 characters (room for the temporary's).
 void check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
-
-/// Writes one of several outputs into `file`'s temporary with `write` (a writer that takes a path),
-/// so that every output can be committed together at the end and a failing second output leaves
-/// no first one behind. An Error naming the temporary is rethrown naming file.path() instead.
-void write_staged(AtomicFile& file, const std::function<void(const std::string&)>& write);
 
 }  // namespace prt::cli

@@ -161,4 +161,17 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
+void write_staged(AtomicFile& file, const std::function<void(const std::string&)>& write) {
+  try {
+    write(file.temp_path());
+  } catch (const Error& e) {
+    std::string message = e.what();
+    if (message.find(file.temp_path()) == std::string::npos) throw;
+    for (std::size_t at = message.find(file.temp_path()); at != std::string::npos;
+         at = message.find(file.temp_path(), at + file.path().size()))
+      message.replace(at, file.temp_path().size(), file.path());
+    throw Error(message);
+  }
+}
+
 }  // namespace prt

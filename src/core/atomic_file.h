@@ -8,6 +8,7 @@
 // folder) is refused, never renamed over (check_output_target).
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <string>
 
 namespace prt {
@@ -69,5 +70,11 @@ std::string read_file(const std::string& path);
 /// /dev/null, a FIFO or a socket with a plain file; those and folders are refused instead
 /// (docs/formats.md, "Limits"). A path that does not exist yet is fine.
 void check_output_target(const std::string& path);
+
+/// Writes one of several outputs into `file`'s temporary with `write` (a writer that takes a path),
+/// so that every output can be committed together at the end and a failing second output leaves
+/// no first one behind. An Error whose message names the temporary is rethrown naming file.path()
+/// instead; any other exception passes unchanged.
+void write_staged(AtomicFile& file, const std::function<void(const std::string&)>& write);
 
 }  // namespace prt

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "cli/lightmap_glb.h"
+#include "pipeline/transfer_outputs.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
 #include "lightmap/lightmap_scenes.h"  // tests/lightmap
@@ -60,10 +60,10 @@ int main(int argc, char** argv) {
     mesh = mesh::load_mesh(dir + "/scene.obj", nullptr, true);  // as prt loads it (its fingerprints)
     const transfer::TransferData rgb = synthetic(mesh, 37, 23, 3, 3, true);  // 27 values: 7 layers, the last padded
     transfer::write_transfer(dir + "/lightmap.prt", rgb);
-    cli::write_lightmap_glb(dir + "/lightmap.glb", mesh, rgb);
+    pipeline::write_lightmap_glb(dir + "/lightmap.glb", mesh, rgb);
     const transfer::TransferData grey = synthetic(mesh, 16, 16, 4, 1, false);  // 16 values: 4 layers, none padded
     transfer::write_transfer(dir + "/lightmap_grey.prt", grey);
-    cli::write_lightmap_glb(dir + "/lightmap_grey.glb", mesh, grey);
+    pipeline::write_lightmap_glb(dir + "/lightmap_grey.glb", mesh, grey);
   } catch (const Error& e) {
     std::fprintf(stderr, "prt: %s\n", e.what());
     return 1;
