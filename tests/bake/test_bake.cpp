@@ -315,3 +315,26 @@ TEST_CASE("transfer is packed four coefficients per glTF attribute", "[bake]") {
     REQUIRE(attributes[2].values[v][1] == 0.0f);
   }
 }
+
+TEST_CASE("a library option error names the options field and its value, never a command-line flag", "[bake]") {
+  // The CLI maps the field to its flag (cli/arguments.h flag_of_field; test_bake_cli checks "--bands 40").
+  bake::BakeOptions options;
+  options.samples = 0;
+  try {
+    bake::validate_options(options);
+    FAIL("samples 0 was accepted");
+  } catch (const OptionError& e) {
+    CHECK(e.field() == "samples");
+    CHECK(e.rest() == " 0 is out of range 1..1048576");
+    CHECK(std::string(e.what()) == "samples 0 is out of range 1..1048576");
+  }
+  options.samples = 64;
+  options.kind = transfer::Kind::glossy_shadowed;  // a glossy kind with no BRDF
+  try {
+    bake::validate_options(options);
+    FAIL("glossy transfer without a BRDF was accepted");
+  } catch (const OptionError& e) {
+    CHECK(e.field() == "brdf");
+    CHECK(std::string(e.what()).find("--") == std::string::npos);
+  }
+}
