@@ -26,6 +26,18 @@ mesh::Mesh bowl(int rings, int segments);
 /// lid_x (integers in (-half, half)): each lid darkens its vertex far more than the surface around it.
 mesh::Mesh floor_with_lids(int half, const std::vector<double>& lid_x, double lid_half, double lid_height);
 
+/// The convex hull of `points` (incremental, orientation tests in double; points within 1e-9 of the
+/// extent of a face's plane count as on it): its vertices only, triangles counter-clockwise seen from
+/// outside, smooth normals (the normalised sum of the adjacent faces' area-weighted normals).
+mesh::Mesh convex_hull(const std::vector<glm::vec3>& points);
+
+/// The largest angle in degrees between a vertex normal and the geometric normal of a triangle of it.
+double max_normal_tilt(const mesh::Mesh& mesh);
+
+/// Gives every triangle its own lightmap chart (Mesh::lightmap_uv): a right triangle in its cell of
+/// the smallest square grid of cells that holds them, a tenth of a cell from the cell's edges.
+void add_triangle_charts(mesh::Mesh& mesh);
+
 /// A closed mesh seen from inside is not something the baker handles (single-sided); these shapes
 /// are all meant to be seen from the side of their normals.
 
