@@ -79,13 +79,12 @@ class GlossyBounceWorker {
       if (!batch.is_front_hit(i)) continue;  // a miss, or a back face: black (single-sided surfaces)
       any_hit_ = true;
       radiance_toward(batch.hit(i), batch.direction(i));
-      // Outer product with y_out(w_s) (sample frame), times the ray's weight (trace/vertex_rays.h).
+      // Outer product with y_out(w_s) (sample frame).
       const float* y = ctx_.samples->basis.data() + (first + i) * n_in_;
-      const float weight = batch.weight(i);
       for (int c = 0; c < channels_; ++c) {
         const float* src = radiance_row_.data() + static_cast<std::size_t>(c) * n_in_;
         for (int row = 0; row < n_out_; ++row) {
-          const float a = weight * y[row];
+          const float a = y[row];
           float* dst = gathered_.data() + c * matrix_size_ + static_cast<std::size_t>(row) * n_in_;
           for (int col = 0; col < n_in_; ++col) dst[col] += a * src[col];
         }

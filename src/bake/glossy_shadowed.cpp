@@ -53,28 +53,25 @@ class GlossyDirectWorker : public OccludedSamples<GlossyDirectWorker> {
         occluded_sum_(per_vertex_), matrix_(per_vertex_), correction_(per_vertex_) {}
 
   void clear() { std::fill(occluded_sum_.begin(), occluded_sum_.end(), 0.0f); }
-  // The outer product y_out(w_s) y_in(w_s)^T (sample frame) times the ray's weight.
-  void add_occluded(const float* y, float weight) {
+  // The outer product y_out(w_s) y_in(w_s)^T (sample frame).
+  void add_occluded(const float* y) {
     for (int row = 0; row < n_out_; ++row) {
-      const float a = weight * y[row];
+      const float a = y[row];
       float* dst = occluded_sum_.data() + static_cast<std::size_t>(row) * n_in_;
       for (int col = 0; col < n_in_; ++col) dst[col] += a * y[col];
     }
   }
 
   void finish(std::uint32_t v, const glm::mat3& sample_frame) {
-    // Unoccluded part: the first n_out rows of Rot(F^T), which takes world coefficients to local ones,
-    // times the mean ray weight (the true-surface rule; exactly 1 from a vertex).
+    // Unoccluded part: the first n_out rows of Rot(F^T), which takes world coefficients to local ones.
     const glm::dmat3 world_to_local = glm::transpose(glm::dmat3((*ctx_.frames)[v]));
     const sh::Rotation to_local(ctx_.bands, world_to_local);
-    const double unoccluded = mean_weight();
     std::fill(matrix_.begin(), matrix_.end(), 0.0);
     for (int l = 0; l < ctx_.bands_out; ++l) {
       const int width = 2 * l + 1;
       const double* block = to_local.block(l);
       for (int a = 0; a < width; ++a)
-        for (int b = 0; b < width; ++b)
-          matrix_[static_cast<std::size_t>(l * l + a) * n_in_ + l * l + b] = unoccluded * block[a * width + b];
+        for (int b = 0; b < width; ++b) matrix_[static_cast<std::size_t>(l * l + a) * n_in_ + l * l + b] = block[a * width + b];
     }
     if (any_occluded()) {
       // Occluded part: Rot_out(F^T F_s) C Rot_in(F_s^T), C in the sample frame F_s.

@@ -61,7 +61,7 @@ class WeightMap {
 // The hit's lightmap UV (barycentric over the triangle's corner UVs) spread bilinearly over the four
 // nearest texel centres of `grid` (clamped to the edge); empty texels are left out and the remaining
 // weights renormalised, so a hit beside a chart without gutter still reads the chart's own values.
-void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, float v, float scale, WeightMap& weights) {
+void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, float v, WeightMap& weights) {
   const glm::vec2* c = grid.corner_uv->data() + 3 * triangle;
   const glm::vec2 uv = (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
   const float x = uv.x * static_cast<float>(grid.width) - 0.5f, y = uv.y * static_cast<float>(grid.height) - 0.5f;
@@ -79,11 +79,11 @@ void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, flo
   }
   if (!(total > 0.0f)) return;
   for (int k = 0; k < 4; ++k)
-    if (w[k] > 0.0f) weights.add(texel[k], scale * (w[k] / total));
+    if (w[k] > 0.0f) weights.add(texel[k], w[k] / total);
 }
 
-// Per chunk: merges the barycentric weights of v's front-face hits per hit vertex (times the ray's
-// weight, trace/vertex_rays.h), then reads each distinct vertex's previous transfer once.
+// Per chunk: merges the barycentric weights of v's front-face hits per hit vertex, then reads each
+// distinct vertex's previous transfer once.
 class BounceWorker {
  public:
   BounceWorker(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const std::vector<float>& prev,
@@ -103,14 +103,13 @@ class BounceWorker {
       const glm::vec3& p0 = mesh.positions[tri[0]];
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
-      const float scale = batch.weight(i);  // the true-surface rule's 1 / kappa (1 from a vertex)
       if (ctx_.grid) {
-        add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, scale, weights_);
+        add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, weights_);
         continue;
       }
-      weights_.add(tri[0], scale * (1.0f - hit.u - hit.v));
-      weights_.add(tri[1], scale * hit.u);
-      weights_.add(tri[2], scale * hit.v);
+      weights_.add(tri[0], 1.0f - hit.u - hit.v);
+      weights_.add(tri[1], hit.u);
+      weights_.add(tri[2], hit.v);
     }
   }
 

@@ -9,9 +9,7 @@ namespace prt::bake {
 namespace {
 
 // Per chunk: sums the local basis rows of v's occluded rays, then writes the unshadowed transfer minus
-// that sum rotated to the world (the control variate of bake.h). Rays with weights (the true-surface
-// rule, trace/vertex_rays.h) add their rows times their weight, and the unshadowed term is multiplied
-// by the mean weight: each footprint point's estimate is scaled by its own 1 / kappa.
+// that sum rotated to the world (the control variate of bake.h).
 class ShadowedWorker {
  public:
   ShadowedWorker(const PassContext& ctx, const std::vector<double>& factors, const OccludedRowSums& rows, std::vector<float>& out)
@@ -20,35 +18,17 @@ class ShadowedWorker {
 
   void start(std::uint32_t, const glm::mat3&) {
     std::fill(local_sum_.begin(), local_sum_.end(), 0.0f);
-    any_occluded_ = weighted_ = false;
-    weight_sum_ = 0.0;
+    any_occluded_ = false;
   }
 
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t first) {
-    if (!batch.weighted()) {
-      if (rows_.add(batch, first, local_sum_.data()) > 0) any_occluded_ = true;
-      weight_sum_ += static_cast<double>(batch.size());
-      return;
-    }
-    weighted_ = true;
-    for (std::size_t i = 0; i < batch.size(); ++i) {
-      const float w = batch.weight(i);
-      weight_sum_ += w;
-      if (!batch.is_occluded(i)) continue;
-      any_occluded_ = true;
-      const float* row = ctx_.samples->basis.data() + (first + i) * n_;
-      for (int c = 0; c < n_; ++c) local_sum_[c] += w * row[c];
-    }
+    if (rows_.add(batch, first, local_sum_.data()) > 0) any_occluded_ = true;
   }
 
   void finish(std::uint32_t v, const glm::mat3& frame) {
     const int bands = ctx_.samples->bands;
     float* o = out_.data() + static_cast<std::size_t>(v) * n_;
     unshadowed_vertex(bands, factors_, ctx_.point_normals()[v], o);
-    if (weighted_) {
-      const float mean_weight = static_cast<float>(weight_sum_ / static_cast<double>(ctx_.samples->directions.size()));
-      for (int c = 0; c < n_; ++c) o[c] *= mean_weight;
-    }
     if (!any_occluded_) return;
     const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
     sh::rotate(bands, frame, local_sum_.data(), world_sum_.data());
@@ -62,8 +42,7 @@ class ShadowedWorker {
   std::vector<float>& out_;
   int n_;
   std::vector<float> local_sum_, world_sum_;  // local_sum_: rows_.width() floats, the first n_ used
-  bool any_occluded_ = false, weighted_ = false;
-  double weight_sum_ = 0.0;  // of v's rays' weights (1 each without the rule)
+  bool any_occluded_ = false;
 };
 
 }  // namespace

@@ -19,11 +19,9 @@ struct LocalSampleSet {
 };
 
 /// A visibility worker of trace::trace_vertex_rays that sums per occluded ray (the glossy direct pass's
-/// outer products): per vertex, hands the basis row of each occluded sample and the ray's weight (the
-/// true-surface rule's, trace/vertex_rays.h; 1 from a vertex) to
-/// Derived::add_occluded(const float* y, float weight) (after Derived::clear() at the start), remembers
-/// whether any ray was occluded and sums the weights of all rays. Derived adds finish(v, frame). The
-/// shadowed pass sums rows with OccludedRowSums.
+/// outer products): per vertex, hands the basis row of each occluded sample to
+/// Derived::add_occluded(const float* y) (after Derived::clear() at the start) and remembers whether any
+/// ray was occluded. Derived adds finish(v, frame). The shadowed pass sums rows with OccludedRowSums.
 template <class Derived>
 class OccludedSamples {
  public:
@@ -31,29 +29,24 @@ class OccludedSamples {
 
   void start(std::uint32_t, const glm::mat3&) {
     any_occluded_ = false;
-    weight_sum_ = 0.0;
     static_cast<Derived*>(this)->clear();
   }
 
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t first) {
     for (std::size_t i = 0; i < batch.size(); ++i) {
-      weight_sum_ += batch.weight(i);
       if (!batch.is_occluded(i)) continue;
       any_occluded_ = true;
-      static_cast<Derived*>(this)->add_occluded(set_.basis.data() + (first + i) * n_, batch.weight(i));
+      static_cast<Derived*>(this)->add_occluded(set_.basis.data() + (first + i) * n_);
     }
   }
 
  protected:
   bool any_occluded() const { return any_occluded_; }
-  /// The mean weight of the vertex's rays so far over the set's S: exactly 1 without the rule.
-  double mean_weight() const { return weight_sum_ / static_cast<double>(set_.directions.size()); }
 
  private:
   const LocalSampleSet& set_;
   int n_;
   bool any_occluded_ = false;
-  double weight_sum_ = 0.0;
 };
 
 /// The sum of the local basis rows of a vertex's occluded rays: the inner loop of the shadowed pass (S

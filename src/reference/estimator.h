@@ -12,7 +12,7 @@
 // corners faces the ray (ng . w < 0); back faces are black, single-sided surfaces as in the baker.
 // At a point on one triangle (a hit, a footprint or texel point; not a mesh vertex) the true-surface
 // rule holds (trace/true_surface.h): directions with ng . w <= 0 carry no light (the integrand is 0
-// there, nothing is traced) and rho is divided by kappa = (1 + n . ng) / 2.
+// there: neither strategy traces them, a BSDF sample there ends its path).
 // At a hit point q: position, shading normal (normalised) and albedo are interpolated barycentrically
 // from the triangle's corners (Embree's u, v). So with b = 0 this is direct lighting with binary
 // visibility (what the baker's shadowed transfer predicts), and each bounce adds one interreflection.

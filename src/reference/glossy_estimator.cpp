@@ -37,13 +37,11 @@ struct PathPoint {
   trace::TrueSurface surface{};  // the true-surface rule there (none at a mesh vertex)
 };
 
-// The true-surface rule (trace/true_surface.h) on a traced direction w (n . w > 0) of `p`: false where
-// w lies below p's triangle (no light); otherwise rho scaled by 1 / kappa (every direction: below the
-// tangent plane the band-limited BRDF's environment term is the point's reflectance too).
-static bool true_surface_rho(const PathPoint& p, const glm::dvec3& w, glm::dvec3& rho) {
-  if (glm::dot(p.normal, w) > 0.0 && !p.surface.admits(w)) return false;
-  rho *= p.surface.scale;
-  return true;
+// The true-surface rule (trace/true_surface.h) for a direction w that would be traced (n . w > 0; below
+// the tangent plane the band-limited BRDF sees the environment untraced, as glossy PRT does): false
+// where w lies below p's triangle, so it carries no light.
+static bool admitted(const PathPoint& p, const glm::dvec3& w) {
+  return !(glm::dot(p.normal, w) > 0.0) || p.surface.admits(w);
 }
 
 struct GlossyWorkspace::Buffers : detail::PathBuffers<PathPoint> {
@@ -149,7 +147,7 @@ class GlossySurface {
   bool light_terms(const Point& p, int depth, const glm::dvec3& w, glm::dvec3& rho, double& pdf) {
     const glm::dvec3 local = glm::transpose(p.frame) * w;
     rho = im_.rho(p, local, ws_.basis);
-    if (rho == glm::dvec3(0.0) || !true_surface_rho(p, w, rho)) return false;
+    if (rho == glm::dvec3(0.0) || !admitted(p, w)) return false;
     pdf = strategy_pdf(p, depth, local);
     return true;
   }
@@ -159,9 +157,9 @@ class GlossySurface {
     if (!strategy_sample(p, depth, u, local)) return false;
     s.pdf = strategy_pdf(p, depth, local);
     if (!(s.pdf > 0.0)) return false;
-    glm::dvec3 r = im_.rho(p, local, ws_.basis);
+    const glm::dvec3 r = im_.rho(p, local, ws_.basis);
     s.direction = glm::normalize(p.frame * local);
-    if (r == glm::dvec3(0.0) || !true_surface_rho(p, s.direction, r)) return false;
+    if (r == glm::dvec3(0.0) || !admitted(p, s.direction)) return false;
     s.weight = r / s.pdf;
     return true;
   }
@@ -172,7 +170,7 @@ class GlossySurface {
     next.normal = g.normal;
     next.frame = brdf::shading_frame(next.normal);
     next.origin = g.origin;
-    next.surface = trace::true_surface(g.normal, g.geometric_normal);
+    next.surface = trace::TrueSurface{g.geometric_normal};
     im_.set_view(next, -direction, ws_.basis);
     return true;
   }
@@ -227,7 +225,7 @@ RadianceEstimate GlossyTracer::vertex_radiance(std::uint32_t vertex, const glm::
   start.frame = brdf::shading_frame(start.normal);
   start.origin = glm::dvec3(im.scene.offset_origin(position, im.mesh.normals[vertex]));
   start.weights = ws.start_weights.data();
-  start.surface = trace::true_surface(im.mesh, triangle, start.normal);
+  start.surface = trace::true_surface(im.mesh, triangle);
   im.set_view(start, glm::normalize(view), ws.basis);
   std::optional<EnvironmentSampler> table;
   if (im.matrix) table.emplace(im.table_for(start, ws.basis));

@@ -36,8 +36,8 @@
 // A path continues from a front-face hit above the tangent plane while bounces remain, with throughput
 // multiplied by rho / pdf (signed); Russian roulette from depth kRouletteDepth on |throughput|.
 // At a point on one triangle (a hit, a footprint point) the true-surface rule holds (trace/true_surface.h):
-// a direction above the tangent plane but below the triangle's plane carries no light, and rho is
-// divided by kappa = (1 + n . ng) / 2 everywhere (as the glossy bake's passes do).
+// a direction above the tangent plane but below the triangle's plane carries no light (as in the glossy
+// bake's passes, which block such rays).
 // DETERMINISM: as estimator.h (per-estimate SampleStream, fixed summation order).
 #include <memory>
 #include <vector>

@@ -105,7 +105,7 @@ std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const Environment
                                           [&](const glm::vec3& position, std::uint32_t triangle, int paths, SampleStream& run_stream) {
                                             SurfacePoint point = tracer.vertex_point(v);
                                             point.origin = glm::dvec3(scene.offset_origin(position, mesh.normals[v]));
-                                            point.surface = trace::true_surface(mesh, triangle, point.normal);
+                                            point.surface = trace::true_surface(mesh, triangle);
                                             return tracer.outgoing_radiance(point, paths, run_stream, workspace);
                                           });
       });
@@ -123,7 +123,7 @@ std::vector<glm::vec3> point_radiance(const mesh::Mesh& mesh, const EnvironmentS
                             point.normal = glm::normalize(glm::dvec3(points[k].normal));
                             point.origin = glm::dvec3(scene.offset_origin(points[k].position, points[k].normal));
                             point.albedo = glm::dvec3(points[k].albedo);
-                            point.surface = trace::true_surface(mesh, points[k].triangle, point.normal);
+                            point.surface = trace::true_surface(mesh, points[k].triangle);
                             return tracer.outgoing_radiance(point, options.samples, stream, workspace);
                           });
 }

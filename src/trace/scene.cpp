@@ -161,12 +161,6 @@ struct Scene::Impl {
 
 RayBatch::RayBatch(std::size_t capacity) : rays_(std::max<std::size_t>(capacity, 1)) {}
 
-void RayBatch::set_weight(std::size_t i, float weight) {
-  if (weights_.empty()) weights_.resize(rays_.size());
-  weights_[i] = weight;
-  weighted_ = true;
-}
-
 std::size_t RayBatch::occluded_count() const {
   std::size_t count = 0;
   for (std::size_t i = 0; i < size_; ++i) count += is_occluded(i) ? 1 : 0;

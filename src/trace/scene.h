@@ -187,11 +187,8 @@ class RayBatch {
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   bool full() const { return size_ == rays_.size(); }
-  /// Forgets all rays (capacity is kept) and their weights; the robust flag stays.
-  void clear() {
-    size_ = 0;
-    weighted_ = false;
-  }
+  /// Forgets all rays (capacity is kept); the robust flag stays.
+  void clear() { size_ = 0; }
   /// Whether Scene::occluded / intersect trace this batch with RTC_SCENE_FLAG_ROBUST even in a scene built
   /// without it (SpawnPoint::robust; a scene built with it always uses it). Default false.
   void set_robust(bool robust) { robust_ = robust; }
@@ -226,13 +223,7 @@ class RayBatch {
     rays_[i].hit.geom_id = kNoHit;
     rays_[i].hit.prim_id = kNoHit;
   }
-  /// The factor a pass multiplies ray i's contribution by (the true-surface rule's 1 / kappa, set by
-  /// trace/vertex_rays.h); 1 while weighted() is false. Once set_weight is called after clear(), every
-  /// ray of the batch must be given its weight.
-  void set_weight(std::size_t i, float weight);
-  float weight(std::size_t i) const { return weighted_ ? weights_[i] : 1.0f; }
-  /// Whether any ray has a weight of its own since the last clear().
-  bool weighted() const { return weighted_; }
+
   /// After Scene::intersect: the number of the size() rays that hit a triangle; with `rows` given, also
   /// prefetches rows + prim_id * `row_bytes` (its first and last byte) of every hit triangle into the
   /// cache, for callers that next read per-triangle data in hit order (random reads otherwise).
@@ -246,8 +237,6 @@ class RayBatch {
   std::vector<RayHit> rays_;  // capacity() records, all 16-byte aligned
   std::size_t size_ = 0;
   bool robust_ = false;
-  bool weighted_ = false;
-  std::vector<float> weights_;  // capacity() entries once a weight was set
 };
 
 inline std::size_t RayBatch::push(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {

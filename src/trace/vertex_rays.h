@@ -14,9 +14,9 @@
 // and ::normals then replace the mesh's, and the index v names a sample point.
 // THE TRUE-SURFACE RULE (trace/true_surface.h) is applied here, for every pass alike: where a ray leaves
 // from a point on one triangle (a footprint point, or a sample point with a geometric normal), a ray
-// below that triangle's plane is blocked after the query (RayBatch::block: occluded, no hit) and every
-// ray of the point carries the weight 1 / kappa (RayBatch::weight) that the worker applies. Rays from
-// a mesh vertex itself get no weights (RayBatch::weighted() is false).
+// below that triangle's plane is blocked after the query (RayBatch::block: occluded, no hit), so the
+// direct passes count it occluded and the bounce passes gather nothing along it. Rays from a mesh
+// vertex itself are left as traced.
 #include <algorithm>
 #include <cassert>
 #include <atomic>
@@ -57,23 +57,13 @@ inline void footprint_origins(const mesh::VertexFootprints& footprints, const Sc
         footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble, triangles ? triangles + k : nullptr), n);
 }
 
-/// The true-surface rules of `count` footprint points of a vertex with normal n on `triangles`.
-inline void footprint_rules(const mesh::Mesh& mesh, const glm::vec3& n, const std::uint32_t* triangles,
-                            std::size_t count, TrueSurface* rules) {
-  for (std::size_t k = 0; k < count; ++k)
-    rules[k] = true_surface(mesh, triangles[k], glm::dvec3(n));
-}
-
 /// After a query on rays first .. first + batch.size() - 1 of a point's `samples` rays, ray s leaving
-/// from origin s * rule_count / samples with rules[that origin]: weights 1 / kappa, blocks the rays
-/// below the origin's triangle (the true-surface rule).
+/// from origin s * rule_count / samples with rules[that origin]: blocks the rays below the origin's
+/// triangle (the true-surface rule).
 inline void apply_true_surface(RayBatch& batch, const TrueSurface* rules, std::size_t rule_count, std::size_t first,
                                std::size_t samples) {
-  for (std::size_t i = 0; i < batch.size(); ++i) {
-    const TrueSurface& rule = rules[(first + i) * rule_count / samples];
-    batch.set_weight(i, static_cast<float>(rule.scale));
-    if (!rule.admits(glm::dvec3(batch.direction(i)))) batch.block(i);
-  }
+  for (std::size_t i = 0; i < batch.size(); ++i)
+    if (!rules[(first + i) * rule_count / samples].admits(glm::dvec3(batch.direction(i)))) batch.block(i);
 }
 
 /// Which query a pass runs on its rays.
@@ -110,8 +100,7 @@ struct VertexRays {
 ///   void start(std::uint32_t v, const glm::mat3& frame);   before v's first batch
 ///   void batch(std::uint32_t v, const RayBatch& batch, std::size_t first);
 ///        after each batch's query and the true-surface rule: the batch holds rays first ..
-///        first + batch.size() - 1 of v; where batch.weighted(), ray i's contribution is to be
-///        multiplied by batch.weight(i)
+///        first + batch.size() - 1 of v
 ///   void finish(std::uint32_t v, const glm::mat3& frame);  after v's last batch
 /// `progress` (of order->size() items) advances by each chunk's vertices, scaled by the whole order over
 /// the visited share (so a rank's bar estimates the whole job; ranks get equal shares). Returns the rays
@@ -155,9 +144,9 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
       rules[0] = TrueSurface{};
       if (spread) {
         footprint_origins(*r.footprints, *r.scene, v, normals[v], r.seed, origin_count, origins, triangles);
-        footprint_rules(*r.mesh, normals[v], triangles, origin_count, rules);
-      } else if (r.geometric_normals && (*r.geometric_normals)[v] != glm::vec3(0.0f)) {
-        rules[0] = true_surface(glm::normalize(glm::dvec3(normals[v])), glm::normalize(glm::dvec3((*r.geometric_normals)[v])));
+        for (std::size_t o = 0; o < origin_count; ++o) rules[o] = true_surface(*r.mesh, triangles[o]);
+      } else if (r.geometric_normals) {
+        rules[0].geometric_normal = glm::dvec3((*r.geometric_normals)[v]);
       }
       const bool ruled = spread || rules[0].geometric_normal != glm::dvec3(0.0);
       worker.start(v, frame);

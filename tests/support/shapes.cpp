@@ -219,6 +219,36 @@ double max_normal_tilt(const mesh::Mesh& mesh) {
   return worst;
 }
 
+double lobe_share_above(const glm::dvec3& n, const glm::dvec3& ng) {
+  const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 t = glm::normalize(glm::cross(helper, n)), b = glm::cross(n, t);
+  constexpr int kCells = 512;
+  double above = 0.0;
+  for (int i = 0; i < kCells; ++i) {
+    const double r = (i + 0.5) / kCells;
+    for (int j = 0; j < kCells; ++j) {
+      const double phi = 2.0 * M_PI * (j + 0.5) / kCells;
+      const glm::dvec3 w = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(1.0 - r * r) * n;
+      if (glm::dot(w, ng) > 0.0) above += r;  // the cell's area is proportional to r
+    }
+  }
+  return above / (kCells * kCells * 0.5);  // sum of r over all cells: kCells^2 / 2
+}
+
+double footprint_lobe_share(const mesh::Mesh& mesh, std::uint32_t v) {
+  double weighted = 0.0, total = 0.0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const std::uint32_t* tri = mesh.indices.data() + 3 * t;
+    if (tri[0] != v && tri[1] != v && tri[2] != v) continue;
+    const glm::dvec3 p0(mesh.positions[tri[0]]);
+    const glm::dvec3 c = glm::cross(glm::dvec3(mesh.positions[tri[1]]) - p0, glm::dvec3(mesh.positions[tri[2]]) - p0);
+    const double area = 0.5 * glm::length(c);
+    weighted += area * lobe_share_above(glm::normalize(glm::dvec3(mesh.normals[v])), glm::normalize(c));
+    total += area;
+  }
+  return weighted / total;
+}
+
 void add_triangle_charts(mesh::Mesh& mesh) {
   const std::size_t triangles = mesh.triangle_count();
   const int grid = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(triangles))));

@@ -34,6 +34,16 @@ mesh::Mesh convex_hull(const std::vector<glm::vec3>& points);
 /// The largest angle in degrees between a vertex normal and the geometric normal of a triangle of it.
 double max_normal_tilt(const mesh::Mesh& mesh);
 
+/// The share of the cosine-weighted hemisphere about unit n that lies strictly above the plane with
+/// unit normal ng, by midpoint quadrature over the unit disc the hemisphere projects to (uniform there),
+/// 512 x 512 polar cells (error below 1e-4).
+double lobe_share_above(const glm::dvec3& n, const glm::dvec3& ng);
+
+/// The mean of lobe_share_above(n_v, ng_t) over vertex v's triangles t weighted by the integral of v's
+/// hat function over each (area / 3): what a white furnace reflects over v's footprint when directions
+/// below each point's own triangle carry no light.
+double footprint_lobe_share(const mesh::Mesh& mesh, std::uint32_t v);
+
 /// Gives every triangle its own lightmap chart (Mesh::lightmap_uv): a right triangle in its cell of
 /// the smallest square grid of cells that holds them, a tenth of a cell from the cell's edges.
 void add_triangle_charts(mesh::Mesh& mesh);
