@@ -15,6 +15,7 @@
 #include <string>
 
 #include "bake/bake.h"
+#include "brdf/brdf.h"
 #include "mesh/mesh.h"
 #include "support/shapes.h"
 
@@ -67,6 +68,25 @@ TEST_CASE("true surface: an interreflected bake of a convex mesh equals its shad
     check_no_bounce_light(sphere, footprint, 512);
     check_no_bounce_light(hull, footprint, 256);
   }
+}
+
+TEST_CASE("true surface: a glossy interreflected bake of a convex mesh over area footprints equals the glossy shadowed one", "[bake]") {
+  // As above for the glossy passes (matrices; same rays in both bakes, bound: float rounding only).
+  const mesh::Mesh sphere = test::uv_sphere(6, 8);
+  bake::BakeOptions o = convex_options(transfer::Kind::glossy_shadowed, mesh::Footprint::area, 256);
+  o.brdf = brdf::parse_brdf("lambert:albedo=0.6+phong:exponent=10,ks=0.3");
+  const transfer::TransferData shadowed = bake::bake(sphere, o);
+  o.kind = transfer::Kind::glossy_interreflected;
+  o.bounces = 1;
+  const transfer::TransferData bounced = bake::bake(sphere, o);
+  REQUIRE(shadowed.values.size() == bounced.values.size());
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < shadowed.values.size(); ++i) {
+    largest = std::max(largest, std::abs(double(shadowed.values[i])));
+    worst = std::max(worst, std::abs(double(bounced.values[i]) - shadowed.values[i]));
+  }
+  INFO("glossy interreflected against shadowed: worst entry " << worst << " of " << largest);
+  CHECK(worst <= 1e-5 * largest);
 }
 
 TEST_CASE("true surface: a white furnace baked over area footprints keeps what the rule keeps", "[bake]") {
