@@ -16,7 +16,11 @@
 
 #include "bake/bake.h"
 #include "brdf/brdf.h"
+#include "light/disc.h"
 #include "mesh/mesh.h"
+#include "mesh/vertex_footprint.h"
+#include "shade/disc_direct.h"
+#include "trace/scene.h"
 #include "support/shapes.h"
 
 using namespace prt;
@@ -117,4 +121,64 @@ TEST_CASE("true surface: a white furnace baked over area footprints keeps what t
     CHECK(mean_share < 0.98);
     CHECK(std::abs(mean - mean_share) <= 0.003);
   }
+}
+
+TEST_CASE("true surface: the exact disc term from footprint points and from points given with their triangle's normal", "[bake]") {
+  // A small sun (0.25 degrees) low over the coarse sphere, E = pi, albedo 1: a point's term is
+  // (n . d) where its own triangle faces the sun (ng . d > 0; nothing else on a convex mesh can shade
+  // it) and 0 elsewhere. Truth per vertex over its footprint: (n . d) times the hat-weighted share of its
+  // one-ring whose triangles face the sun (area / 3 each); 1024 stratified disc rays each from its own
+  // footprint point, bound 0.02 (the share's sampling noise). Points given one by one (a mesh of points,
+  // as the lightmap's texels are shaded) with DiscShadingOptions::geometric_normals: exactly 0 or n . d.
+  // The direct term was right before the rule too (a ray below its own triangle hits it, but for rays
+  // slipping past an edge): this checks that the rule's wiring keeps it so, it shows no old error.
+  const mesh::Mesh sphere = test::uv_sphere(6, 8);
+  const trace::Scene scene(sphere, trace::SceneOptions{1, true});
+  light::Disc sun;
+  sun.direction = glm::normalize(glm::dvec3(1.0, 0.15, 0.2));
+  sun.irradiance = glm::dvec3(M_PI);
+  sun.angular_radius = 0.25 * M_PI / 180;
+  const std::vector<glm::vec3> albedo(sphere.vertex_count(), glm::vec3(1.0f));
+  const mesh::VertexFootprints footprints(sphere);
+  shade::DiscShadingOptions over_area;
+  over_area.samples = 1024;
+  over_area.footprints = &footprints;
+  const std::vector<glm::vec3> area = shade::disc_direct_diffuse(sphere, albedo, {sun}, &scene, over_area);
+  int partial = 0;
+  mesh::Mesh points;
+  std::vector<glm::vec3> geometric_normals;
+  std::vector<double> expected;
+  for (std::uint32_t v = 0; v < sphere.vertex_count(); ++v) {
+    const double cosine = glm::dot(glm::dvec3(sphere.normals[v]), sun.direction);
+    double facing = 0.0, total = 0.0;
+    for (std::size_t t : test::triangles_of(sphere, v)) {
+      const std::uint32_t* tri = sphere.indices.data() + 3 * t;
+      const glm::dvec3 c = test::face_cross(sphere, t), p0(sphere.positions[tri[0]]);
+      total += glm::length(c);
+      if (glm::dot(c, sun.direction) > 0.0) facing += glm::length(c);
+      // One point per triangle corner, a third of the way to the centroid, with v's normal.
+      const glm::dvec3 centroid = (p0 + glm::dvec3(sphere.positions[tri[1]]) + glm::dvec3(sphere.positions[tri[2]])) / 3.0;
+      points.positions.push_back(glm::vec3((2.0 * glm::dvec3(sphere.positions[v]) + centroid) / 3.0));
+      points.normals.push_back(sphere.normals[v]);
+      geometric_normals.push_back(glm::vec3(glm::normalize(c)));
+      expected.push_back(cosine > 0.0 && glm::dot(c, sun.direction) > 0.0 ? cosine : 0.0);
+    }
+    const double truth = std::max(0.0, cosine) * facing / total;
+    if (truth > 0.0 && facing < total) ++partial;
+    INFO("vertex " << v << ": " << area[v].r << " against " << truth);
+    CHECK(std::abs(area[v].r - truth) <= 0.02);
+  }
+  CHECK(partial >= 4);  // vertices whose footprint the terminator crosses
+  const std::vector<glm::vec3> point_albedo(points.vertex_count(), glm::vec3(1.0f));
+  shade::DiscShadingOptions given;
+  given.samples = 16;
+  given.geometric_normals = &geometric_normals;
+  const std::vector<glm::vec3> lit = shade::disc_direct_diffuse(points, point_albedo, {sun}, &scene, given);
+  int blocked = 0;
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    INFO("point " << k << ": " << lit[k].r << " against " << expected[k]);
+    CHECK(lit[k].r == Approx(expected[k]).margin(0.01));
+    blocked += expected[k] == 0.0 && glm::dot(glm::dvec3(points.normals[k]), sun.direction) > 0.0;
+  }
+  CHECK(blocked >= 4);  // points facing the sun through their shading normal, not their triangle
 }

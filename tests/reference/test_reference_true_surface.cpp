@@ -91,9 +91,7 @@ TEST_CASE("true surface: the test meshes are convex with normals tilted 20+ degr
   CHECK(test::max_normal_tilt(hull) >= 20.0);
   // Convex and closed: every vertex lies on or behind every face's plane.
   for (std::size_t t = 0; t < hull.triangle_count(); ++t) {
-    const glm::dvec3 p0(hull.positions[hull.indices[3 * t]]);
-    const glm::dvec3 n = glm::cross(glm::dvec3(hull.positions[hull.indices[3 * t + 1]]) - p0,
-                                    glm::dvec3(hull.positions[hull.indices[3 * t + 2]]) - p0);
+    const glm::dvec3 p0(hull.positions[hull.indices[3 * t]]), n = test::face_cross(hull, t);
     for (const glm::vec3& q : hull.positions) REQUIRE(glm::dot(glm::dvec3(q) - p0, n) <= 1e-6 * glm::length(n));
   }
 }

@@ -209,8 +209,7 @@ double max_normal_tilt(const mesh::Mesh& mesh) {
   double worst = 0.0;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     const std::uint32_t* tri = mesh.indices.data() + 3 * t;
-    const glm::dvec3 p0(mesh.positions[tri[0]]);
-    const glm::dvec3 ng = glm::normalize(glm::cross(glm::dvec3(mesh.positions[tri[1]]) - p0, glm::dvec3(mesh.positions[tri[2]]) - p0));
+    const glm::dvec3 ng = glm::normalize(face_cross(mesh, t));
     for (int k = 0; k < 3; ++k) {
       const double c = std::clamp(glm::dot(ng, glm::normalize(glm::dvec3(mesh.normals[tri[k]]))), -1.0, 1.0);
       worst = std::max(worst, std::acos(c) * 180.0 / M_PI);
@@ -235,13 +234,23 @@ double lobe_share_above(const glm::dvec3& n, const glm::dvec3& ng) {
   return above / (kCells * kCells * 0.5);  // sum of r over all cells: kCells^2 / 2
 }
 
+std::vector<std::size_t> triangles_of(const mesh::Mesh& mesh, std::uint32_t v) {
+  std::vector<std::size_t> out;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    if (mesh.indices[3 * t] == v || mesh.indices[3 * t + 1] == v || mesh.indices[3 * t + 2] == v) out.push_back(t);
+  return out;
+}
+
+glm::dvec3 face_cross(const mesh::Mesh& mesh, std::size_t t) {
+  const std::uint32_t* tri = mesh.indices.data() + 3 * t;
+  const glm::dvec3 p0(mesh.positions[tri[0]]);
+  return glm::cross(glm::dvec3(mesh.positions[tri[1]]) - p0, glm::dvec3(mesh.positions[tri[2]]) - p0);
+}
+
 double footprint_lobe_share(const mesh::Mesh& mesh, std::uint32_t v) {
   double weighted = 0.0, total = 0.0;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const std::uint32_t* tri = mesh.indices.data() + 3 * t;
-    if (tri[0] != v && tri[1] != v && tri[2] != v) continue;
-    const glm::dvec3 p0(mesh.positions[tri[0]]);
-    const glm::dvec3 c = glm::cross(glm::dvec3(mesh.positions[tri[1]]) - p0, glm::dvec3(mesh.positions[tri[2]]) - p0);
+  for (std::size_t t : triangles_of(mesh, v)) {
+    const glm::dvec3 c = face_cross(mesh, t);
     const double area = 0.5 * glm::length(c);
     weighted += area * lobe_share_above(glm::normalize(glm::dvec3(mesh.normals[v])), glm::normalize(c));
     total += area;

@@ -39,6 +39,12 @@ double max_normal_tilt(const mesh::Mesh& mesh);
 /// 512 x 512 polar cells (error below 1e-4).
 double lobe_share_above(const glm::dvec3& n, const glm::dvec3& ng);
 
+/// The triangles of vertex v (indices into mesh.indices / 3), in mesh order.
+std::vector<std::size_t> triangles_of(const mesh::Mesh& mesh, std::uint32_t v);
+
+/// (p1 - p0) x (p2 - p0) of triangle t in double: the geometric normal, twice the area long.
+glm::dvec3 face_cross(const mesh::Mesh& mesh, std::size_t t);
+
 /// The mean of lobe_share_above(n_v, ng_t) over vertex v's triangles t weighted by the integral of v's
 /// hat function over each (area / 3): what a white furnace reflects over v's footprint when directions
 /// below each point's own triangle carry no light.
