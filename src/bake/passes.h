@@ -21,10 +21,13 @@
 
 namespace prt::bake {
 
-/// Surface sample points other than the mesh's vertices: unit normals, one per position.
+/// Surface sample points other than the mesh's vertices: unit normals, one per position, and the unit
+/// geometric normal of the triangle each lies on (the true-surface rule, trace/true_surface.h; null:
+/// no rule).
 struct SamplePoints {
   const std::vector<glm::vec3>* positions = nullptr;
   const std::vector<glm::vec3>* normals = nullptr;
+  const std::vector<glm::vec3>* geometric_normals = nullptr;
 };
 
 /// Where a bounce pass reads the previous pass's transfer at a hit: a texel grid over the mesh's
@@ -55,7 +58,7 @@ struct PassContext {
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
     return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
-                             share.begin, share.end, footprints};
+                             share.begin, share.end, footprints, points.geometric_normals};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
   std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }

@@ -26,7 +26,7 @@ void run_reference_texels(const mesh::Mesh& mesh, const std::string& mesh_path, 
     const trace::Scene scene(mesh, trace::SceneOptions{1, true});
     samples = lightmap::texel_samples(mesh, scene, albedo, baked.options, baked.seed, options.threads);
   }
-  for (const lightmap::TexelSample& s : samples.samples) points.push_back({s.position, s.normal, s.albedo});
+  for (const lightmap::TexelSample& s : samples.samples) points.push_back({s.position, s.normal, s.albedo, s.triangle});
   reference::ReferenceReport report;
   const std::vector<glm::vec3> radiance = reference::point_radiance(mesh, sampler, options, points, &report);
   if (!job().is_root()) return;  // distributed: only rank 0 holds every point (docs/distributed.md)

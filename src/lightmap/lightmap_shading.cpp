@@ -4,6 +4,7 @@
 #include "lightmap/texel_bake.h"
 #include "shade/surface_albedo.h"
 #include "trace/scene.h"
+#include "trace/true_surface.h"
 
 namespace prt::lightmap {
 
@@ -20,6 +21,7 @@ image::Image shade_lightmap(const mesh::Mesh& mesh, const transfer::TransferData
   // vertex shading path, with shadow rays against the real scene.
   const std::size_t stride = h.values_per_vertex();
   mesh::Mesh points;
+  std::vector<glm::vec3> geometric_normals;  // of each sample's triangle: the true-surface rule of its disc rays
   transfer::TransferData per_point;
   per_point.header = h;
   per_point.header.texel_width = per_point.header.texel_height = 0;
@@ -29,6 +31,7 @@ image::Image shade_lightmap(const mesh::Mesh& mesh, const transfer::TransferData
     points.positions.push_back(s.position);
     points.normals.push_back(s.normal);
     points.albedo.push_back(s.albedo);
+    geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
     const auto block = transfer.values.begin() + std::ptrdiff_t(s.texel * stride);
     per_point.values.insert(per_point.values.end(), block, block + std::ptrdiff_t(stride));
     if (!transfer.bounce_only.empty()) {
@@ -36,7 +39,9 @@ image::Image shade_lightmap(const mesh::Mesh& mesh, const transfer::TransferData
       per_point.bounce_only.insert(per_point.bounce_only.end(), bounce, bounce + std::ptrdiff_t(stride));
     }
   }
-  const std::vector<glm::vec3> lit = shade::shade_diffuse_split(points, per_point, lighting, origin, options, report, &scene);
+  shade::DiscShadingOptions disc = options;
+  disc.geometric_normals = &geometric_normals;
+  const std::vector<glm::vec3> lit = shade::shade_diffuse_split(points, per_point, lighting, origin, disc, report, &scene);
   image::Image out(baked.options.width, baked.options.height, 3);
   std::vector<float> grid(out.pixels.size(), 0.0f);
   for (std::size_t k = 0; k < samples.samples.size(); ++k)

@@ -14,6 +14,7 @@
 #include "lightmap/sample_repair.h"
 #include "lightmap/uv_validation.h"
 #include "trace/scene.h"
+#include "trace/true_surface.h"
 
 namespace prt::lightmap {
 
@@ -174,10 +175,11 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   rep.bake.seconds_build = seconds_since(start);
   const TexelSamples samples =
       texel_samples(mesh, scene, bake::effective_albedo(mesh, options.albedo), lightmap, options.seed, options.threads, &rep);
-  std::vector<glm::vec3> positions, normals, albedo;
+  std::vector<glm::vec3> positions, normals, geometric_normals, albedo;
   for (const TexelSample& s : samples.samples) {
     positions.push_back(s.position);
     normals.push_back(s.normal);
+    geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
     albedo.push_back(s.albedo);
   }
   std::vector<std::uint8_t> coverage = samples.coverage;
@@ -190,7 +192,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const std::vector<std::uint32_t> order = trace::morton_order(positions);
   const bake::LocalSampleSet set = bake::make_local_sample_set(options.samples, options.bands, options.seed);
   const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height};
-  bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress, {&positions, &normals}, &grid};
+  bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress, {&positions, &normals, &geometric_normals}, &grid};
   ctx.dist = options.dist;
   const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();

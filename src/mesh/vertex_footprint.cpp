@@ -69,9 +69,10 @@ double VertexFootprints::ring_area(std::uint32_t v) const {
   return begin_[g + 1] > begin_[g] ? cumulative_area_[begin_[g + 1] - 1] : 0.0;
 }
 
-glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w) const {
+glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w, std::uint32_t* triangle) const {
   const std::uint32_t first = begin_[group_[v]], last = begin_[group_[v] + 1];
   const double total = ring_area(v);
+  if (triangle) *triangle = kNoTriangle;
   if (!(total > 0.0)) return positions_[v];
   const double target = u * total;
   const auto it = std::upper_bound(cumulative_area_.begin() + first, cumulative_area_.begin() + last, target);
@@ -79,15 +80,17 @@ glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w) const {
   const double below = e > first ? cumulative_area_[e - 1] : 0.0, share = cumulative_area_[e] - below;
   const double rescaled = share > 0.0 ? std::clamp((target - below) / share, 0.0, 1.0) : 0.5;
   const std::uint32_t corner = corners_[e], t = corner / 3 * 3, k = corner - t;
+  if (triangle) *triangle = corner / 3;
   const std::vector<std::uint32_t>& idx = *indices_;
   const glm::dvec3 p(positions_[v]), a(positions_[idx[t + (k + 1) % 3]]), b(positions_[idx[t + (k + 2) % 3]]);
   const double own = beta22_quantile(rescaled), rest = 1.0 - own;
   return glm::vec3(own * p + rest * (w * a + (1.0 - w) * b));
 }
 
-glm::vec3 VertexFootprints::stratified_point(std::uint32_t v, std::uint32_t k, std::uint32_t scramble) const {
+glm::vec3 VertexFootprints::stratified_point(std::uint32_t v, std::uint32_t k, std::uint32_t scramble,
+                                             std::uint32_t* triangle) const {
   const glm::dvec2 uw = sh::sobol_2d(k, scramble);
-  return point(v, uw.x, uw.y);
+  return point(v, uw.x, uw.y, triangle);
 }
 
 std::unique_ptr<VertexFootprints> footprints_for(const Mesh& mesh, Footprint footprint) {

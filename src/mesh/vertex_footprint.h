@@ -30,6 +30,8 @@ Footprint parse_footprint(const std::string& text, const std::string& option);
 /// gave less noise than 64, 4 or 1, docs/conventions.md "Vertex footprint").
 inline constexpr int kSamplesPerFootprintPoint = 16;
 inline constexpr int kMaxFootprintPoints = 1024;
+/// VertexFootprints::point's triangle for a vertex on no triangle.
+inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
 int footprint_point_count(int samples);
 
 /// For every vertex, the triangles around it and their areas, to draw points of its footprint.
@@ -49,12 +51,13 @@ class VertexFootprints {
   /// the triangle's share, gives v's barycentric weight b = beta22_quantile(.) ~ Beta(2, 2); w splits
   /// 1 - b between the other two corners. The map is continuous within each triangle, so stratified
   /// (u, w) give stratified points. A vertex on no triangle (or only zero-area ones) returns its own
-  /// position. Precondition: v < vertex count.
-  glm::vec3 point(std::uint32_t v, double u, double w) const;
+  /// position. With `triangle` given, stores there the mesh triangle the point lies on (kNoTriangle
+  /// for a vertex on no triangle). Precondition: v < vertex count.
+  glm::vec3 point(std::uint32_t v, double u, double w, std::uint32_t* triangle = nullptr) const;
 
   /// Point k of a stratified set over v's footprint: point(v, sh::sobol_2d(k, scramble)) (the first K
   /// points of an Owen-scrambled Sobol sequence, K a power of two, are a (0, m, 2)-net).
-  glm::vec3 stratified_point(std::uint32_t v, std::uint32_t k, std::uint32_t scramble) const;
+  glm::vec3 stratified_point(std::uint32_t v, std::uint32_t k, std::uint32_t scramble, std::uint32_t* triangle = nullptr) const;
 
   /// The footprint's area: the sum of the areas of v's triangles (mesh units squared).
   double ring_area(std::uint32_t v) const;

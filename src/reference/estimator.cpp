@@ -80,6 +80,7 @@ bool PathTracer::hit_point(const trace::HitResult& hit, const glm::vec3& directi
   if (!detail::hit_geometry(mesh_, scene_, hit, direction, g)) return false;
   point.normal = g.normal;
   point.origin = g.origin;
+  point.surface = trace::TrueSurface{g.geometric_normal};
   const std::uint32_t* tri = g.triangle;
   point.albedo = g.w * glm::dvec3(albedo_[tri[0]]) + g.u * glm::dvec3(albedo_[tri[1]]) + g.v * glm::dvec3(albedo_[tri[2]]);
   return true;
@@ -100,7 +101,8 @@ RadianceEstimate mean_estimate(const glm::dvec3& sum, const glm::dvec3& sum_sq, 
 namespace {
 
 // The Lambertian surface model of the path loop (path_loop.h): rho = albedo max(n.w, 0) / pi, BSDF
-// samples cosine-distributed about n (sh::square_to_hemisphere_cosine), so rho / pdf = albedo.
+// samples cosine-distributed about n (sh::square_to_hemisphere_cosine), so rho / pdf = albedo; rho is 0
+// below the point's triangle (the true-surface rule: such samples end the path).
 class LambertSurface {
  public:
   using Point = SurfacePoint;
@@ -110,7 +112,7 @@ class LambertSurface {
 
   bool light_terms(const Point& p, int, const glm::dvec3& w, glm::dvec3& rho, double& pdf) const {
     const double cosine = glm::dot(p.normal, w);
-    if (!(cosine > 0.0)) return false;
+    if (!(cosine > 0.0) || !p.surface.admits(w)) return false;
     pdf = cosine * kInvPi;
     rho = p.albedo * pdf;
     return true;
@@ -121,6 +123,7 @@ class LambertSurface {
     sh::orthonormal_basis(p.normal, t, b);
     const glm::dvec3 local = sh::square_to_hemisphere_cosine(u);
     s.direction = glm::normalize(local.x * t + local.y * b + local.z * p.normal);
+    if (!p.surface.admits(s.direction)) return false;  // below the true surface: no light
     s.pdf = local.z * kInvPi;
     s.weight = p.albedo;
     return true;

@@ -10,6 +10,9 @@
 //                = 0              otherwise (b = 0 and something is hit; or a BACK face is hit).
 // Front face: the triangle's geometric normal ng = (p1 - p0) x (p2 - p0) of its counter-clockwise
 // corners faces the ray (ng . w < 0); back faces are black, single-sided surfaces as in the baker.
+// At a point on one triangle (a hit, a footprint or texel point; not a mesh vertex) the true-surface
+// rule holds (trace/true_surface.h): directions with ng . w <= 0 carry no light (the integrand is 0
+// there: neither strategy traces them, a BSDF sample there ends its path).
 // At a hit point q: position, shading normal (normalised) and albedo are interpolated barycentrically
 // from the triangle's corners (Embree's u, v). So with b = 0 this is direct lighting with binary
 // visibility (what the baker's shadowed transfer predicts), and each bounce adds one interreflection.
@@ -60,6 +63,7 @@
 #include "reference/environment_sampler.h"
 #include "sh/sampling.h"
 #include "trace/scene.h"
+#include "trace/true_surface.h"
 
 namespace prt::reference {
 
@@ -92,6 +96,7 @@ struct SurfacePoint {
   glm::dvec3 normal{0.0, 1.0, 0.0};  ///< unit shading normal: the hemisphere integrated over
   glm::dvec3 origin{0.0};            ///< where rays leave the surface (offset rule above)
   glm::dvec3 albedo{0.0};            ///< linear diffuse reflectance per channel, in [0, 1]
+  trace::TrueSurface surface{};      ///< the true-surface rule there (none at a mesh vertex)
 };
 
 /// A Monte Carlo estimate and the usual (i.i.d.) estimate of its standard error, per channel:

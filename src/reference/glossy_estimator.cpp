@@ -12,6 +12,7 @@
 #include "reference/brdf_sampling.h"
 #include "reference/path_loop.h"
 #include "sh/basis.h"
+#include "trace/true_surface.h"
 
 namespace prt::reference {
 
@@ -33,7 +34,15 @@ struct PathPoint {
   glm::dvec3 origin{0.0};     // where its rays start
   glm::dvec3 view_local{0.0, 0.0, 1.0};
   double* weights = nullptr;  // band-limited: u_c = B_c^T y(view_local), 3 blocks of bands^2
+  trace::TrueSurface surface{};  // the true-surface rule there (none at a mesh vertex)
 };
+
+// The true-surface rule (trace/true_surface.h) for a direction w that would be traced (n . w > 0; below
+// the tangent plane the band-limited BRDF sees the environment untraced, as glossy PRT does): false
+// where w lies below p's triangle, so it carries no light.
+static bool admitted(const PathPoint& p, const glm::dvec3& w) {
+  return !(glm::dot(p.normal, w) > 0.0) || p.surface.admits(w);
+}
 
 struct GlossyWorkspace::Buffers : detail::PathBuffers<PathPoint> {
   std::vector<double> weights;  // kPathsPerWave blocks of 3 bands^2 (band-limited BRDF)
@@ -138,7 +147,7 @@ class GlossySurface {
   bool light_terms(const Point& p, int depth, const glm::dvec3& w, glm::dvec3& rho, double& pdf) {
     const glm::dvec3 local = glm::transpose(p.frame) * w;
     rho = im_.rho(p, local, ws_.basis);
-    if (rho == glm::dvec3(0.0)) return false;
+    if (rho == glm::dvec3(0.0) || !admitted(p, w)) return false;
     pdf = strategy_pdf(p, depth, local);
     return true;
   }
@@ -149,8 +158,8 @@ class GlossySurface {
     s.pdf = strategy_pdf(p, depth, local);
     if (!(s.pdf > 0.0)) return false;
     const glm::dvec3 r = im_.rho(p, local, ws_.basis);
-    if (r == glm::dvec3(0.0)) return false;
     s.direction = glm::normalize(p.frame * local);
+    if (r == glm::dvec3(0.0) || !admitted(p, s.direction)) return false;
     s.weight = r / s.pdf;
     return true;
   }
@@ -161,6 +170,7 @@ class GlossySurface {
     next.normal = g.normal;
     next.frame = brdf::shading_frame(next.normal);
     next.origin = g.origin;
+    next.surface = trace::TrueSurface{g.geometric_normal};
     im_.set_view(next, -direction, ws_.basis);
     return true;
   }
@@ -202,7 +212,8 @@ class GlossySurface {
 }  // namespace
 
 RadianceEstimate GlossyTracer::vertex_radiance(std::uint32_t vertex, const glm::vec3& position, const glm::dvec3& view,
-                                               int paths, SampleStream& stream, GlossyWorkspace& workspace) const {
+                                               int paths, SampleStream& stream, GlossyWorkspace& workspace,
+                                               std::uint32_t triangle) const {
   const Impl& im = *impl_;
   GlossyWorkspace::Buffers& ws = workspace.buffers();
   const std::size_t block = 3 * static_cast<std::size_t>(im.coefficients());
@@ -214,6 +225,7 @@ RadianceEstimate GlossyTracer::vertex_radiance(std::uint32_t vertex, const glm::
   start.frame = brdf::shading_frame(start.normal);
   start.origin = glm::dvec3(im.scene.offset_origin(position, im.mesh.normals[vertex]));
   start.weights = ws.start_weights.data();
+  start.surface = trace::true_surface(im.mesh, triangle);
   im.set_view(start, glm::normalize(view), ws.basis);
   std::optional<EnvironmentSampler> table;
   if (im.matrix) table.emplace(im.table_for(start, ws.basis));

@@ -35,6 +35,9 @@
 //     sampling for the band-limited BRDF (its ringing reaches every direction) and none for the true one.
 // A path continues from a front-face hit above the tangent plane while bounces remain, with throughput
 // multiplied by rho / pdf (signed); Russian roulette from depth kRouletteDepth on |throughput|.
+// At a point on one triangle (a hit, a footprint point) the true-surface rule holds (trace/true_surface.h):
+// a direction above the tangent plane but below the triangle's plane carries no light (as in the glossy
+// bake's passes, which block such rays).
 // DETERMINISM: as estimator.h (per-estimate SampleStream, fixed summation order).
 #include <memory>
 #include <vector>
@@ -83,9 +86,12 @@ class GlossyTracer {
 
   /// L_o(vertex, view, options.bounces) (see above) from `paths` >= 1 paths; `view` unit, world frame.
   /// The paths leave from `position` (the vertex's own, or a point of its footprint) lifted along the
-  /// vertex normal (Scene::offset_origin); normal and shading frame are the vertex's.
+  /// vertex normal (Scene::offset_origin); normal and shading frame are the vertex's. `triangle`: the
+  /// mesh triangle a footprint point lies on (its true-surface rule, trace/true_surface.h);
+  /// mesh::kNoTriangle for the vertex itself.
   RadianceEstimate vertex_radiance(std::uint32_t vertex, const glm::vec3& position, const glm::dvec3& view, int paths,
-                                   SampleStream& stream, GlossyWorkspace& workspace) const;
+                                   SampleStream& stream, GlossyWorkspace& workspace,
+                                   std::uint32_t triangle = mesh::kNoTriangle) const;
 
  struct Impl;  // the BRDF, its matrix and lobe sampler (internal)
 

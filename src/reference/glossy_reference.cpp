@@ -43,8 +43,8 @@ std::vector<glm::vec3> glossy_vertex_radiance(const mesh::Mesh& mesh, const Envi
         const glm::dvec3 view = distance > 0.0 ? to_eye / distance : glm::dvec3(mesh.normals[v]);
         if (!footprints) return tracer.vertex_radiance(v, mesh.positions[v], view, options.samples, stream, workspace);
         return detail::footprint_estimate(*footprints, v, options.seed, options.samples,
-                                          [&](const glm::vec3& position, int paths, SampleStream& run_stream) {
-                                            return tracer.vertex_radiance(v, position, view, paths, run_stream, workspace);
+                                          [&](const glm::vec3& position, std::uint32_t triangle, int paths, SampleStream& run_stream) {
+                                            return tracer.vertex_radiance(v, position, view, paths, run_stream, workspace, triangle);
                                           });
       });
 }

@@ -16,6 +16,7 @@
 #include "reference/vertex_driver.h"
 #include "sh/basis.h"
 #include "trace/scene.h"
+#include "trace/true_surface.h"
 
 namespace prt::reference {
 
@@ -101,9 +102,10 @@ std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const Environment
       [&](const PathTracer& tracer, const trace::Scene& scene, std::uint32_t v, SampleStream& stream, PathWorkspace& workspace) {
         if (!footprints) return tracer.outgoing_radiance(tracer.vertex_point(v), options.samples, stream, workspace);
         return detail::footprint_estimate(*footprints, v, options.seed, options.samples,
-                                          [&](const glm::vec3& position, int paths, SampleStream& run_stream) {
+                                          [&](const glm::vec3& position, std::uint32_t triangle, int paths, SampleStream& run_stream) {
                                             SurfacePoint point = tracer.vertex_point(v);
                                             point.origin = glm::dvec3(scene.offset_origin(position, mesh.normals[v]));
+                                            point.surface = trace::true_surface(mesh, triangle);
                                             return tracer.outgoing_radiance(point, paths, run_stream, workspace);
                                           });
       });
@@ -121,6 +123,7 @@ std::vector<glm::vec3> point_radiance(const mesh::Mesh& mesh, const EnvironmentS
                             point.normal = glm::normalize(glm::dvec3(points[k].normal));
                             point.origin = glm::dvec3(scene.offset_origin(points[k].position, points[k].normal));
                             point.albedo = glm::dvec3(points[k].albedo);
+                            point.surface = trace::true_surface(mesh, points[k].triangle);
                             return tracer.outgoing_radiance(point, options.samples, stream, workspace);
                           });
 }

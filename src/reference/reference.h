@@ -83,9 +83,12 @@ std::vector<glm::vec3> vertex_radiance(const mesh::Mesh& mesh, const Environment
                                        const ReferenceOptions& options, ReferenceReport* report = nullptr,
                                        std::vector<glm::vec3>* standard_error = nullptr);
 
-/// A surface point given explicitly (a lightmap texel's sample point): position, unit normal, albedo.
+/// A surface point given explicitly (a lightmap texel's sample point): position, unit normal, albedo,
+/// and the mesh triangle it lies on (the true-surface rule, trace/true_surface.h; mesh::kNoTriangle:
+/// no rule).
 struct PointSample {
   glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f}, albedo{0.8f};
+  std::uint32_t triangle = mesh::kNoTriangle;
 };
 
 /// Outgoing radiance at each of `points` on the surface of `mesh`, estimated as vertex_radiance does

@@ -82,7 +82,8 @@ std::vector<glm::vec3> trace_every_vertex(const std::vector<glm::vec3>& position
 /// mesh::footprint_point_count(samples) runs of nearly equal length. Run k leaves from footprint point
 /// footprints.stratified_point(v, k, scramble) (scramble = the first output of SampleStream(seed, v))
 /// and has its own stream, SampleStream(seed, v * mesh::kMaxFootprintPoints + k), for its paths:
-/// estimate_at(position, paths, stream) -> RadianceEstimate. The runs' means are weighted by their
+/// estimate_at(position, triangle, paths, stream) -> RadianceEstimate, with the triangle the point lies
+/// on (mesh::kNoTriangle if none; the true-surface rule's, trace/true_surface.h). The runs' means are weighted by their
 /// lengths; their standard errors, independent, are combined the same way.
 template <class EstimateAt>
 RadianceEstimate footprint_estimate(const mesh::VertexFootprints& footprints, std::uint32_t v, std::uint32_t seed, int samples,
@@ -95,7 +96,9 @@ RadianceEstimate footprint_estimate(const mesh::VertexFootprints& footprints, st
   for (int k = 0; k < runs; ++k) {
     const int paths = run_end(k + 1) - run_end(k);
     SampleStream stream(seed, static_cast<std::uint64_t>(v) * mesh::kMaxFootprintPoints + static_cast<std::uint64_t>(k));
-    const RadianceEstimate e = estimate_at(footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble), paths, stream);
+    std::uint32_t triangle = mesh::kNoTriangle;
+    const glm::vec3 position = footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble, &triangle);
+    const RadianceEstimate e = estimate_at(position, triangle, paths, stream);
     const double w = static_cast<double>(paths) / samples;
     total.value += w * e.value;
     variance += w * w * e.standard_error * e.standard_error;

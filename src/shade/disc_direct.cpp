@@ -11,6 +11,7 @@
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "trace/scene.h"
+#include "trace/true_surface.h"
 
 namespace prt::shade {
 
@@ -44,6 +45,7 @@ void accumulate(const mesh::Mesh& mesh, const std::vector<light::Disc>& discs, c
     parallel_for(mesh.positions.size(), 64, options.threads, [&](std::size_t begin, std::size_t end) {
       trace::RayBatch batch(directions.size());
       std::vector<glm::dvec3> w_of(directions.size());
+      std::vector<char> below(directions.size());
       for (std::size_t v = begin; v < end; ++v) {
         const glm::dvec3 n(mesh.normals[v]);
         batch.clear();
@@ -54,15 +56,19 @@ void accumulate(const mesh::Mesh& mesh, const std::vector<light::Disc>& discs, c
           if (!(glm::dot(n, w) > 0.0)) continue;
           w_of[used++] = w;
           if (!scene) continue;
+          std::uint32_t triangle = mesh::kNoTriangle;
           const glm::vec3 from = options.footprints ? options.footprints->stratified_point(static_cast<std::uint32_t>(v),
-                                                                                            static_cast<std::uint32_t>(s), scramble)
+                                                                                            static_cast<std::uint32_t>(s), scramble, &triangle)
                                                     : mesh.positions[v];
+          const trace::TrueSurface rule = options.geometric_normals ? trace::TrueSurface{glm::dvec3((*options.geometric_normals)[v])}
+                                                                    : trace::true_surface(mesh, triangle);
+          below[used - 1] = !rule.admits(w);
           batch.push(scene->offset_origin(from, mesh.normals[v]), glm::vec3(w));
         }
         if (scene && used) scene->occluded(batch);
         glm::dvec3 sum(0.0);
         for (std::size_t s = 0; s < used; ++s)
-          if (!scene || !batch.is_occluded(s)) sum += weight(v, w_of[s]);
+          if (!scene || !(batch.is_occluded(s) || below[s])) sum += weight(v, w_of[s]);
         out[v] += glm::vec3(sum * scale);
       }
     });

@@ -16,6 +16,9 @@
 // point VertexFootprints::stratified_point(p, s, hash_to_u32(seed, p, kDiscFootprintSalt)) instead of
 // x_p (lifted the same way): V is averaged over the surface that the vertex's value covers, as the
 // bake's sky and bounce terms are (docs/conventions.md "Vertex footprint").
+// THE TRUE-SURFACE RULE (trace/true_surface.h): a shadow ray from a point on one triangle (a footprint
+// point, or a point with DiscShadingOptions::geometric_normals) below that triangle's plane counts as
+// occluded, as the bake's direct pass counts it.
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +41,10 @@ struct DiscShadingOptions {
   /// The mesh's vertex footprints, or null: rays leave from the vertices themselves (see above).
   const mesh::VertexFootprints* footprints = nullptr;
   std::uint32_t seed = 1;  ///< scrambles the footprint points
+  /// Points that lie on one triangle each (a lightmap's texel samples passed as a mesh of points): the
+  /// unit geometric normal of each point's triangle, one per vertex of the mesh shaded; null: none.
+  /// With it, or with footprints, the true-surface rule holds (below).
+  const std::vector<glm::vec3>* geometric_normals = nullptr;
 };
 
 /// Salt of the hash that scrambles a vertex's footprint points for disc rays (core/hash.h).

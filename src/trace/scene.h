@@ -215,6 +215,15 @@ class RayBatch {
   }
   /// The direction ray i was pushed with.
   glm::vec3 direction(std::size_t i) const { return glm::vec3(rays_[i].ray.dir_x, rays_[i].ray.dir_y, rays_[i].ray.dir_z); }
+
+  /// After a query: ray i carries no light (the true-surface rule, trace/true_surface.h): from now on
+  /// is_occluded(i) is true and is_hit(i), is_front_hit(i), hit(i).hit() are false.
+  void block(std::size_t i) {
+    rays_[i].ray.tfar = -kInfinity;
+    rays_[i].hit.geom_id = kNoHit;
+    rays_[i].hit.prim_id = kNoHit;
+  }
+
   /// After Scene::intersect: the number of the size() rays that hit a triangle; with `rows` given, also
   /// prefetches rows + prim_id * `row_bytes` (its first and last byte) of every hit triangle into the
   /// cache, for callers that next read per-triangle data in hit order (random reads otherwise).

@@ -12,6 +12,11 @@
 // with a run of consecutive directions.
 // The "vertices" may be other surface sample points (a lightmap's texel samples): VertexRays::positions
 // and ::normals then replace the mesh's, and the index v names a sample point.
+// THE TRUE-SURFACE RULE (trace/true_surface.h) is applied here, for every pass alike: where a ray leaves
+// from a point on one triangle (a footprint point, or a sample point with a geometric normal), a ray
+// below that triangle's plane is blocked after the query (RayBatch::block: occluded, no hit), so the
+// direct passes count it occluded and the bounce passes gather nothing along it. Rays from a mesh
+// vertex itself are left as traced.
 #include <algorithm>
 #include <cassert>
 #include <atomic>
@@ -29,6 +34,7 @@
 #include "mesh/vertex_footprint.h"
 #include "sh/sampling.h"
 #include "trace/scene.h"
+#include "trace/true_surface.h"
 
 namespace prt::trace {
 
@@ -41,11 +47,23 @@ inline constexpr std::uint32_t kFootprintSalt = 0xf0070000u;
 /// The first `count` (<= mesh::kMaxFootprintPoints) ray origins of vertex v with a footprint: point k =
 /// footprints.stratified_point(v, k, hash_to_u32(seed, v, kFootprintSalt)), lifted off the surface along the vertex normal n as Scene::offset_origin does (the lift
 /// stays above every one-ring face whose normal is within 90 degrees of n).
+/// With `triangles` given, also the triangle each point lies on (mesh::kNoTriangle if none).
 inline void footprint_origins(const mesh::VertexFootprints& footprints, const Scene& scene, std::uint32_t v,
-                              const glm::vec3& n, std::uint32_t seed, std::size_t count, glm::vec3* out) {
+                              const glm::vec3& n, std::uint32_t seed, std::size_t count, glm::vec3* out,
+                              std::uint32_t* triangles = nullptr) {
   const std::uint32_t scramble = hash_to_u32(seed, v, kFootprintSalt);
   for (std::size_t k = 0; k < count; ++k)
-    out[k] = scene.offset_origin(footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble), n);
+    out[k] = scene.offset_origin(
+        footprints.stratified_point(v, static_cast<std::uint32_t>(k), scramble, triangles ? triangles + k : nullptr), n);
+}
+
+/// After a query on rays first .. first + batch.size() - 1 of a point's `samples` rays, ray s leaving
+/// from origin s * rule_count / samples with rules[that origin]: blocks the rays below the origin's
+/// triangle (the true-surface rule).
+inline void apply_true_surface(RayBatch& batch, const TrueSurface* rules, std::size_t rule_count, std::size_t first,
+                               std::size_t samples) {
+  for (std::size_t i = 0; i < batch.size(); ++i)
+    if (!rules[(first + i) * rule_count / samples].admits(glm::dvec3(batch.direction(i)))) batch.block(i);
 }
 
 /// Which query a pass runs on its rays.
@@ -72,13 +90,17 @@ struct VertexRays {
   /// instead of the vertex; the robust-mode choice stays the vertex's. Null, or with `positions` set:
   /// from the points themselves.
   const mesh::VertexFootprints* footprints = nullptr;
+  /// With `positions`: the unit geometric normal of each sample point's triangle (the true-surface
+  /// rule's; a zero entry: none). Null: no rule at the sample points.
+  const std::vector<glm::vec3>* geometric_normals = nullptr;
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
 /// chunk's vertices), with
 ///   void start(std::uint32_t v, const glm::mat3& frame);   before v's first batch
 ///   void batch(std::uint32_t v, const RayBatch& batch, std::size_t first);
-///        after each batch's query: the batch holds rays first .. first + batch.size() - 1 of v
+///        after each batch's query and the true-surface rule: the batch holds rays first ..
+///        first + batch.size() - 1 of v
 ///   void finish(std::uint32_t v, const glm::mat3& frame);  after v's last batch
 /// `progress` (of order->size() items) advances by each chunk's vertices, scaled by the whole order over
 /// the visited share (so a rank's bar estimates the whole job; ranks get equal shares). Returns the rays
@@ -108,6 +130,9 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     // The chunk's spawn points first (at most kVerticesPerChunk): point queries in a row, in Morton
     // order, find the BVH nodes they share in the cache; between two vertices' rays they miss it.
     SpawnPoint spawns[kVerticesPerChunk];
+    glm::vec3 origins[mesh::kMaxFootprintPoints];
+    std::uint32_t triangles[mesh::kMaxFootprintPoints];
+    TrueSurface rules[mesh::kMaxFootprintPoints];
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
       spawns[k - begin] = r.scene->spawn_point(positions[v], normals[v]);
@@ -116,8 +141,14 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
       const std::uint32_t v = (*r.order)[k];
       const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
       const SpawnPoint& spawn = spawns[k - begin];
-      glm::vec3 origins[mesh::kMaxFootprintPoints];
-      if (spread) footprint_origins(*r.footprints, *r.scene, v, normals[v], r.seed, origin_count, origins);
+      rules[0] = TrueSurface{};
+      if (spread) {
+        footprint_origins(*r.footprints, *r.scene, v, normals[v], r.seed, origin_count, origins, triangles);
+        for (std::size_t o = 0; o < origin_count; ++o) rules[o] = true_surface(*r.mesh, triangles[o]);
+      } else if (r.geometric_normals) {
+        rules[0].geometric_normal = glm::dvec3((*r.geometric_normals)[v]);
+      }
+      const bool ruled = spread || rules[0].geometric_normal != glm::dvec3(0.0);
       worker.start(v, frame);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);
@@ -127,6 +158,7 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
           batch.push(spread ? origins[s * origin_count / samples] : spawn.origin, frame * local[s]);
         if (r.query == Query::occluded) r.scene->occluded(batch);
         else r.scene->intersect(batch);
+        if (ruled) apply_true_surface(batch, rules, spread ? origin_count : 1, first, samples);
         worker.batch(v, batch, first);
       }
       worker.finish(v, frame);

@@ -1,6 +1,11 @@
 #include "support/shapes.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -131,6 +136,140 @@ mesh::Mesh floor_with_lids(int half, const std::vector<double>& lid_x, double li
     m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
   }
   return m;
+}
+
+namespace {
+
+using Face = std::array<std::uint32_t, 3>;
+
+glm::dvec3 face_normal(const std::vector<glm::dvec3>& p, const Face& f) {
+  return glm::cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+}
+
+// Four points of `p` spanning a tetrahedron (indices), the first counter-clockwise from outside.
+std::array<std::uint32_t, 4> hull_seed(const std::vector<glm::dvec3>& p, double eps) {
+  std::uint32_t a = 0, b = 0, c = 0, d = 0;
+  for (std::uint32_t i = 0; i < p.size(); ++i)
+    if (p[i].x < p[a].x) a = i;
+  for (std::uint32_t i = 0; i < p.size(); ++i)
+    if (glm::length(p[i] - p[a]) > glm::length(p[b] - p[a])) b = i;
+  for (std::uint32_t i = 0; i < p.size(); ++i)
+    if (glm::length(glm::cross(p[i] - p[a], p[b] - p[a])) > glm::length(glm::cross(p[c] - p[a], p[b] - p[a]))) c = i;
+  const glm::dvec3 n = glm::cross(p[b] - p[a], p[c] - p[a]);
+  for (std::uint32_t i = 0; i < p.size(); ++i)
+    if (std::abs(glm::dot(p[i] - p[a], n)) > std::abs(glm::dot(p[d] - p[a], n))) d = i;
+  if (std::abs(glm::dot(p[d] - p[a], n)) <= eps * glm::length(n)) throw std::runtime_error("convex_hull: flat point set");
+  if (glm::dot(p[d] - p[a], n) > 0.0) std::swap(b, c);  // d must lie behind face (a, b, c)
+  return {a, b, c, d};
+}
+
+}  // namespace
+
+mesh::Mesh convex_hull(const std::vector<glm::vec3>& points) {
+  std::vector<glm::dvec3> p(points.begin(), points.end());
+  double extent = 0.0;
+  for (const glm::dvec3& q : p) extent = std::max({extent, std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+  const double eps = 1e-9 * extent;
+  const auto s = hull_seed(p, eps);
+  std::vector<Face> faces = {{s[0], s[1], s[2]}, {s[0], s[3], s[1]}, {s[1], s[3], s[2]}, {s[2], s[3], s[0]}};
+  for (std::uint32_t i = 0; i < p.size(); ++i) {
+    std::vector<Face> kept;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;  // directed edges of visible faces
+    for (const Face& f : faces) {
+      const glm::dvec3 n = face_normal(p, f);
+      if (glm::dot(p[i] - p[f[0]], n) > eps * glm::length(n)) {
+        for (int k = 0; k < 3; ++k) edges[{f[k], f[(k + 1) % 3]}] = 1;
+      } else {
+        kept.push_back(f);
+      }
+    }
+    if (edges.empty()) continue;  // inside (or on) the hull so far
+    for (const auto& e : edges)   // the horizon: visible edges whose twin is not
+      if (!edges.count({e.first.second, e.first.first})) kept.push_back({e.first.first, e.first.second, i});
+    faces = std::move(kept);
+  }
+  mesh::Mesh m;
+  std::map<std::uint32_t, std::uint32_t> index;
+  for (const Face& f : faces)
+    for (std::uint32_t v : f)
+      if (index.emplace(v, static_cast<std::uint32_t>(m.positions.size())).second) m.positions.push_back(points[v]);
+  std::vector<glm::dvec3> normal_sum(m.positions.size(), glm::dvec3(0.0));
+  for (const Face& f : faces) {
+    const glm::dvec3 n = face_normal(p, f);  // length 2 x area
+    for (std::uint32_t v : f) {
+      m.indices.push_back(index[v]);
+      normal_sum[index[v]] += n;
+    }
+  }
+  for (const glm::dvec3& n : normal_sum) m.normals.push_back(glm::vec3(glm::normalize(n)));
+  return m;
+}
+
+double max_normal_tilt(const mesh::Mesh& mesh) {
+  double worst = 0.0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const std::uint32_t* tri = mesh.indices.data() + 3 * t;
+    const glm::dvec3 ng = glm::normalize(face_cross(mesh, t));
+    for (int k = 0; k < 3; ++k) {
+      const double c = std::clamp(glm::dot(ng, glm::normalize(glm::dvec3(mesh.normals[tri[k]]))), -1.0, 1.0);
+      worst = std::max(worst, std::acos(c) * 180.0 / M_PI);
+    }
+  }
+  return worst;
+}
+
+double lobe_share_above(const glm::dvec3& n, const glm::dvec3& ng) {
+  const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 t = glm::normalize(glm::cross(helper, n)), b = glm::cross(n, t);
+  constexpr int kCells = 512;
+  double above = 0.0;
+  for (int i = 0; i < kCells; ++i) {
+    const double r = (i + 0.5) / kCells;
+    for (int j = 0; j < kCells; ++j) {
+      const double phi = 2.0 * M_PI * (j + 0.5) / kCells;
+      const glm::dvec3 w = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(1.0 - r * r) * n;
+      if (glm::dot(w, ng) > 0.0) above += r;  // the cell's area is proportional to r
+    }
+  }
+  return above / (kCells * kCells * 0.5);  // sum of r over all cells: kCells^2 / 2
+}
+
+std::vector<std::size_t> triangles_of(const mesh::Mesh& mesh, std::uint32_t v) {
+  std::vector<std::size_t> out;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    if (mesh.indices[3 * t] == v || mesh.indices[3 * t + 1] == v || mesh.indices[3 * t + 2] == v) out.push_back(t);
+  return out;
+}
+
+glm::dvec3 face_cross(const mesh::Mesh& mesh, std::size_t t) {
+  const std::uint32_t* tri = mesh.indices.data() + 3 * t;
+  const glm::dvec3 p0(mesh.positions[tri[0]]);
+  return glm::cross(glm::dvec3(mesh.positions[tri[1]]) - p0, glm::dvec3(mesh.positions[tri[2]]) - p0);
+}
+
+double footprint_lobe_share(const mesh::Mesh& mesh, std::uint32_t v) {
+  double weighted = 0.0, total = 0.0;
+  for (std::size_t t : triangles_of(mesh, v)) {
+    const glm::dvec3 c = face_cross(mesh, t);
+    const double area = 0.5 * glm::length(c);
+    weighted += area * lobe_share_above(glm::normalize(glm::dvec3(mesh.normals[v])), glm::normalize(c));
+    total += area;
+  }
+  return weighted / total;
+}
+
+void add_triangle_charts(mesh::Mesh& mesh) {
+  const std::size_t triangles = mesh.triangle_count();
+  const int grid = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(triangles))));
+  const float cell = 1.0f / static_cast<float>(grid), margin = 0.1f * cell;
+  mesh.lightmap_uv.clear();
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const glm::vec2 origin(static_cast<float>(t % grid) * cell, static_cast<float>(t / grid) * cell);
+    const float side = cell - 2.0f * margin;
+    mesh.lightmap_uv.push_back(origin + glm::vec2(margin, margin));
+    mesh.lightmap_uv.push_back(origin + glm::vec2(margin + side, margin));
+    mesh.lightmap_uv.push_back(origin + glm::vec2(margin, margin + side));
+  }
 }
 
 }  // namespace prt::test

@@ -26,6 +26,34 @@ mesh::Mesh bowl(int rings, int segments);
 /// lid_x (integers in (-half, half)): each lid darkens its vertex far more than the surface around it.
 mesh::Mesh floor_with_lids(int half, const std::vector<double>& lid_x, double lid_half, double lid_height);
 
+/// The convex hull of `points` (incremental, orientation tests in double; points within 1e-9 of the
+/// extent of a face's plane count as on it): its vertices only, triangles counter-clockwise seen from
+/// outside, smooth normals (the normalised sum of the adjacent faces' area-weighted normals).
+mesh::Mesh convex_hull(const std::vector<glm::vec3>& points);
+
+/// The largest angle in degrees between a vertex normal and the geometric normal of a triangle of it.
+double max_normal_tilt(const mesh::Mesh& mesh);
+
+/// The share of the cosine-weighted hemisphere about unit n that lies strictly above the plane with
+/// unit normal ng, by midpoint quadrature over the unit disc the hemisphere projects to (uniform there),
+/// 512 x 512 polar cells (error below 1e-4).
+double lobe_share_above(const glm::dvec3& n, const glm::dvec3& ng);
+
+/// The triangles of vertex v (indices into mesh.indices / 3), in mesh order.
+std::vector<std::size_t> triangles_of(const mesh::Mesh& mesh, std::uint32_t v);
+
+/// (p1 - p0) x (p2 - p0) of triangle t in double: the geometric normal, twice the area long.
+glm::dvec3 face_cross(const mesh::Mesh& mesh, std::size_t t);
+
+/// The mean of lobe_share_above(n_v, ng_t) over vertex v's triangles t weighted by the integral of v's
+/// hat function over each (area / 3): what a white furnace reflects over v's footprint when directions
+/// below each point's own triangle carry no light.
+double footprint_lobe_share(const mesh::Mesh& mesh, std::uint32_t v);
+
+/// Gives every triangle its own lightmap chart (Mesh::lightmap_uv): a right triangle in its cell of
+/// the smallest square grid of cells that holds them, a tenth of a cell from the cell's edges.
+void add_triangle_charts(mesh::Mesh& mesh);
+
 /// A closed mesh seen from inside is not something the baker handles (single-sided); these shapes
 /// are all meant to be seen from the side of their normals.
 
