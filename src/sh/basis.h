@@ -56,7 +56,7 @@ void eval(int bands, const glm::vec3& dir, float* out);
 /// The fast path (bands <= kMaxFastBands) is specialised per band count and vectorised across directions.
 /// Layout: out_stride = padded_stride(count, sizeof(T)) with a 64-byte aligned `out` is the layout this is
 /// built for. Any other stride >= count gives the same values, but one whose byte size is a multiple of
-/// 4 KiB (e.g. out_stride = count = 1024) makes the rows collide in the L1 cache: 2-3x slower.
+/// 4 KiB (e.g. out_stride = count = 1024) makes the rows collide in the L1 cache: up to 10x slower.
 void eval_batch(int bands, std::size_t count, const float* x, const float* y, const float* z, float* out,
                 std::size_t out_stride);
 void eval_batch(int bands, std::size_t count, const double* x, const double* y, const double* z, double* out,

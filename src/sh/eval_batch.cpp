@@ -4,7 +4,7 @@
 // Layout: the rows lie out_stride apart. Each kernel call stores one block into each row, so the rows
 // should fall on different L1 cache sets: sh::padded_stride gives such a stride (an odd number of cache
 // lines). Any stride >= count gives the same values; a stride whose byte size is a multiple of 4 KiB puts
-// every row on one cache set and runs 2-3x slower (docs/performance.md).
+// every row on one cache set and runs up to 10x slower (docs/performance.md).
 #include <array>
 #include <cassert>
 #include <cstddef>
