@@ -51,39 +51,20 @@ void eval(int bands, const glm::vec3& dir, float* out);
 
 /// Batched evaluation over many unit directions given as a structure of arrays:
 /// out[k * out_stride + j] = Y_k(x[j], y[j], z[j]) for j < count, k < bands^2.
-/// Preconditions: 1 <= bands <= kMaxBands, out_stride >= count, unit directions, `out` does not
+/// Preconditions: 1 <= bands <= kMaxBands, out_stride >= count (asserted), unit directions, `out` does not
 /// overlap x, y, z. Entries out[k * out_stride + j] for count <= j < out_stride are not touched.
 /// The fast path (bands <= kMaxFastBands) is specialised per band count and vectorised across directions.
-/// Speed: an out_stride whose byte size is a multiple of 4 KiB (e.g. out_stride = count = 1024) makes
-/// the rows collide in the L1 cache; such strides take a path that writes the rows a few at a time
-/// (the same values, bit for bit): 1.0-1.1x the time with padded_stride at 3-5 bands, 1.1x at 9 bands,
-/// 1.1-1.2x at 16 on a Xeon (AVX-512); on an AMD Zen 5 (AVX-512) 0.7-0.85x at 4-5 bands, 1.0-1.05x at 6-7,
-/// 1.0-1.3x at 3 and 8-16 depending on where the output and inputs lie; 1.15-1.45x at 4-16 bands on an
-/// AMD Zen 3 (AVX2; docs/conventions.md).
-/// Prefer out_stride = padded_stride(count, sizeof(T)), and a 64-byte aligned `out`.
+/// Layout: out_stride = padded_stride(count, sizeof(T)) with a 64-byte aligned `out` is the layout this is
+/// built for. Any other stride >= count gives the same values, but one whose byte size is a multiple of
+/// 4 KiB (e.g. out_stride = count = 1024) makes the rows collide in the L1 cache: up to 10x slower.
 void eval_batch(int bands, std::size_t count, const float* x, const float* y, const float* z, float* out,
                 std::size_t out_stride);
 void eval_batch(int bands, std::size_t count, const double* x, const double* y, const double* z, double* out,
                 std::size_t out_stride);
 
-/// Evaluation fused with accumulation, for projecting a sampled function onto the basis:
-/// sums[k] += sum_{j < count} w[j] Y_k(x[j], y[j], z[j]) for k < bands^2; nothing per direction is
-/// stored, so the cost per direction does not depend on count. Preconditions: 1 <= bands <= kMaxBands,
-/// unit directions; `sums` holds bands^2 values (added to, not cleared) and does not overlap the inputs.
-/// The fast path (bands <= kMaxFastBands) is specialised per band count and vectorised across directions.
-/// Rounding: the sum runs in T in kLanes-wide partial sums, so a float sum of many terms carries float
-/// accumulation error (relative ~ count / lanes x 6e-8 of sum_j |w_j Y_k|); use double for long sums.
-/// Deterministic: the same inputs give the same bits. Each call reduces its partial sums to bands^2
-/// totals, which at a few dozen directions per call costs about what the evaluation does; for directions
-/// arriving in short calls use sh::Accumulator (sh/accumulator.h), which reduces once.
-void eval_accumulate(int bands, std::size_t count, const float* x, const float* y, const float* z, const float* w,
-                     float* sums);
-void eval_accumulate(int bands, std::size_t count, const double* x, const double* y, const double* z,
-                     const double* w, double* sums);
-
-/// An out_stride >= count (at most count + 2 cache lines more) that keeps eval_batch on its fastest
-/// path, for elements of `element_bytes` (4 for float, 8 for double): an odd number of 64-byte lines,
-/// so rows stay line-aligned when `out` is and spread over all cache sets.
+/// An out_stride >= count (at most count + 2 cache lines more) for eval_batch's rows, for elements of
+/// `element_bytes` (4 for float, 8 for double): an odd number of 64-byte lines, so rows stay line-aligned
+/// when `out` is and spread over all cache sets.
 std::size_t padded_stride(std::size_t count, std::size_t element_bytes);
 
 }  // namespace prt::sh

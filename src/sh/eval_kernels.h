@@ -16,16 +16,13 @@
 // Two kernels share that recurrence:
 // - eval_fixed<N>: the band count is a template parameter, every loop is unrolled into straight-line
 //   code with compile-time constants (Sloan's generated code, built by the compiler from templates
-//   instead of by a script). Used for 1 <= bands <= kMaxFastBands. It is a sequence of steps, one per
-//   (l, m >= 0), that can stop after any step and resume later (eval_steps, resume_column, recompute_cs)
-//   with the same bits: eval_batch runs it in pieces at crowded strides.
+//   instead of by a script). Used for 1 <= bands <= kMaxFastBands.
 // - eval_generic: runtime loops over the same tables; for any band count up to kMaxBands.
 // Both are written over a value type V that is either a scalar (float, double) or a GCC/Clang vector
 // extension type holding several directions (one per lane), so one source gives the single-direction
-// path and the path vectorised across directions. The arithmetic is plain + and *, and the sums of two
-// products are madd() (below): the one place with intrinsics.
-// GCC contracts a * b + c into a fused multiply-add where the target has one (C++ default
-// -ffp-contract=fast), so FMA and non-FMA builds differ in the last bits.
+// path and the path vectorised across directions. The arithmetic is plain + and *; GCC contracts
+// a * b + c into a fused multiply-add where the target has one (C++ default -ffp-contract=fast), so FMA
+// and non-FMA builds differ in the last bits.
 //
 // Accuracy (tests/sh/test_eval_batch.cpp), relative to band l's bound sqrt((2l+1)/(4 pi)): double
 // within 1e-13 up to 32 bands; float grows as bands^1.5: over 130 000 random directions (GCC 12 with FMA,
@@ -34,13 +31,6 @@
 #include <cstddef>
 #include <cstring>
 #include <type_traits>
-#include <utility>
-
-// x86 with FMA: madd (below) uses the fused multiply-add intrinsics.
-#if (defined(__x86_64__) || defined(__i386__)) && defined(__FMA__)
-#define PRT_SH_FMA_INTRINSICS 1
-#include <immintrin.h>
-#endif
 
 #include "core/constants.h"
 #include "sh/basis.h"
@@ -53,28 +43,19 @@
 #define PRT_SH_INLINE inline
 #define PRT_SH_LAMBDA_INLINE
 #endif
-#if defined(__GNUC__)
-#define PRT_SH_NOINLINE __attribute__((noinline))
-#else
-#define PRT_SH_NOINLINE
-#endif
 
 namespace prt::sh::detail {
 
 // ---------------------------------------------------------------------------------------------
-// Vector types: one native register of directions. PRT_SH_VECTOR_BYTES overrides the width (tests
-// of the narrower paths); without GNU vector extensions the "vector" is one scalar lane.
-#if defined(PRT_SH_VECTOR_BYTES)
-#define PRT_SH_VECTOR_BYTES_ PRT_SH_VECTOR_BYTES
-#elif defined(__AVX512F__)
+// Vector types: one native register of directions; without GNU vector extensions, and in the sanitizer
+// builds, the "vector" is one scalar lane.
+#if defined(__AVX512F__)
 #define PRT_SH_VECTOR_BYTES_ 64
 #elif defined(__AVX__)
 #define PRT_SH_VECTOR_BYTES_ 32
 #else
 #define PRT_SH_VECTOR_BYTES_ 16
 #endif
-
-// PRT_SH_NO_FORCE_INLINE (set by the sanitizer builds, src/sh/CMakeLists.txt) leaves inlining to the compiler.
 #if defined(__GNUC__) && !defined(PRT_SH_NO_FORCE_INLINE)
 typedef float VecFloat __attribute__((vector_size(PRT_SH_VECTOR_BYTES_)));
 typedef double VecDouble __attribute__((vector_size(PRT_SH_VECTOR_BYTES_)));
@@ -152,84 +133,10 @@ template <typename V, typename T>
 PRT_SH_INLINE Pair<V> operator+(Pair<V> p, T t) { return {p.a + t, p.b + t}; }
 
 // ---------------------------------------------------------------------------------------------
-// Multiply-adds written out. Left to itself, GCC fuses x * y + v * w into a multiply-add on whichever
-// product its passes happen to leave first, and in some loops not at all: eval_batch's column tiles (the
-// recurrence stepped across a tile, eval_batch.cpp) came out unfused, or fused the other way in some unrolled
-// copies, so a few values differed in the last bit from the direct path's kernel (7 bands and up). So the
-// kernels' sums of products are madd(x, y, z): on vectors of directions x * y + z rounded once, by the target's
-// fused multiply-add instruction, on x86 with FMA (the one place with intrinsics: a loop of std::fma over the
-// lanes, which GCC 12 -O3 turns into one instruction, was miscompiled by its SLP vectoriser inside the column
-// tiles); on scalars and elsewhere x * y + z as written, which the compiler may fuse as it sees fit. The order
-// is the one GCC chose by itself in the vector kernels, so no bits change (tests/sh, and bench files checked
-// bit for bit against the build before).
-#if defined(PRT_SH_FMA_INTRINSICS)
-inline constexpr bool kHasFma = true;
-#if defined(__AVX512F__)
-inline constexpr std::size_t kFmaBytes = 64;  // the widest vector one instruction takes
-#else
-inline constexpr std::size_t kFmaBytes = 32;
-#endif
-#else
-inline constexpr bool kHasFma = false;
-inline constexpr std::size_t kFmaBytes = 0;
-#endif
-
-/// x * y + z (kSubtract: x * y - z) on vectors of directions, rounded once where kHasFma.
-template <bool kSubtract = false, typename V>
-PRT_SH_INLINE V madd(V x, V y, V z) {
-  if constexpr (IsPair<V>::value) {
-    return V{madd<kSubtract>(x.a, y.a, z.a), madd<kSubtract>(x.b, y.b, z.b)};
-  } else if constexpr (!kHasFma || std::is_arithmetic_v<V>) {
-    if constexpr (kSubtract) return x * y - z;
-    else return x * y + z;
-#if defined(PRT_SH_FMA_INTRINSICS)
-  } else if constexpr (sizeof(V) > kFmaBytes) {
-    // Wider than the target's vectors (PRT_SH_VECTOR_BYTES above them): half at a time.
-    using E = std::remove_cv_t<std::remove_reference_t<decltype(x[0])>>;
-    typedef E Half __attribute__((vector_size(sizeof(V) / 2)));
-    Half h[3][2];
-    std::memcpy(h[0], &x, sizeof(V));
-    std::memcpy(h[1], &y, sizeof(V));
-    std::memcpy(h[2], &z, sizeof(V));
-    const Half r[2] = {madd<kSubtract>(h[0][0], h[1][0], h[2][0]), madd<kSubtract>(h[0][1], h[1][1], h[2][1])};
-    V out;
-    std::memcpy(&out, r, sizeof(V));
-    return out;
-  } else {
-    constexpr bool kFloat = std::is_same_v<std::remove_cv_t<std::remove_reference_t<decltype(x[0])>>, float>;
-    const V w = kSubtract ? -z : z;  // exact: fma(x, y, -z) is x y - z rounded once
-#if defined(__AVX512F__)
-    if constexpr (sizeof(V) == 64 && kFloat) return (V)_mm512_fmadd_ps((__m512)x, (__m512)y, (__m512)w);
-    if constexpr (sizeof(V) == 64 && !kFloat) return (V)_mm512_fmadd_pd((__m512d)x, (__m512d)y, (__m512d)w);
-#endif
-    if constexpr (sizeof(V) == 32 && kFloat) return (V)_mm256_fmadd_ps((__m256)x, (__m256)y, (__m256)w);
-    if constexpr (sizeof(V) == 32 && !kFloat) return (V)_mm256_fmadd_pd((__m256d)x, (__m256d)y, (__m256d)w);
-    if constexpr (sizeof(V) == 16 && kFloat) return (V)_mm_fmadd_ps((__m128)x, (__m128)y, (__m128)w);
-    if constexpr (sizeof(V) == 16 && !kFloat) return (V)_mm_fmadd_pd((__m128d)x, (__m128d)y, (__m128d)w);
-    static_assert(sizeof(V) == 16 || sizeof(V) == 32 || sizeof(V) == 64, "vectors of 16, 32 or 64 bytes");
-#endif
-  }
-}
-
-/// Whether the kernels' sums of products on V go through madd. Scalars (the single-direction path, which
-/// has no column tiles) keep the expressions as written, in that order: GCC fuses by statement order, and
-/// products passed as madd's arguments come first (its fusing, and for (C_2, S_2) its x y + y x -> 2 x y,
-/// changed with them: other bits in sh::eval and in bakes).
-template <typename V>
-inline constexpr bool kExplicitMadd = kHasFma && !std::is_arithmetic_v<V>;
-
-/// p2 z^2 + p0 (F_{m+2}^m), as madd(p2, z^2, p0).
-template <typename T, typename V>
-PRT_SH_INLINE V z2_polynomial(T p2, V z2, T p0) {
-  if constexpr (kExplicitMadd<V>) return madd(splat<V>(p2), z2, splat<V>(p0));
-  else return p2 * z2 + p0;
-}
-
-/// The three-term recurrence F_l = (a z) F_{l-1} + b F_{l-2}, as madd(a z, F_{l-1}, b F_{l-2}).
+/// The three-term recurrence F_l = (a z) F_{l-1} + b F_{l-2}.
 template <typename T, typename V>
 PRT_SH_INLINE V recurrence_step(T a, T b, V z, V f1, V f2) {
-  if constexpr (kExplicitMadd<V>) return madd(a * z, f1, b * f2);
-  else return (a * z) * f1 + b * f2;
+  return (a * z) * f1 + b * f2;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -276,33 +183,7 @@ inline constexpr RecurrenceTables kRecurrence = make_recurrence_tables();
 
 // ---------------------------------------------------------------------------------------------
 // Fixed band count: straight-line code. `put(k, value)` receives coefficient k (a constant after
-// inlining) for every k < N^2, each exactly once.
-//
-// The kernel is a sequence of N (N + 1) / 2 steps, one per (l, m) with 0 <= m <= l < N in column order
-// (m ascending, then l ascending); step (l, m) computes F_l^m and emits Y_l,m (and Y_l,-m). The state
-// carried from step to step is (C_m, S_m) and the column's last two F, so a run of steps can stop and
-// resume later from a saved KernelState (eval_steps): eval_batch's path for crowded strides evaluates
-// a few rows at a time for many directions that way.
-
-/// Step e of the N-band kernel as (l, m).
-struct KernelStep {
-  int l, m;
-};
-template <int N>
-constexpr KernelStep kernel_step(int e) {
-  int m = 0;
-  while (e >= N - m) e -= N - m++;
-  return {m + e, m};
-}
-/// Steps of the N-band kernel: one per (l, m >= 0).
-template <int N>
-inline constexpr int kKernelSteps = N * (N + 1) / 2;
-
-/// What one step hands to the next: (C_m, S_m) of the current column, F_{l-1}^m and F_{l-2}^m.
-template <typename V>
-struct KernelState {
-  V c, s, f1, f2;
-};
+// inlining) for every k < N^2, each exactly once, column by column (m ascending, then l ascending).
 
 // Emits Y_l,+-m (or Y_l,0) from F_l^m.
 template <int L, int M, typename V, typename Put>
@@ -327,97 +208,50 @@ PRT_SH_INLINE V column_value(V z, V z2, V f1, V f2) {
     // F_{M+2}^M = a z (f_m1 z) + b f_mm, a polynomial in z^2: one multiply-add.
     constexpr T p2 = static_cast<T>(kRecurrence.a[M + 2][M] * kRecurrence.f_m1[M]);
     constexpr T p0 = static_cast<T>(kRecurrence.b[M + 2][M] * kRecurrence.f_mm[M]);
-    return z2_polynomial(p2, z2, p0);
+    return p2 * z2 + p0;
   } else {
     return recurrence_step(static_cast<T>(kRecurrence.a[L][M]), static_cast<T>(kRecurrence.b[L][M]), z, f1, f2);
   }
 }
 
-/// (C_m, S_m) -> (C_{m+1}, S_{m+1}) in place: one complex multiplication by (x + i y), each part as
-/// madd(x, C or S, -+ y (S or C)).
+/// (C_m, S_m) -> (C_{m+1}, S_{m+1}) in place: one complex multiplication by (x + i y).
 template <typename V>
 PRT_SH_INLINE void advance_cs(V x, V y, V& c, V& s) {
-  if constexpr (kExplicitMadd<V>) {
-    const V c_next = madd<true>(x, c, y * s);
-    s = madd(x, s, y * c);
-    c = c_next;
-  } else {
-    const V c_next = x * c - y * s;
-    s = x * s + y * c;
-    c = c_next;
-  }
-}
-template <typename V>
-PRT_SH_INLINE void advance_cs(V x, V y, KernelState<V>& st) {
-  advance_cs(x, y, st.c, st.s);
+  const V c_next = x * c - y * s;
+  s = x * s + y * c;
+  c = c_next;
 }
 
-// Step E: F_L^M, with (C, S) advanced by one power of (x + i y) at the start of each column m >= 1
-// ((C_1, S_1) = (x, y)).
-template <int N, int E, typename T, typename V, typename Put>
-PRT_SH_INLINE void kernel_step_at(V x, V y, V z, V z2, KernelState<V>& st, Put& put) {
-  constexpr KernelStep step = kernel_step<N>(E);
-  constexpr int L = step.l, M = step.m;
-  if constexpr (L == M && M == 1) {
-    st.c = x;
-    st.s = y;
-  } else if constexpr (L == M && M > 1) {
-    advance_cs(x, y, st);
-  }
-  const V f = column_value<L, M, T>(z, z2, st.f1, st.f2);
-  st.f2 = st.f1;
-  st.f1 = f;
-  emit<L, M>(f, st.c, st.s, put);
-}
-
-template <int M, int L, int L1, typename T, typename V>
-PRT_SH_INLINE void replay_column(V z, V z2, KernelState<V>& st) {
-  if constexpr (L < L1) {
-    const V f = column_value<L, M, T>(z, z2, st.f1, st.f2);
-    st.f2 = st.f1;
-    st.f1 = f;
-    replay_column<M, L + 1, L1, T>(z, z2, st);
+// Rows L..N-1 of column M, given F_{L-1}^M (f1) and F_{L-2}^M (f2) and the column's (C_M, S_M).
+template <int N, int M, int L, typename T, typename V, typename Put>
+PRT_SH_INLINE void eval_column(V z, V z2, V c, V s, V f1, V f2, Put& put) {
+  if constexpr (L < N) {
+    const V f = column_value<L, M, T>(z, z2, f1, f2);
+    emit<L, M>(f, c, s, put);
+    eval_column<N, M, L + 1, T>(z, z2, c, s, f, f1, put);
   }
 }
 
-template <int N, int E0, typename T, typename V, typename Put, int... I>
-PRT_SH_INLINE void kernel_steps(V x, V y, V z, V z2, KernelState<V>& st, Put& put,
-                                std::integer_sequence<int, I...>) {
-  (kernel_step_at<N, E0 + I, T>(x, y, z, z2, st, put), ...);
-}
-
-/// Steps E0 <= e < E1 of the N-band kernel at the direction(s) (x, y, z): `put` receives the coefficients
-/// of those steps, each once. `st` holds the state after step E0 - 1 on entry (nothing is read from it
-/// for E0 = 0) and the state after step E1 - 1 on return. 0 <= E0 < E1 <= kKernelSteps<N>.
-template <int N, int E0, int E1, typename T, typename V, typename Put>
-PRT_SH_INLINE void eval_steps(V x, V y, V z, KernelState<V>& st, Put& put) {
-  static_assert(1 <= N && N <= kMaxBands && 0 <= E0 && E0 < E1 && E1 <= kKernelSteps<N>, "steps out of range");
-  kernel_steps<N, E0, T>(x, y, z, z * z, st, put, std::make_integer_sequence<int, E1 - E0>{});
-}
-
-/// Resuming step E0 of the N-band kernel in the middle of its column m: st.f1 and st.f2 are set to the F of
-/// the column's steps before E0, recomputed by the same arithmetic as eval_steps (so the values resumed
-/// from are the bits eval_steps would have carried); st.c and st.s are left as they are and must hold
-/// (C_m, S_m). Nothing is done when E0 starts a column.
-template <int N, int E0, typename T, typename V>
-PRT_SH_INLINE void resume_column(V z, KernelState<V>& st) {
-  constexpr KernelStep step = kernel_step<N>(E0);
-  if constexpr (step.l > step.m) replay_column<step.m, step.m, step.l, T>(z, z * z, st);
-}
-
-/// (C_M, S_M) into st.c, st.s by the kernel's own chain from (C_1, S_1) = (x, y) (the same bits). M >= 1.
-template <int M, typename V>
-PRT_SH_INLINE void recompute_cs(V x, V y, KernelState<V>& st) {
-  st.c = x;
-  st.s = y;
-  for (int m = 1; m < M; ++m) advance_cs(x, y, st);
+// Columns M..N-1, given (C_{M-1}, S_{M-1}) (anything for M <= 1: (C_1, S_1) = (x, y)).
+template <int N, int M, typename T, typename V, typename Put>
+PRT_SH_INLINE void eval_columns(V x, V y, V z, V z2, V c, V s, Put& put) {
+  if constexpr (M < N) {
+    if constexpr (M == 1) {
+      c = x;
+      s = y;
+    } else if constexpr (M > 1) {
+      advance_cs(x, y, c, s);
+    }
+    eval_column<N, M, M, T>(z, z2, c, s, c, s, put);  // the column's first two values read no f1, f2
+    eval_columns<N, M + 1, T>(x, y, z, z2, c, s, put);
+  }
 }
 
 /// All N^2 basis functions at the direction(s) (x, y, z), N a compile-time band count.
 template <int N, typename T, typename V, typename Put>
 PRT_SH_INLINE void eval_fixed(V x, V y, V z, Put& put) {
-  KernelState<V> st{x, y, x, y};  // nothing of it is read before it is written
-  eval_steps<N, 0, kKernelSteps<N>, T>(x, y, z, st, put);
+  static_assert(1 <= N && N <= kMaxBands, "band count out of range");
+  eval_columns<N, 0, T>(x, y, z, z * z, x, y, put);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -453,7 +287,7 @@ PRT_SH_INLINE void eval_generic(int bands, V x, V y, V z, Put& put) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Out-of-line entry points (defined in eval_batch.cpp), exposed for the benchmark.
+// Out-of-line entry points (defined in eval_batch.cpp), exposed for the tests and the benchmark.
 
 /// eval_batch through eval_generic (runtime loops, vectorised across directions) for any band count
 /// 1..kMaxBands; same contract as sh::eval_batch.
@@ -461,20 +295,6 @@ void eval_batch_generic(int bands, std::size_t count, const float* x, const floa
                         std::size_t out_stride);
 void eval_batch_generic(int bands, std::size_t count, const double* x, const double* y, const double* z,
                         double* out, std::size_t out_stride);
-
-/// eval_accumulate through eval_generic (values weighted and added, no rescaled recurrence) for any band
-/// count 1..kMaxBands; same contract as sh::eval_accumulate (eval_accumulate.cpp).
-void eval_accumulate_generic(int bands, std::size_t count, const float* x, const float* y, const float* z,
-                             const float* w, float* sums);
-void eval_accumulate_generic(int bands, std::size_t count, const double* x, const double* y, const double* z,
-                             const double* w, double* sums);
-
-/// The write order of eval_batch at crowded strides (such as out_stride = count = 1024 floats), for the
-/// benchmark's bound: directions per tile for `count` directions (count >= the vector width) of
-/// element_bytes (4 or 8), and how many rows are written together along a tile, a vector of directions
-/// into each in turn, before the next rows (1: each row's run of the tile at once).
-std::size_t staged_tile_directions(int bands, std::size_t count, std::size_t element_bytes);
-int staged_pass_rows(int bands);
 
 /// One direction through eval_generic (scalar runtime loops); same contract as sh::eval.
 void eval_one_generic(int bands, float x, float y, float z, float* out);

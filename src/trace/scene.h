@@ -18,102 +18,32 @@
 // `occluded` and `intersect` are const and may run concurrently from any number of threads, each with
 // its own batch. They set flush-to-zero / denormals-are-zero for the duration of the call.
 //
-// RAY OFFSET (self-intersection rule). A ray that starts on the surface must not hit the triangles it
-// starts on, and must still hit every triangle that really blocks it. prt lifts the origin off the
-// surface along the vertex (shading) normal n and does not skip any part of the ray:
-//     origin = p + n * eps,   eps = Scene::ray_offset() = 2^-18 * M,   tnear = 0,
-// where M is the largest |coordinate| of any vertex of the mesh (eps = 32..64 float ulps of M).
-// Derivation. (1) Float rounding: Embree intersects in float, and the origin p + n eps is itself rounded
-// to ~ulp(M)/2 per coordinate; a lift of a few ulps of M keeps it strictly above the planes of the
-// triangles around p. Without any lift (origin = p, tnear = 0) 99.5% of hemisphere rays from the
-// vertices of a tessellated sphere report a hit at t ~ 0 on their own triangles. (2) Convex surfaces:
-// the lifted origin lies above each adjacent face plane with normal n_f by eps (n.n_f) > 0, and any
-// direction d with d.n > 0 rises above at least one such plane (n is a positive combination of the
-// n_f), so on a convex mesh a lifted ray never re-enters: zero self-hits for every d.n > 0, down to
-// grazing d.n = 1e-3. (3) Concave creases: a ray leaving a crease vertex below the plane of an
-// adjacent face f must hit f. Lifted by eps, it meets f's plane at distance eps (n.n_f) / |d.n_f|; when
-// d nearly lies in that plane that point is beyond f's far edge and the ray may escape through the
-// opening. The fraction of such leaks is proportional to eps / (edge length), so eps must be as small
-// as float rounding allows, and independent of the mesh's size. (4) Why not tnear = eps with
-// origin = p instead: it still self-hits (2e-4 of sphere rays at eps = 1e-6 D), and in thin-shell
-// creases (a cup or room whose walls meet at shared, smooth-shaded vertices) it lets ~10% of rays pass
-// through the adjacent wall, which it skips together with the start of the ray.
-// Measured with RTC_SCENE_FLAG_ROBUST, 64 + 8 grazing hemisphere rays per vertex, against the exact
-// answer (double-precision brute force from p + n 1e-9 D); reproduced by `test_trace "[.sweep]"`, the
-// chosen rule checked in tests/trace/test_offset.cpp:
-//   rule                      sphere self-hits    bench blob (1.3M tris, 11808 rays)   cup creases
-//   origin p, tnear 0         99.5%               81% self-hits                        21% self-hits
-//   origin p, tnear 1e-5 D    0.002%              0                                    10.5% leak
-//   lift 1e-4 D               0                   1.0% leak                            0
-//   lift 1e-5 D               0                   0.12% leak                           0
-//   lift 2^-18 M (prt)        0                   0.008% leak (1 ray)                  0
-//   lift 2^-21 M              0                   0                                    0
-// with D the bounding-box diagonal (a unit-radius sphere centred at the origin or at x = 100: the
-// smallest safe lift there is ~5 ulps of M, which is why the rule scales with M rather than with D).
-// 2^-18 M keeps an 8x margin over the smallest lift measured safe, for normals that meet adjacent faces
-// at grazing angles (n.n_f down to ~0.1) and for meshes far from the origin.
-// Preconditions of the rule: n is unit length and points to the side the rays leave from (the front).
+// RAY OFFSET. A ray that starts on the surface at p with unit vertex normal n (pointing to the side the
+// rays leave from) starts at origin = p + n eps, eps = Scene::ray_offset() = 2^-18 M, with tnear = 0,
+// where M is the largest |coordinate| of any vertex (32..64 float ulps of M): large enough to clear float
+// rounding, small enough that rays leaving concave creases do not escape. The derivation and the leak and
+// self-hit figures behind it: docs/conventions.md, "Ray offset" (tests/trace/test_offset.cpp).
 //
-// ROBUST MODE (RTC_SCENE_FLAG_ROBUST). Without the flag Embree's triangle test counts a hit only for
-// t > tnear and its box tests round towards speed; with it hits at exactly t = tnear count and the
-// tests are watertight, at 1.2-1.35x the cost of a ray. With the lift above, the two answer differently
-// only where a lifted origin lies ON another surface: a block standing on a floor (both at y = 0), whose
-// bottom-row side vertices lift sideways, stay in the floor's plane and send half their rays into the
-// floor at t = 0 (missed without the flag), or the neighbouring face at an unwelded concave edge. So a
-// scene built without the flag (SceneOptions::robust = false, the bakes' choice) still traces, by the
-// contact rule, the rays of such points with robust mode:
-//   spawn_point(p, n): origin o = p + n eps; robust iff o lies within eps/16 (2-4 ulps of M) of any
-//   triangle (an Embree point query of radius eps/16, exact point-triangle distance in double);
-//   RayBatch::set_robust(true) then sends the point's batches to a second, robust BVH of the same
-//   mesh, built on first use (never for a mesh without such points: no memory or build cost there).
-// Measured against the exact answer (64 + 8 grazing rays per vertex; `test_trace "[.leaks]"`,
-// docs/conventions.md "Robust mode"): without the flag and without the rule the Cornell box's
-// contact vertices leak 4.8% of all rays; with the rule 0, as robust mode; on spheres, the cup, the
-// guardian lion, the armadillo and a bumpy blob the rule's answers equal robust mode's on every vertex's
-// rays (0 differing answers), with 0 to 4 vertices per mesh flagged. Alternatives measured: pulling
-// every origin back along the ray by eps/16 (an error-bounded spawn in the spirit of pbrt's) fixes the
-// Cornell box at y = 0 but leaks 0.7% of its rays when the box is moved to y = 5 (o - d eps/16 rounds
-// back onto the floor for grazing d) and adds self-hits on the lion (0.008%); by eps, 1-3% self-hits.
-// Closest hits differ more: of the same rays, robust and not name different triangles for ~1e-5 of them,
-// and the non-robust hit is the wrong one (not the exact triangle, not at its distance) about twice as
-// often (lion 8 against 3 of 720,000; armadillo 7 / 4 of 1.87M; blob class 6 / 3 of 2.95M). So the
-// per-vertex loop (vertex_rays.h) traces every closest-hit query robust: the bounce passes keep robust
-// mode's hits; a scene without it would then hold two BVHs, so the interreflected bakes replace theirs
-// by a robust scene before the first bounce pass (bake/passes.h, use_robust_scene).
+// ROBUST MODE (RTC_SCENE_FLAG_ROBUST: watertight tests, hits at exactly t = tnear count). A scene built
+// without it (SceneOptions::robust = false, the bakes' choice) still traces robust the rays of points whose
+// lifted origin lies on another surface (a block standing on a floor, an unwelded concave edge):
+//   spawn_point(p, n): origin o = p + n eps; robust iff o lies within eps/16 of any triangle (an Embree
+//   point query of radius eps/16, exact point-triangle distance in double);
+//   RayBatch::set_robust(true) then sends the point's batches to a second, robust BVH of the same mesh,
+//   built on first use (never for a mesh without such points; BATCH SIZE AND CALLS).
+// The per-vertex loop (vertex_rays.h) traces every closest-hit query robust; the interreflected bakes
+// replace their scene by a robust one before the first bounce pass (bake/passes.h, use_robust_scene).
+// Why, with the measurements: docs/conventions.md, "Robust mode (contact rule)".
 //
 // DETERMINISM. For a fixed mesh, rays and options, every result (occluded flags, prim_id, t, u, v) is
-// bit-identical across runs, across the number of threads that trace, across the order in which
-// batches are traced, and across SceneOptions::build_threads: tests/trace/test_determinism.cpp traces
-// 327,696 rays (half from a bumpy sphere's vertices, half through its volume) against scenes built with
-// 1, 2 and all threads and twice with 2, traced by 1 or 2 threads, and compares every bit. This holds
-// because Embree 3's MEDIUM-quality builder (used here) is deterministic for any thread count since
-// Embree 2.5 (RenderKit/embree#20; the HIGH-quality spatial-split builder is not, and is not used).
-// Were a future Embree to build a different BVH per thread count, occlusion flags would still agree
-// except for rays that cross a shared edge exactly, while closest hit could name the other triangle of
-// such an edge (the same t); callers needing thread-independent output would then fix build_threads.
+// bit-identical across runs, thread counts, the order in which batches are traced and
+// SceneOptions::build_threads (tests/trace/test_determinism.cpp): Embree 3's MEDIUM-quality builder, used
+// here, is deterministic for any thread count (the HIGH-quality spatial-split builder is not).
 //
-// BATCH SIZE AND CALLS. Measured on the bench mesh (bench::detailed_blob, 1.3M triangles, 1024
-// hemisphere rays per vertex, Morton order, 1 thread, whole passes including ray setup, Mrays per CPU
-// second on a shared 2-core Zen 5, mean of 3 interleaved runs, +-5% noise; RTC_SCENE_FLAG_ROBUST off):
-//   occlusion:   rtcOccluded1M batch 64: 8.3   128: 9.1   256: 9.8   512: 9.8   1024: 9.5
-//                loop of rtcOccluded1: 5.4                      -> rtcOccluded1M, 1.8x
-//   closest hit: rtcIntersect1M batch 64..1024: 5.2-5.4
-//                loop of rtcIntersect1: 5.1                     -> rtcIntersect1M (never slower)
-//   RTC_SCENE_FLAG_ROBUST (see SceneOptions::robust, ROBUST MODE): 7.5 occlusion, 4.4 closest hit.
-// kDefaultBatchCapacity = 256 rays (20 KiB, stays in L1 while Embree reads it): 256 and 1024 are within
-// noise of each other (256 ahead in 4 of 6 comparisons, by 4% on average); 64-ray batches are 8-15%
-// slower. A baker with 1024 rays per vertex makes 4 calls per vertex. The COHERENT flag and ray packets gain nothing
-// (measured once on this machine). The RayHit stride (80 bytes, also used for occlusion) is as fast as a 48-byte RTCRay
-// array.
-// Contact batches (RayBatch::set_robust in a scene built without robust mode: the points of the contact
-// rule, ROBUST MODE) are traced by occluded() with one rtcOccluded1 per ray. In robust mode rtcOccluded1M
-// is pathologically slow on rays that start in a surface, as those points' rays do (each finds that
-// surface at t = 0), and the more so the more triangles share the plane: the Cornell box's 24 contact
-// vertices, 1024 bake rays each, CPU us per ray at 2.7k / 41k / 164k / 870k triangles (bench::cornell_box
-// 16 / 64 / 128 / 295): rtcOccluded1M 0.47 / 3.1 / 14 / 68, rtcOccluded1 0.12 / 0.15 / 0.19 / 0.24, the
-// other vertices' rays without robust mode 0.07 / 0.09 / 0.14 / 0.24 (Xeon, Embree 3.13.5; bench_bake prints
-// the first two). The answers are the same (tests/trace/test_robust.cpp); closest hit
-// (rtcIntersect1M) shows no such cost.
+// BATCH SIZE AND CALLS. A batch is one rtcOccluded1M / rtcIntersect1M call of up to kDefaultBatchCapacity
+// = 256 rays, traced INCOHERENT. Contact batches (RayBatch::set_robust in a scene built without robust
+// mode) are traced one rtcOccluded1 per ray: in robust mode rtcOccluded1M is pathologically slow on rays
+// that start in a surface (up to 280x). The measurements behind both: docs/performance.md, "Ray batches".
 #include <cassert>
 #include <cmath>
 #include <cstddef>

@@ -16,15 +16,22 @@
 
 #include "sh/basis.h"
 #include "sh/eval_kernels.h"
-#include "support/eval_batch_checks.h"
 
 namespace sh = prt::sh;
 
 namespace {
 
-using prt::test::band_scale;
-using prt::test::float_tolerance;
-using prt::test::kDoubleTolerance;
+// Tolerances, as a multiple of band l's magnitude bound sqrt((2l+1)/(4 pi)) >= |Y_lm|.
+// Double: rounding of the recurrence (a few ulp per step, over at most 31 steps).
+constexpr double kDoubleTolerance = 1e-12;
+// Float: the recurrence in float plus the input's own rounding (a float direction is unit only to
+// ~6e-8). The error grows as bands^1.5: the worst over 130 000 random directions (GCC 12 with FMA,
+// clang 14 without) was 5.2e-8 (1 band), 1.6e-6 (9), 5.0e-6 (16), 1.6e-5 (32), <= 9.4e-8 bands^1.5.
+// (A bound linear in the band count, 3e-7 bands, held for the directions drawn here by GCC's build and
+// failed for those of clang's, which drew a direction's coordinates in the other order.)
+double float_tolerance(int bands) { return 1.5e-7 * std::pow(bands, 1.5); }
+
+double band_scale(int l) { return std::sqrt((2.0 * l + 1.0) / (4.0 * M_PI)); }
 
 // The poles, the axes, a few points on the equator and on coordinate planes, then random unit directions.
 std::vector<glm::dvec3> test_directions(std::size_t random_count) {
@@ -240,15 +247,12 @@ TEST_CASE("float paths match the reference to float precision", "[sh][eval]") {
   CHECK(worst_ratio >= 0.1);
 }
 
-TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the reference values", "[sh][eval]") {
-  // Up to 16 bands eval_batch cuts the kernel into pieces of a few rows run over tiles of up to 2 KiB of
-  // directions (512 floats, 256 doubles; 4 KiB with AVX-512); beyond (and from 6 bands in AVX-512 builds for
-  // AMD Zen), it runs the recurrence a step at a time across tiles of 512 bytes. These
-  // counts cover fewer directions than one vector (the scalar path), one partial tile, one whole tile and
-  // several of them (1024, 1100 and 2500 floats, 512 and more doubles: tiles of equal length, the last one
-  // overlapping), with out 64-byte aligned or not (offset 1). Directions repeat with a period of 1009 (prime): a misplaced
-  // vector or tile still shows, and the float tolerance stays the one measured on the kernel (the first
-  // test case; this one checks where values go, not the kernel's accuracy over more directions).
+TEST_CASE("any stride >= count gives the reference values, crowded ones too", "[sh][eval]") {
+  // eval_batch has one path for every stride: padded_stride is its fast layout, and strides whose rows share
+  // cache sets (multiples of 4 KiB: 1024 floats, 512 doubles; 128 and 256 elements) are slower but must
+  // write the same values, each to its own row. Counts below one vector (the scalar path), around one and
+  // several blocks, and large ones; out 64-byte aligned or not (offset 1). Directions repeat with a period
+  // of 1009 (prime): a misplaced vector still shows, and the float tolerance stays the kernel's.
   auto base = test_directions(999);
   std::vector<glm::dvec3> dirs;
   for (std::size_t j = 0; j < 2500; ++j) dirs.push_back(base[j % base.size()]);
@@ -257,7 +261,7 @@ TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the refere
     std::size_t count, stride_f, stride_d;
   };
   const std::size_t lanes = sh::detail::kLanes<float>;
-  const Case small[] = {{lanes - 1, 1024, 512}, {127, 1024, 512}, {129, 1024, 512}, {310, 1024, 512}};
+  const Case small[] = {{lanes - 1, 1024, 512}, {127, 128, 256}, {129, 256, 512}, {310, 1024, 512}};
   const Case large[] = {{512, 1024, 512}, {1024, 1024, 1024}, {1100, 2048, 1536}, {2500, 3072, 2560}};
   for (bool is_large : {false, true}) {
     // References for the band counts each group checks (the 32-band table of 2500 directions would take long).
@@ -265,7 +269,7 @@ TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the refere
     const auto ref = reference_values(most_bands, dirs);
     const auto ref_f = reference_values(most_bands, dirs_f);
     for (const Case& c : is_large ? large : small) {
-      for (int bands : {2, 3, 4, 5, 9, 13, 14, 16, 17, 32}) {
+      for (int bands : {2, 3, 9, 16, 17, 32}) {
         if (bands > most_bands) continue;
         for (std::size_t offset : {0, 1}) {
           INFO("bands " << bands << ", count " << c.count << ", offset " << offset);
@@ -282,51 +286,6 @@ TEST_CASE("crowded strides (multiples of 4 KiB, the pieces path) give the refere
       }
     }
   }
-}
-
-TEST_CASE("crowded strides give the direct path's bits", "[sh][eval]") {
-  // The pieces path runs the kernel's own arithmetic, resumed from state recomputed the same way or kept
-  // from the piece before: its values are the direct path's to the bit, so results do not depend on the
-  // stride. Counts of one and of several tiles; keeping a wrong value (F_{l-2} for F_{l-1}, or S for C)
-  // fails here and in the test case above. Strides (in elements): multiples of
-  // 4 KiB (every row on one cache-set position), 128 (at 16 bands crowded too: 512 bytes for float, 32
-  // rows on each of 8 positions; 1 KiB for double) and 256 (float: 4 positions, crowded from 7 bands).
-  // Beyond kMaxFastBands (the generic recurrence stepped across tiles) at 17, 24 and 32 bands.
-  const auto dirs = rounded_to_float(test_directions(1100));
-  std::vector<int> band_counts;
-  for (int bands = 1; bands <= sh::kMaxFastBands; ++bands) band_counts.push_back(bands);
-  for (int bands : {17, 24, sh::kMaxBands}) band_counts.push_back(bands);
-  for (int bands : band_counts) {
-    for (std::size_t count : {16, 100, 1024, 1100}) {
-      for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}, std::size_t{128}, std::size_t{256}}) {
-        if (crowded < count) continue;
-        INFO("bands " << bands << ", count " << count << ", stride " << crowded);
-        REQUIRE(prt::test::eval_in_two_layouts<float>(bands, count, crowded, dirs).differing_rows == 0);
-        REQUIRE(prt::test::eval_in_two_layouts<double>(bands, count, crowded, dirs).differing_rows == 0);
-      }
-    }
-  }
-}
-
-TEST_CASE("crowded strides give the direct path's bits wherever the inputs lie", "[sh][eval]") {
-  // Where the caller's inputs lie just below the rows' page offset the 3-band pieces run their blocks backwards
-  // (eval_batch.cpp, runs_backwards): every block must still be written once, with the same bits, for counts of
-  // one tile and of several, with and without an alignment peel (rows 0, 16 or 200 bytes past a page boundary),
-  // and for the other placements and band counts, forwards.
-  const auto dirs = rounded_to_float(test_directions(1100));
-  for (int bands = 1; bands <= 8; ++bands)
-    for (std::size_t count : {16, 100, 1024, 1100})
-      for (std::size_t crowded : {std::size_t{1024}, std::size_t{2048}})
-        for (std::size_t rows_offset : {0, 16, 200})
-          for (std::size_t inputs_below : {0, 8, 128, 512, 520, 3968, 4096}) {
-            if (crowded < count) continue;
-            INFO("bands " << bands << ", count " << count << ", stride " << crowded << ", rows at +" << rows_offset
-                          << ", inputs " << inputs_below << " bytes below");
-            const prt::test::Placement placement{rows_offset, inputs_below};
-            using prt::test::eval_in_two_layouts;
-            REQUIRE(eval_in_two_layouts<float>(bands, count, crowded, dirs, &placement).differing_rows == 0);
-            REQUIRE(eval_in_two_layouts<double>(bands, count, crowded, dirs, &placement).differing_rows == 0);
-          }
 }
 
 TEST_CASE("padded_stride is a nearby odd number of cache lines", "[sh][eval]") {
