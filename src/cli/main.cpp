@@ -44,7 +44,8 @@ int main(int argc, char** argv) {
     return prt::dist::finish_after_error(1, false);
   } catch (const prt::OptionError& e) {
     // A library names the field of its options struct; the user typed the flag.
-    std::fprintf(stderr, "prt: %s%s\n", prt::cli::flag_of_field(e.field()).c_str(), e.rest().c_str());
+    const std::string file = e.file().empty() ? "" : e.file() + ": ";
+    std::fprintf(stderr, "prt: %s%s%s\n", file.c_str(), prt::cli::flag_of_field(e.field()).c_str(), e.rest().c_str());
     return prt::dist::finish_after_error(1, false);
   } catch (const prt::Error& e) {
     std::fprintf(stderr, "prt: %s\n", e.what());

@@ -285,12 +285,12 @@ double total_error(const float* x, std::size_t P, const Model& m, const std::vec
 void validate_cpca_options(std::size_t count, std::size_t dimension, const CpcaOptions& o, const std::string& what) {
   if (count == 0) fail_file(what, "no points to compress");
   if (o.clusters < 1 || static_cast<std::size_t>(o.clusters) > count)
-    fail_option("clusters", " " + std::to_string(o.clusters) + " must be between 1 and the number of points (" +
-                                std::to_string(count) + " in " + what + ")");
+    fail_file_option(what, "clusters", " " + std::to_string(o.clusters) + " must be between 1 and the number of points (" +
+                                           std::to_string(count) + ")");
   if (o.pca < 1 || static_cast<std::size_t>(o.pca) > dimension)
-    fail_option("pca", " " + std::to_string(o.pca) + " must be between 1 and the dimension of the transfer (" +
-                           std::to_string(dimension) + " values per point in " + what + ")");
-  if (o.iterations < 1) fail_option("iterations", " " + std::to_string(o.iterations) + " must be at least 1");
+    fail_file_option(what, "pca", " " + std::to_string(o.pca) + " must be between 1 and the dimension of the transfer (" +
+                                      std::to_string(dimension) + " values per point)");
+  if (o.iterations < 1) fail_file_option(what, "iterations", " " + std::to_string(o.iterations) + " must be at least 1");
 }
 
 CpcaResult cpca(const float* x, std::size_t P, std::size_t D, const CpcaOptions& o, const std::string& what) {

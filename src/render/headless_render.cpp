@@ -43,7 +43,7 @@ void render_to_file(const RenderOptions& options) {
   const Background background =
       options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
   if (background == Background::environment && !lighting.has_image)
-    fail_file(options.environment, "the environment background needs an environment image, this is an SH lighting file");
+    fail_file_option(options.environment, "background", " env needs an environment image, this is an SH lighting file");
 
   // Glossy transfer: the BRDF matrix, before any GL work.
   std::optional<brdf::BrdfMatrix> glossy;
@@ -53,7 +53,7 @@ void render_to_file(const RenderOptions& options) {
     glossy = brdf::project(surface, static_cast<int>(scene.transfers[0].header.bands_out));
   }
   else if (!options.brdf.empty())
-    fail_file(scene.transfer_paths[0], "a BRDF applies to glossy transfer only; this one is " +
+    fail_file_option(scene.transfer_paths[0], "brdf", " applies to glossy transfer; this one is " +
                                            std::string(transfer::kind_name(scene.transfers[0].header.kind)));
 
   HeadlessContext context;

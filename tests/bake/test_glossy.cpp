@@ -285,12 +285,12 @@ TEST_CASE("glossy bake options are checked", "[glossy]") {
   const mesh::Mesh m = test::uv_sphere(4, 8);
   bake::BakeOptions o;
   o.kind = transfer::Kind::glossy_shadowed;
-  CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("needs --brdf"));
+  CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("transfer needs a BRDF spec"));
   o.brdf = brdf::parse_brdf("lambert");
   o.bands = 3;
   o.bands_out = 4;
-  CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("--bands-out 4 is out of range"));
+  CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("bands_out 4 is out of range"));
   o.kind = transfer::Kind::shadowed;
   o.bands_out = 2;
-  CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("--bands-out applies to glossy transfer only"));
+  CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("bands_out applies to glossy transfer only"));
 }

@@ -178,11 +178,11 @@ TEST_CASE("cpca: bad K, N or iterations are one-line errors naming the input", "
     }
     return std::string("no error");
   };
-  CHECK(message(0, 2, 5) == "in.prt: --clusters 0 must be between 1 and the number of points (10)");
-  CHECK(message(11, 2, 5) == "in.prt: --clusters 11 must be between 1 and the number of points (10)");
-  CHECK(message(2, 0, 5) == "in.prt: --pca 0 must be between 1 and the dimension of the transfer (4 values per point)");
-  CHECK(message(2, 5, 5) == "in.prt: --pca 5 must be between 1 and the dimension of the transfer (4 values per point)");
-  CHECK(message(2, 2, 0) == "in.prt: --iterations 0 must be at least 1");
+  CHECK(message(0, 2, 5) == "in.prt: clusters 0 must be between 1 and the number of points (10)");
+  CHECK(message(11, 2, 5) == "in.prt: clusters 11 must be between 1 and the number of points (10)");
+  CHECK(message(2, 0, 5) == "in.prt: pca 0 must be between 1 and the dimension of the transfer (4 values per point)");
+  CHECK(message(2, 5, 5) == "in.prt: pca 5 must be between 1 and the dimension of the transfer (4 values per point)");
+  CHECK(message(2, 2, 0) == "in.prt: iterations 0 must be at least 1");
   // K = P of identical points (every cluster seeded, none empty, error 0) is fine.
   CHECK(message(10, 4, 5) == "no error");
 }

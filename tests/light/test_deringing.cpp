@@ -81,7 +81,7 @@ TEST_CASE("auto window makes ringing lighting non-negative with the least Laplac
 TEST_CASE("window requests parse and reject bad names", "[light][window]") {
   CHECK(light::parse_window_request("auto").automatic);
   CHECK(light::parse_window_request("hanning", 4.0).window == sh::Window::hanning);
-  CHECK_THROWS_WITH(light::parse_window_request("gauss"), Catch::Contains("--window: unknown window 'gauss'"));
+  CHECK_THROWS_WITH(light::parse_window_request("gauss"), Catch::Contains("window: unknown window 'gauss'"));
 }
 
 TEST_CASE("auto window for diffuse consumers keeps the irradiance non-negative", "[light][window]") {

@@ -130,10 +130,10 @@ TEST_CASE("grids put probes at cell centres, x fastest, bad grids and point list
   CHECK(x[1] == glm::dvec3(1.5, 0.5, 2.0));
   CHECK(x[2] == glm::dvec3(0.5, 1.5, 2.0));
   g.counts = {{2, 0, 1}};
-  CHECK_THROWS_WITH(probes::check_grid(g), Catch::Contains("--grid: every count must be >= 1"));
+  CHECK_THROWS_WITH(probes::check_grid(g), Catch::Contains("grid: every count must be >= 1"));
   g.counts = {{2, 2, 2}};
   g.hi = {2, 0, 4};
-  CHECK_THROWS_WITH(probes::check_grid(g), Catch::Contains("--bounds: the box") && Catch::Contains("is empty along y"));
+  CHECK_THROWS_WITH(probes::check_grid(g), Catch::Contains("bounds: the box") && Catch::Contains("is empty along y"));
 
   const std::string dir = test::fresh_temp_dir("probe_points");
   const auto json = probes::read_points_file(write_text(dir, "a.json", R"({"points": [[1,2,3],[4,5,6]]})"));
@@ -162,9 +162,9 @@ TEST_CASE("exports: three.js marks invalid probes, Bevy fills them, unknown form
   CHECK(t.width == 2);
   CHECK(t.height == 2);
   CHECK(t.depth == 6);
-  CHECK_THROWS_WITH(probes::parse_format("unreal"), Catch::Contains("--format: unknown format 'unreal'"));
+  CHECK_THROWS_WITH(probes::parse_format("unreal"), Catch::Contains("format: unknown format 'unreal'"));
   CHECK_THROWS_WITH(probes::format_filament(p, "1"), Catch::Contains("probe 1 is invalid"));
-  CHECK_THROWS_WITH(probes::format_filament(p, "9"), Catch::Contains("--probe: expected 'sky' or a probe index"));
+  CHECK_THROWS_WITH(probes::format_filament(p, "9"), Catch::Contains("probe: expected 'sky' or a probe index"));
 }
 
 TEST_CASE("prt probes: bad inputs give one-line errors and leave nothing behind", "[probes][cli]") {

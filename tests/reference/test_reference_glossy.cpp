@@ -110,10 +110,10 @@ TEST_CASE("glossy reference: options are checked", "[reference][glossy]") {
   const reference::EnvironmentSampler env(test::constant_environment(glm::dvec3(1.0)));
   reference::GlossyReferenceOptions o = glossy_options("lambert", 0, 16, glm::dvec3(0, 1, 0));
   o.estimator.brdf_bands = 40;
-  CHECK_THROWS_WITH(reference::glossy_vertex_radiance(plane, env, o), Catch::Contains("--brdf-bands 40"));
+  CHECK_THROWS_WITH(reference::glossy_vertex_radiance(plane, env, o), Catch::Contains("brdf_bands 40"));
   o.estimator.brdf_bands = 0;
   o.samples = 0;
-  CHECK_THROWS_WITH(reference::glossy_vertex_radiance(plane, env, o), Catch::Contains("--samples 0"));
+  CHECK_THROWS_WITH(reference::glossy_vertex_radiance(plane, env, o), Catch::Contains("samples 0"));
   o.samples = 16;
   o.estimator.brdf = brdf::Brdf{};
   CHECK_THROWS_WITH(reference::glossy_vertex_radiance(plane, env, o), Catch::Contains("empty BRDF"));

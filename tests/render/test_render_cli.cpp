@@ -179,12 +179,12 @@ TEST_CASE("render_to_file refuses bad bands and an env background without an ima
   options.output = f / "out.exr";
   options.quiet = true;
   options.bands = 6;
-  CHECK_THROWS_WITH(render::render_to_file(options), "--bands: must be between 1 and the transfer's 5 bands, got 6");
+  CHECK_THROWS_WITH(render::render_to_file(options), "bands: must be between 1 and the transfer's 5 bands, got 6");
   options.bands = 0;
   options.environment = f / "light.json";
   options.background = render::Background::environment;
   CHECK_THROWS_WITH(render::render_to_file(options),
-                    Catch::StartsWith(f / "light.json" + ": --background env needs an environment image"));
+                    Catch::StartsWith(f / "light.json" + ": background env needs an environment image"));
   options.output = f / "out.tiff";
   CHECK_THROWS_WITH(render::render_to_file(options), Catch::StartsWith(f / "out.tiff" + ": output must be"));
   options.output = f / "no_such_folder/out.png";

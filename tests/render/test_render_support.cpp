@@ -81,15 +81,15 @@ TEST_CASE("camera, size and background arguments are parsed or refused with the 
   CHECK(render::parse_camera("auto").distance == 0.0);
   CHECK(render::parse_camera("10,5,auto").azimuth_degrees == 10.0);
   for (const char* bad : {"", "1,2", "1,2,3,4", "a,2,3", "0,90,3", "0,0,0", "0,0,-2", "0,0,nan", "0,0,inf"})
-    CHECK_THROWS_WITH(render::parse_camera(bad), Catch::StartsWith("--camera: "));
+    CHECK_THROWS_WITH(render::parse_camera(bad), Catch::StartsWith("camera: "));
   int w = 0, h = 0;
   render::parse_size("640x480", w, h);
   CHECK(w == 640);
   CHECK(h == 480);
   for (const char* bad : {"640", "640x", "x480", "0x480", "640x0", "-1x5", "640x480x3", "99999x2", "64.5x48"})
-    CHECK_THROWS_WITH(render::parse_size(bad, w, h), Catch::StartsWith("--size: "));
+    CHECK_THROWS_WITH(render::parse_size(bad, w, h), Catch::StartsWith("size: "));
   CHECK(render::parse_background("env") == render::Background::environment);
   CHECK(render::parse_background("sh") == render::Background::sh);
   CHECK(render::parse_background("black") == render::Background::black);
-  CHECK_THROWS_WITH(render::parse_background("white"), Catch::StartsWith("--background: "));
+  CHECK_THROWS_WITH(render::parse_background("white"), Catch::StartsWith("background: "));
 }
