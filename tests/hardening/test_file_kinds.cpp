@@ -72,7 +72,7 @@ bool is_kind(const std::string& path, mode_t kind) {
   return lstat(path.c_str(), &info) == 0 && (info.st_mode & S_IFMT) == kind;
 }
 
-TEST_CASE("-o on a character device or a FIFO is refused and the node stays what it was", "[hardening][outputs]") {
+TEST_CASE("an output (-o) that is a character device or a FIFO is refused and the node stays what it was", "[hardening][outputs]") {
   const std::string device = files().dir + "/null", fifo = files().dir + "/out.fifo";
   // The same device numbers as /dev/null (1, 3); mknod needs root (CAP_MKNOD), as the report did.
   if (mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0) {
