@@ -3,9 +3,11 @@
 # to configure, which packages to find) and the installed prtConfig.cmake (which components to load,
 # which dependencies to find) read; prt_check_module_links keeps it equal to the targets' real links.
 #
-# A module's list names only its direct prt dependencies; prt_module_closure adds the rest.
+# A module's list names only its direct prt dependencies; prt_module_closure adds the rest. PRT_MODULES
+# lists every module after the modules it depends on (checked below): the order in which the build adds
+# them and prtConfig.cmake loads them.
 
-set(PRT_MODULES core dist image light mesh trace camera transfer shade brdf bake lightmap compress pipeline
+set(PRT_MODULES core dist image light mesh trace camera transfer brdf shade bake lightmap compress pipeline
     reference render probes)
 
 set(PRT_MODULE_DEPS_core "")
@@ -25,6 +27,16 @@ set(PRT_MODULE_DEPS_pipeline core mesh transfer bake compress)
 set(PRT_MODULE_DEPS_reference core dist mesh trace light camera image brdf)
 set(PRT_MODULE_DEPS_render core camera image light mesh transfer brdf shade compress)
 set(PRT_MODULE_DEPS_probes core dist mesh light trace bake transfer image)
+
+set(_prt_seen "")
+foreach(_prt_module IN LISTS PRT_MODULES)
+  foreach(_prt_dep IN LISTS PRT_MODULE_DEPS_${_prt_module})
+    if(NOT _prt_dep IN_LIST _prt_seen)
+      message(FATAL_ERROR "PrtModules.cmake: ${_prt_module} depends on ${_prt_dep}, which PRT_MODULES lists after it")
+    endif()
+  endforeach()
+  list(APPEND _prt_seen ${_prt_module})
+endforeach()
 
 # Third-party packages per module, each found by prt_find_module_packages below. Header-only packages
 # used privately count too: a static library's private links still reach its users' link line.
@@ -103,6 +115,10 @@ macro(prt_find_module_packages finder module)
       if("${finder}" STREQUAL "find_package")
         find_package(${_prt_package} ${PRT_PACKAGE_ARGS_${_prt_package}} REQUIRED)
       else()
+        get_property(_prt_languages GLOBAL PROPERTY ENABLED_LANGUAGES)
+        if(_prt_package STREQUAL "MPI" AND NOT "C" IN_LIST _prt_languages)
+          enable_language(C)  # FindMPI's C component (prt_dist links MPI::MPI_C) needs the C language
+        endif()
         find_dependency(${_prt_package} ${PRT_PACKAGE_ARGS_${_prt_package}})
       endif()
       set(_prt_found_${_prt_package} TRUE)

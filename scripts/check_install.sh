@@ -3,7 +3,9 @@
 # and checks from CMake's trace that the configure never searched for Embree, OpenImageIO, GL, GLFW, MPI,
 # Eigen or the mesh loaders; installs it to a prefix; then builds tests/install/consumer, a separate
 # CMake project that does find_package(prt COMPONENTS core), against that prefix and runs it (it checks
-# SH values against closed forms). Usage: scripts/check_install.sh [build folder, default build-core]
+# SH values against closed forms). With a second folder holding a full build (scripts/setup.sh's build/),
+# also installs that and builds the consumer against every component, which links them all.
+# Usage: scripts/check_install.sh [core build folder, default build-core] [full build folder]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build-core}"
@@ -24,3 +26,13 @@ cmake -S tests/install/consumer -B "$build/consumer" -G Ninja -DCMAKE_PREFIX_PAT
 cmake --build "$build/consumer"
 "$build/consumer/prt_consumer"
 echo "check_install: core-only configure found no other package; installed prt::core linked and ran"
+if [ -n "${2:-}" ]; then
+  full_prefix="$PWD/$build/prefix-full"
+  cmake --install "$2" --prefix "$full_prefix" >/dev/null
+  components=$(find "$full_prefix" -name 'prt_*Targets.cmake' -printf '%f\n' | sed 's/^prt_\(.*\)Targets.cmake$/\1/' | sort | tr '\n' ' ')
+  cmake -S tests/install/consumer -B "$build/consumer-full" -G Ninja -DCMAKE_PREFIX_PATH="$full_prefix" \
+    -DPRT_CONSUMER_COMPONENTS="$(echo $components | tr ' ' ';')" >/dev/null
+  cmake --build "$build/consumer-full"
+  "$build/consumer-full/prt_consumer"
+  echo "check_install: every installed component ($components) found, linked and ran"
+fi
