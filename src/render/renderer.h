@@ -44,7 +44,7 @@
 //               the discs' direct light per pixel as prt_sun.frag (renderer_lightmap.h).
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
-//   sun         discs (light/disc.h: a sun, lamps; set_discs), renderer_sun.cpp: when the lighting
+//   sun         discs (light/disc.h: a sun, lamps; set_discs), sun_light.cpp: when the lighting
 //               changes (environment or object rotation, discs, transfer, bands, BRDF) and only then,
 //               within the same frame, shadow.vert draws one orthographic depth map per disc (at most
 //               kMaxDiscs, kShadowMapSize^2, fitted to the mesh bounds in the object's frame), and the
