@@ -9,18 +9,11 @@
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "sh/basis.h"
 #include "trace/scene.h"
 
 namespace prt::bake {
-
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 void validate_options(const BakeOptions& o) {
   if (o.bands < 1 || o.bands > sh::kMaxBands)

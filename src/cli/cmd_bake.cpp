@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/memory_check.h"
+#include "core/stopwatch.h"
 #include "lightmap/texel_bake.h"
 #include "mesh/mesh.h"
 #include "pipeline/transfer_outputs.h"
@@ -74,10 +75,6 @@ void print_summary(const std::string& what, const bake::BakeReport& report, tran
   if (kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected)
     std::fprintf(stderr, ", %d bounce(s)", report.bounces_done);
   std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, output.c_str());
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Per vertex: checks, bakes (split over the ranks of an MPI job) and writes the outputs from rank 0.

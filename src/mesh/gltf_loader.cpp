@@ -21,6 +21,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/json_depth.h"
 #include "mesh/loaders.h"
 
@@ -29,12 +30,6 @@ namespace prt::mesh::detail {
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
-
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
-}
 
 /// Image data is not needed (textures are ignored): accept every image without decoding it.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {

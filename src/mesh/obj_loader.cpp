@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "mesh/loaders.h"
 
 namespace prt::mesh::detail {
@@ -24,12 +25,6 @@ namespace {
 
 /// Kd for faces without a material in a file where other faces have one.
 constexpr float kDefaultKd = 0.8f;
-
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
-}
 
 /// Accumulates, per position, the distinct values (normal or material indices) its corners reference.
 /// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per position.
