@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -248,9 +249,35 @@ ObjData read_obj(const std::string& path, RawMesh* raw) {
   return obj;
 }
 
+/// OBJ face corners to prt vertices (mesh.h VERTEX ORDER): a corner stands for its "v" and the value
+/// of its normal, "none" when it has no "vn" or its "vn" is zero or not finite. The first such pair met
+/// for each "v" keeps the v's index; each further distinct pair (a hard edge) becomes a new vertex at the
+/// v's position, numbered after all "v"s in the order pairs are first met.
+class CornerVertices {
+ public:
+  CornerVertices(const std::string& path, const ObjData& obj, RawMesh* raw);
+  /// The vertex of a range-checked corner; adds it to `raw` (position, normal) when it is new.
+  std::uint32_t vertex_of(const tinyobj::index_t& corner);
+  /// Sets raw's normals (none when no corner has a usable one) and the reason some are missing.
+  void finish();
+
+ private:
+  using Key = std::tuple<bool, float, float, float>;  // (has a usable normal, its x, y, z)
+  Key key_of(int normal_index);
+  void set_normal(std::uint32_t vertex, const Key& key);
+  const std::string& path_;
+  const std::vector<float>& file_normals_;
+  RawMesh* raw_;
+  std::vector<std::uint8_t> assigned_;           // per "v": its own index has a pair yet
+  std::vector<Key> own_key_;                     // per "v": the pair its own index stands for
+  std::map<std::pair<std::uint32_t, Key>, std::uint32_t> extra_;  // (v, key) -> appended vertex
+  std::vector<std::uint8_t> bad_normal_;         // per "vn": referenced and zero or not finite
+  std::size_t corners_without_normal_ = 0;
+};
+
 struct FaceRefs {
-  DistinctPairs position_normals, position_materials;
-  bool any_corner_without_normal = false, any_material = false;
+  DistinctPairs position_materials;
+  bool any_material = false;
   std::size_t corners_without_uv = 0;
 };
 
@@ -271,6 +298,72 @@ glm::vec2 corner_uv(const std::string& path, const ObjData& obj, const tinyobj::
   return glm::vec2(obj.attrib.texcoords[2 * t], 1.0f - obj.attrib.texcoords[2 * t + 1]);
 }
 
+CornerVertices::CornerVertices(const std::string& path, const ObjData& obj, RawMesh* raw)
+    : path_(path),
+      file_normals_(obj.attrib.normals),
+      raw_(raw),
+      assigned_(raw->positions.size(), 0),
+      own_key_(raw->positions.size()),
+      bad_normal_(obj.attrib.normals.size() / 3, 0) {
+  raw->normals.assign(raw->positions.size(), glm::vec3(0.0f));
+  raw->has_normal.assign(raw->positions.size(), 0);
+}
+
+CornerVertices::Key CornerVertices::key_of(int normal_index) {
+  if (normal_index < 0) {
+    ++corners_without_normal_;
+    return Key(false, 0.0f, 0.0f, 0.0f);
+  }
+  const float* n = &file_normals_[3 * std::size_t(normal_index)];
+  const double length_sq = double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2];
+  if (!(length_sq > 0.0) || !std::isfinite(length_sq)) {
+    bad_normal_[std::size_t(normal_index)] = 1;
+    return Key(false, 0.0f, 0.0f, 0.0f);
+  }
+  return Key(true, n[0] + 0.0f, n[1] + 0.0f, n[2] + 0.0f);  // + 0: -0 and +0 are one value
+}
+
+std::uint32_t CornerVertices::vertex_of(const tinyobj::index_t& corner) {
+  const std::uint32_t v = std::uint32_t(corner.vertex_index);
+  const Key key = key_of(corner.normal_index);
+  if (!assigned_[v]) {
+    assigned_[v] = 1;
+    own_key_[v] = key;
+    set_normal(v, key);
+    return v;
+  }
+  if (own_key_[v] == key) return v;
+  const auto [it, inserted] = extra_.emplace(std::make_pair(v, key), std::uint32_t(raw_->positions.size()));
+  if (inserted) {
+    if (it->second == std::numeric_limits<std::uint32_t>::max()) fail_file(path_, "too many vertices");
+    const glm::vec3 position = raw_->positions[v];
+    raw_->positions.push_back(position);
+    raw_->normals.emplace_back(0.0f);
+    raw_->has_normal.push_back(0);
+    set_normal(it->second, key);
+  }
+  return it->second;
+}
+
+void CornerVertices::set_normal(std::uint32_t vertex, const Key& key) {
+  raw_->has_normal[vertex] = std::get<0>(key) ? 1 : 0;
+  raw_->normals[vertex] = glm::vec3(std::get<1>(key), std::get<2>(key), std::get<3>(key));
+}
+
+void CornerVertices::finish() {
+  const std::size_t bad = std::size_t(std::count(bad_normal_.begin(), bad_normal_.end(), 1));
+  if (file_normals_.empty()) {
+    raw_->normals.clear();
+    raw_->has_normal.clear();
+    raw_->computed_normals_reason = "the file has no normals";
+    return;
+  }
+  std::string& reason = raw_->computed_normals_reason;
+  if (corners_without_normal_ > 0) reason = std::to_string(corners_without_normal_) + " face corners have no normal";
+  if (bad > 0)
+    reason += (reason.empty() ? "" : ", ") + std::to_string(bad) + " referenced normals are zero or not finite";
+}
+
 // Range-checks one face corner's vertex and normal indices; face_number names it in errors.
 void check_corner(const std::string& path, const tinyobj::index_t& corner, std::size_t face_number,
                   std::size_t vertex_count, std::size_t normal_count) {
@@ -286,10 +379,12 @@ void check_corner(const std::string& path, const tinyobj::index_t& corner, std::
                         std::to_string(normal_count) + " normals");
 }
 
-// Fan-triangulates every face into raw->indices and collects, per position, its normals and materials.
+// Fan-triangulates every face into raw->indices, splitting positions by normal (CornerVertices), and
+// collects each vertex's materials.
 FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh* raw) {
   const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
   FaceRefs refs;
+  CornerVertices vertices(path, obj, raw);
   std::size_t face_number = 0;
   for (const tinyobj::shape_t& shape : obj.shapes) {
     const tinyobj::mesh_t& m = shape.mesh;
@@ -308,11 +403,7 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
         const tinyobj::index_t& corner = m.indices[offset + j];
         check_corner(path, corner, face_number, vertex_count, normal_count);
         const glm::vec2 uv = corner_uv(path, obj, corner, face_number, &refs);
-        const std::uint32_t index = std::uint32_t(corner.vertex_index);
-        if (corner.normal_index < 0)
-          refs.any_corner_without_normal = true;
-        else
-          refs.position_normals.add(index, corner.normal_index);
+        const std::uint32_t index = vertices.vertex_of(corner);
         refs.position_materials.add(index, material);
         if (j == 0) first = index, first_uv = uv;
         if (j >= 2) {  // fan
@@ -326,53 +417,8 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
       offset += n;
     }
   }
+  vertices.finish();
   return refs;
-}
-
-// Normals: the normalised sum of the distinct unit normals each position's corners reference.
-void obj_normals(const ObjData& obj, FaceRefs* refs, RawMesh* raw) {
-  const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
-  if (normal_count == 0 || refs->any_corner_without_normal) {
-    raw->computed_normals_reason = normal_count == 0 ? "the file has no normals" : "some faces have no normals";
-    return;
-  }
-  const std::vector<float>& file_normals = obj.attrib.normals;
-  std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
-  std::vector<std::uint8_t> bad_normal(normal_count, 0);
-  refs->position_normals.for_each([&](std::uint32_t position, int normal) {
-    const glm::dvec3 n(file_normals[3 * normal], file_normals[3 * normal + 1], file_normals[3 * normal + 2]);
-    const double len = glm::length(n);
-    if (!(len > 0.0) || !std::isfinite(len))
-      bad_normal[std::size_t(normal)] = 1;
-    else
-      sums[position] += n / len;
-  });
-  const std::size_t bad = std::size_t(std::count(bad_normal.begin(), bad_normal.end(), 1));
-  std::vector<glm::vec3> normals(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
-  std::vector<std::uint8_t> usable(vertex_count, 0), referenced(vertex_count, 0);
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    const double len = glm::length(sums[i]);
-    if (len > 0.0) {
-      normals[i] = glm::vec3(sums[i] / len);
-      usable[i] = 1;
-    }
-  }
-  // Positions of no face keep +Y and are marked usable: there is nothing to compute from.
-  for (std::uint32_t index : raw->indices) referenced[index] = 1;
-  std::size_t cancelled = 0;
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    if (!referenced[i])
-      usable[i] = 1;
-    else if (!usable[i])
-      ++cancelled;
-  }
-  if (bad > 0 || cancelled > 0) {
-    raw->computed_normals_reason = bad > 0 ? std::to_string(bad) + " referenced normals are zero or not finite"
-                                           : std::to_string(cancelled) + " vertices' normals cancel out";
-    return;
-  }
-  raw->normals = std::move(normals);
-  raw->normal_usable = std::move(usable);
 }
 
 // Per position, the mean over the distinct materials of its faces of value(material) (material -1:
@@ -422,7 +468,6 @@ RawMesh load_obj(const std::string& path) {
     raw.missing_uv_reason = obj.attrib.texcoords.empty() ? "the OBJ file has no vt lines"
                                                          : std::to_string(refs.corners_without_uv) + " face corners have no vt";
   }
-  obj_normals(obj, &refs, &raw);
   obj_materials(obj, &refs, &raw);
   return raw;
 }
