@@ -29,7 +29,7 @@ struct BakeCommandOptions {
   std::string albedo;
   std::string brdf;
   std::string compress;  // "K,N": write a .cprt instead of the .prt
-  std::string footprint = "vertex";
+  std::string footprint = "area";  // docs/conventions.md "Vertex footprint": contact stays lit
   int bands = 5;
   int bands_out = 0;
   int samples = 1024;
