@@ -57,20 +57,20 @@ bool contains(const std::string& haystack, const std::string& needle) { return h
 TEST_CASE("prt bake writes identical files for 1 and 2 threads and prt info reads them", "[bake][cli]") {
   const std::string dir = test::fresh_temp_dir("bake_threads");
   const std::string mesh = write_torus(dir, 32, 16);
-  auto r1 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads 1 -q -o " + dir + "/one.prt");
+  auto r1 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint vertex --threads 1 -q -o " + dir + "/one.prt");
   REQUIRE(r1.exit_code == 0);
-  auto r2 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads 2 -q -o " + dir + "/two.prt");
+  auto r2 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint vertex --threads 2 -q -o " + dir + "/two.prt");
   REQUIRE(r2.exit_code == 0);
   CHECK(read_file(dir + "/one.prt") == read_file(dir + "/two.prt"));
   auto info = test::run_prt("info " + dir + "/one.prt");
   CHECK(info.exit_code == 0);
   CHECK(contains(info.output, "kind: interreflected"));
   CHECK(contains(info.output, "bands: 4 (16 coefficients)"));
-  CHECK_FALSE(contains(info.output, "footprint"));  // the default, vertex, is not recorded
+  CHECK_FALSE(contains(info.output, "footprint"));  // vertex is not recorded (files as before area existed)
 
-  // --footprint area: also independent of the thread count, and recorded in the parameters.
+  // The default footprint, area: also independent of the thread count, and recorded in the parameters.
   for (const char* threads : {"1", "2"})
-    REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint area --threads " +
+    REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads " +
                           threads + " -q -o " + dir + "/area" + threads + ".prt").exit_code == 0);
   CHECK(read_file(dir + "/area1.prt") == read_file(dir + "/area2.prt"));
   CHECK(read_file(dir + "/area1.prt") != read_file(dir + "/one.prt"));
