@@ -36,6 +36,10 @@ struct RawMesh {
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives
 };
 
+/// True if `normal` can be made unit length: every component finite and not all zero (checked in
+/// double, where a float's square neither overflows nor underflows).
+bool usable_normal(const glm::vec3& normal);
+
 /// Validates `raw` (finite positions, indices in range), drops degenerate triangles, computes the
 /// normals that are missing, zero or not finite (each vertex on its own), clamps albedo, fills `report` and prints its notes unless `quiet`.
 /// Throws prt::Error("<path>: ...") for non-finite positions and when no triangle is left.

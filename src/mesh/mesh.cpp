@@ -132,12 +132,11 @@ void check_extent(const std::string& path, const Mesh& mesh) {
 }
 
 // The file's normal unit length, kept bit for bit when already unit to float precision (files
-// written by prt round-trip); false for a zero or non-finite normal (in double, a float's square
-// neither overflows nor underflows, so this is exactly "some component is not finite, or all are 0").
+// written by prt round-trip); false for an unusable one.
 bool unit_file_normal(const glm::vec3& normal, glm::vec3* unit) {
+  if (!usable_normal(normal)) return false;
   const glm::dvec3 n(normal);
   const double length_sq = glm::dot(n, n);
-  if (!(length_sq > 0.0) || !std::isfinite(length_sq)) return false;
   *unit = std::abs(length_sq - 1.0) <= 1e-6 ? normal : glm::vec3(n / std::sqrt(length_sq));
   return true;
 }
@@ -209,6 +208,12 @@ void take_emission(const std::string& path, RawMesh* raw, Mesh* mesh, LoadReport
 }
 
 }  // namespace
+
+bool usable_normal(const glm::vec3& normal) {
+  const glm::dvec3 n(normal);
+  const double length_sq = glm::dot(n, n);
+  return length_sq > 0.0 && std::isfinite(length_sq);
+}
 
 Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet) {
   LoadReport result = std::move(raw.notes_only);

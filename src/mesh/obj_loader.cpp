@@ -9,7 +9,6 @@
 #include <map>
 #include <sstream>
 #include <string_view>
-#include <tuple>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -18,6 +17,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "mesh/loaders.h"
+#include "mesh/obj_corner_vertices.h"
 
 namespace prt::mesh::detail {
 
@@ -249,32 +249,6 @@ ObjData read_obj(const std::string& path, RawMesh* raw) {
   return obj;
 }
 
-/// OBJ face corners to prt vertices (mesh.h VERTEX ORDER): a corner stands for its "v" and the value
-/// of its normal, "none" when it has no "vn" or its "vn" is zero or not finite. The first such pair met
-/// for each "v" keeps the v's index; each further distinct pair (a hard edge) becomes a new vertex at the
-/// v's position, numbered after all "v"s in the order pairs are first met.
-class CornerVertices {
- public:
-  CornerVertices(const std::string& path, const ObjData& obj, RawMesh* raw);
-  /// The vertex of a range-checked corner; adds it to `raw` (position, normal) when it is new.
-  std::uint32_t vertex_of(const tinyobj::index_t& corner);
-  /// Sets raw's normals (none when no corner has a usable one) and the reason some are missing.
-  void finish();
-
- private:
-  using Key = std::tuple<bool, float, float, float>;  // (has a usable normal, its x, y, z)
-  Key key_of(int normal_index);
-  void set_normal(std::uint32_t vertex, const Key& key);
-  const std::string& path_;
-  const std::vector<float>& file_normals_;
-  RawMesh* raw_;
-  std::vector<std::uint8_t> assigned_;           // per "v": its own index has a pair yet
-  std::vector<Key> own_key_;                     // per "v": the pair its own index stands for
-  std::map<std::pair<std::uint32_t, Key>, std::uint32_t> extra_;  // (v, key) -> appended vertex
-  std::vector<std::uint8_t> bad_normal_;         // per "vn": referenced and zero or not finite
-  std::size_t corners_without_normal_ = 0;
-};
-
 struct FaceRefs {
   DistinctPairs position_materials;
   bool any_material = false;
@@ -298,72 +272,6 @@ glm::vec2 corner_uv(const std::string& path, const ObjData& obj, const tinyobj::
   return glm::vec2(obj.attrib.texcoords[2 * t], 1.0f - obj.attrib.texcoords[2 * t + 1]);
 }
 
-CornerVertices::CornerVertices(const std::string& path, const ObjData& obj, RawMesh* raw)
-    : path_(path),
-      file_normals_(obj.attrib.normals),
-      raw_(raw),
-      assigned_(raw->positions.size(), 0),
-      own_key_(raw->positions.size()),
-      bad_normal_(obj.attrib.normals.size() / 3, 0) {
-  raw->normals.assign(raw->positions.size(), glm::vec3(0.0f));
-  raw->has_normal.assign(raw->positions.size(), 0);
-}
-
-CornerVertices::Key CornerVertices::key_of(int normal_index) {
-  if (normal_index < 0) {
-    ++corners_without_normal_;
-    return Key(false, 0.0f, 0.0f, 0.0f);
-  }
-  const float* n = &file_normals_[3 * std::size_t(normal_index)];
-  const double length_sq = double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2];
-  if (!(length_sq > 0.0) || !std::isfinite(length_sq)) {
-    bad_normal_[std::size_t(normal_index)] = 1;
-    return Key(false, 0.0f, 0.0f, 0.0f);
-  }
-  return Key(true, n[0] + 0.0f, n[1] + 0.0f, n[2] + 0.0f);  // + 0: -0 and +0 are one value
-}
-
-std::uint32_t CornerVertices::vertex_of(const tinyobj::index_t& corner) {
-  const std::uint32_t v = std::uint32_t(corner.vertex_index);
-  const Key key = key_of(corner.normal_index);
-  if (!assigned_[v]) {
-    assigned_[v] = 1;
-    own_key_[v] = key;
-    set_normal(v, key);
-    return v;
-  }
-  if (own_key_[v] == key) return v;
-  const auto [it, inserted] = extra_.emplace(std::make_pair(v, key), std::uint32_t(raw_->positions.size()));
-  if (inserted) {
-    if (it->second == std::numeric_limits<std::uint32_t>::max()) fail_file(path_, "too many vertices");
-    const glm::vec3 position = raw_->positions[v];
-    raw_->positions.push_back(position);
-    raw_->normals.emplace_back(0.0f);
-    raw_->has_normal.push_back(0);
-    set_normal(it->second, key);
-  }
-  return it->second;
-}
-
-void CornerVertices::set_normal(std::uint32_t vertex, const Key& key) {
-  raw_->has_normal[vertex] = std::get<0>(key) ? 1 : 0;
-  raw_->normals[vertex] = glm::vec3(std::get<1>(key), std::get<2>(key), std::get<3>(key));
-}
-
-void CornerVertices::finish() {
-  const std::size_t bad = std::size_t(std::count(bad_normal_.begin(), bad_normal_.end(), 1));
-  if (file_normals_.empty()) {
-    raw_->normals.clear();
-    raw_->has_normal.clear();
-    raw_->computed_normals_reason = "the file has no normals";
-    return;
-  }
-  std::string& reason = raw_->computed_normals_reason;
-  if (corners_without_normal_ > 0) reason = std::to_string(corners_without_normal_) + " face corners have no normal";
-  if (bad > 0)
-    reason += (reason.empty() ? "" : ", ") + std::to_string(bad) + " referenced normals are zero or not finite";
-}
-
 // Range-checks one face corner's vertex and normal indices; face_number names it in errors.
 void check_corner(const std::string& path, const tinyobj::index_t& corner, std::size_t face_number,
                   std::size_t vertex_count, std::size_t normal_count) {
@@ -384,7 +292,7 @@ void check_corner(const std::string& path, const tinyobj::index_t& corner, std::
 FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh* raw) {
   const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
   FaceRefs refs;
-  CornerVertices vertices(path, obj, raw);
+  CornerVertices vertices(path, obj.attrib.normals, raw);
   std::size_t face_number = 0;
   for (const tinyobj::shape_t& shape : obj.shapes) {
     const tinyobj::mesh_t& m = shape.mesh;
@@ -403,7 +311,7 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
         const tinyobj::index_t& corner = m.indices[offset + j];
         check_corner(path, corner, face_number, vertex_count, normal_count);
         const glm::vec2 uv = corner_uv(path, obj, corner, face_number, &refs);
-        const std::uint32_t index = vertices.vertex_of(corner);
+        const std::uint32_t index = vertices.vertex_of(corner.vertex_index, corner.normal_index);
         refs.position_materials.add(index, material);
         if (j == 0) first = index, first_uv = uv;
         if (j >= 2) {  // fan
