@@ -32,8 +32,8 @@ std::string first_line(const std::string& text) {
   return line;
 }
 
-/// Accumulates, per position, the distinct values (normal or material indices) its corners reference.
-/// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per position.
+/// Accumulates, per vertex, the distinct values (material indices) its corners reference.
+/// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per vertex.
 class DistinctPairs {
  public:
   void add(std::uint32_t position, int value) { pairs_.emplace_back(position, value); }
