@@ -96,7 +96,7 @@ std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bo
     j["seed"] = o.seed;
     j["sample_set"] = "owen-scrambled sobol, cosine-weighted hemisphere, per-vertex hashed rotation";
     j["ray_offset"] = ray_offset;
-    // Only when not the default, so that vertex bakes stay byte-identical to those of earlier versions.
+    // Only for area, so that vertex bakes stay byte-identical to those of earlier versions.
     if (o.footprint != mesh::Footprint::vertex) j["footprint"] = mesh::footprint_name(o.footprint);
   }
   if (o.kind == transfer::Kind::interreflected) {

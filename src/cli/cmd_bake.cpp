@@ -30,7 +30,7 @@ struct BakeCommandOptions {
   std::string albedo;
   std::string brdf;
   std::string compress;  // "K,N": write a .cprt instead of the .prt
-  std::string footprint = "vertex";
+  std::string footprint = "area";  // docs/conventions.md "Vertex footprint": contact stays lit
   int bands = 5;
   int bands_out = 0;
   int samples = 1024;
@@ -194,7 +194,7 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--seed", options->seed, "Seed of the sample set and per-vertex frames")->capture_default_str();
   add_footprint_option(cmd, options->footprint,
                        "where a vertex's rays leave from: points of its one-ring, hat-weighted (the value its interpolation "
-                       "stands for, no dark vertex under a fold), or the vertex itself (as prt reference per vertex)");
+                       "stands for: no dark vertex under a fold or where objects touch), or the vertex itself (as prt reference per vertex)");
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
   cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");
