@@ -47,10 +47,10 @@ float smallest_channel(const std::string& path) {
 }
 
 double shaded_error(const std::string& dir, const std::string& env, int spp, const std::string& options,
-                    const std::string& transfer = "lion.prt", const std::string& reference_options = "") {
+                    const std::string& transfer = "lion.prt", const std::string& reference_options = "--footprint vertex") {
   const std::string tag = env + (options.empty() ? "" : "_none") + "_" + transfer;
   const std::string map = kRoot + "/assets/env/" + env + ".exr";
-  const std::string ref = dir + "/ref_" + env + (reference_options.empty() ? "" : "_options") + ".ply";
+  const std::string ref = dir + "/ref_" + env + (reference_options.find("area") == std::string::npos ? "" : "_area") + ".ply";
   if (!std::ifstream(ref))
     REQUIRE(test::run_prt("reference " + kLion + " --env " + map + " --bounces 3 --samples " + std::to_string(spp) + " " +
                           reference_options + " -q -o " + ref)
