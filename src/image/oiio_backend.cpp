@@ -3,11 +3,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/text.h"
@@ -106,8 +108,8 @@ bool decode_as_float(OIIO::ImageInput& input, const OIIO::ImageSpec& spec, float
   return true;
 }
 
-std::string read_pixels(const std::string& path, DecodedImage& out, StderrCapture& capture) {
-  auto input = OIIO::ImageInput::open(path);
+// Decodes the opened input's first subimage into `out` (limits checked against its header first).
+std::string read_pixels(std::unique_ptr<OIIO::ImageInput> input, DecodedImage& out, StderrCapture& capture) {
   if (!input) return with_codec_text("cannot read as an image: " + one_line(OIIO::geterror()), capture);
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return "image has no pixels";
@@ -131,7 +133,18 @@ std::string read(const std::string& path, DecodedImage& out) {
   static const bool one_reader = OIIO::attribute("try_all_readers", 0);
   (void)one_reader;
   StderrCapture capture;
-  std::string problem = read_pixels(path, out, capture);
+  std::string problem = read_pixels(OIIO::ImageInput::open(path), out, capture);
+  if (!problem.empty()) out = DecodedImage{};
+  return problem;
+}
+
+std::string read_memory(const std::string& bytes, const std::string& format, DecodedImage& out) {
+  static const bool one_reader = OIIO::attribute("try_all_readers", 0);
+  (void)one_reader;
+  StderrCapture capture;
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  std::string problem =
+      read_pixels(OIIO::ImageInput::create("memory." + format, /*do_open=*/true, nullptr, &memory), out, capture);
   if (!problem.empty()) out = DecodedImage{};
   return problem;
 }
@@ -171,7 +184,7 @@ std::string write(const std::string& file, const std::string& format_path, int w
   return "";
 }
 
-const Functions kFunctions{kAbiVersion, &read, &write};
+const Functions kFunctions{kAbiVersion, &read, &write, &read_memory};
 
 }  // namespace
 

@@ -17,13 +17,11 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "mesh/loaders.h"
+#include "mesh/obj_materials.h"
 
 namespace prt::mesh::detail {
 
 namespace {
-
-/// Kd for faces without a material in a file where other faces have one.
-constexpr float kDefaultKd = 0.8f;
 
 std::string first_line(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));
@@ -318,6 +316,7 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
         if (j >= 2) {  // fan
           raw->indices.insert(raw->indices.end(), {first, previous, index});
           raw->corner_uv.insert(raw->corner_uv.end(), {first_uv, previous_uv, uv});
+          raw->triangle_material.push_back(material >= 0 ? std::uint32_t(material) : std::uint32_t(obj.materials.size()));
         }
         previous = index;
         previous_uv = uv;
@@ -424,6 +423,15 @@ RawMesh load_obj(const std::string& path) {
   }
   obj_normals(obj, &refs, &raw);
   obj_materials(obj, &refs, &raw);
+  if (refs.any_material) {
+    obj_material_list(obj_folder(path), obj.materials, &raw);
+    raw.base_color_uv = raw.corner_uv;
+    const bool textured = std::any_of(raw.materials.begin(), raw.materials.end(), [](const Material& m) { return m.textured(); });
+    if (textured && raw.base_color_uv.empty())
+      raw.notes_only.notes.push_back("map_Kd textures are ignored: " + raw.missing_uv_reason + "; Kd alone is used");
+  } else {
+    raw.triangle_material.clear();
+  }
   return raw;
 }
 
