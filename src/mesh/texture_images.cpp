@@ -41,7 +41,7 @@ bool decode_texture(const std::string& bytes, const std::string& hint, const std
   std::string format = signature_format(bytes);
   if (format.empty()) format = format_of_hint(hint);
   if (format == "ktx2") {
-    *problem = "KTX2/Basis images are not decoded";
+    *problem = name + ": KTX2/Basis images are not decoded";
     return false;
   }
   image::Image decoded;
