@@ -19,6 +19,16 @@ const char* albedo_source_name(AlbedoSource source) {
   }
 }
 
+void drop_albedo(Mesh* mesh) {
+  mesh->albedo.clear();
+  mesh->materials.clear();
+  mesh->triangle_material.clear();
+  mesh->base_color_uv.clear();
+  mesh->textures.clear();
+  mesh->vertex_color.clear();
+  mesh->albedo_source = AlbedoSource::none;
+}
+
 namespace detail {
 
 void take_materials(RawMesh* raw, Mesh* mesh, LoadReport* result) {

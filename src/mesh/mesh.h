@@ -127,6 +127,10 @@ struct Mesh {
   bool textured() const { return !base_color_uv.empty(); }
 };
 
+/// Drops the albedo the file gave: albedo, materials, triangle_material, base_color_uv, textures and
+/// vertex_color become empty and albedo_source none (the caller's default applies, e.g. --albedo).
+void drop_albedo(Mesh* mesh);
+
 /// What loading found, for messages and tests.
 struct LoadReport {
   std::size_t skipped_degenerate = 0;     ///< triangles dropped: repeated index, zero area, polygons of < 3 vertices
