@@ -46,25 +46,38 @@ std::string write_checker_quad(const std::string& dir, glm::dvec3* a, glm::dvec3
   return dir + "/quad.obj";
 }
 
+struct BakeAndShade {
+  test::RunResult bake, info;
+  mesh::ColourPly shaded;
+};
+
+// prt bake (unshadowed, 1 band, `options` added), prt info of the transfer, prt shade under white.json.
+BakeAndShade bake_and_shade(const std::string& dir, const std::string& obj, const std::string& options) {
+  BakeAndShade out;
+  out.bake = test::run_prt("bake " + obj + " --transfer unshadowed --bands 1 " + options + " -o " + dir + "/t.prt");
+  REQUIRE(out.bake.exit_code == 0);
+  out.info = test::run_prt("info " + dir + "/t.prt");
+  REQUIRE(test::run_prt("shade " + obj + " " + dir + "/t.prt --light " + dir + "/white.json -o " + dir + "/s.ply").exit_code == 0);
+  out.shaded = mesh::read_ply_colours(dir + "/s.ply");
+  REQUIRE(out.shaded.colours.size() == 4);
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("prt shade per vertex on a textured checker quad equals the footprint average", "[bake][cli][albedo]") {
   const std::string dir = test::fresh_temp_dir("albedo_checker");
   glm::dvec3 a, b;
   const std::string obj = write_checker_quad(dir, &a, &b);
-  const auto bake = test::run_prt("bake " + obj + " --transfer unshadowed --bands 1 -q -o " + dir + "/t.prt");
-  REQUIRE(bake.exit_code == 0);
-  const auto info = test::run_prt("info " + dir + "/t.prt");
-  CHECK(contains(info.output, R"("albedo":"mesh","albedo_source":"texture")"));
-  REQUIRE(test::run_prt("shade " + obj + " " + dir + "/t.prt --light " + dir + "/white.json -o " + dir + "/s.ply").exit_code == 0);
-  const mesh::ColourPly shaded = mesh::read_ply_colours(dir + "/s.ply");
+  const BakeAndShade run = bake_and_shade(dir, obj, "-q");
+  CHECK(contains(run.info.output, R"("albedo":"mesh","albedo_source":"texture")"));
+  const mesh::ColourPly& shaded = run.shaded;
   // vt = (x, y) is v up: image row py sits at y = 1 - py / 64, so the quad's squares [0, 1/2]^2 and
   // [1/2, 1]^2 (the diagonal squares) show kB. Under constant radiance 1 an unshadowed vertex reflects
   // its albedo. The exact hat-weighted footprint averages (derived in tests/mesh/test_texture.cpp), D
   // the diagonal squares' colour and O the others': (5 D + 3 O) / 8 at (0,0) and (1,1), (D + 3 O) / 4
   // at (1,0) and (0,1).
   const glm::dvec3 want[4] = {(5.0 * b + 3.0 * a) / 8.0, (b + 3.0 * a) / 4.0, (5.0 * b + 3.0 * a) / 8.0, (b + 3.0 * a) / 4.0};
-  REQUIRE(shaded.colours.size() == 4);
   for (int v = 0; v < 4; ++v)
     for (int c = 0; c < 3; ++c) CHECK(double(shaded.colours[v][c]) == Approx(want[v][c]).epsilon(0.01));
 }
@@ -73,13 +86,10 @@ TEST_CASE("--albedo overrides the file's textures with a note, and prt info says
   const std::string dir = test::fresh_temp_dir("albedo_override");
   glm::dvec3 a, b;
   const std::string obj = write_checker_quad(dir, &a, &b);
-  const auto bake = test::run_prt("bake " + obj + " --transfer unshadowed --bands 1 --albedo 0.5,0.25,1 -o " + dir + "/t.prt");
-  REQUIRE(bake.exit_code == 0);
-  CHECK(contains(bake.output, obj + ": --albedo 0.5,0.25,1 overrides the file's texture albedo"));
-  CHECK(contains(test::run_prt("info " + dir + "/t.prt").output, R"("albedo":[0.5,0.25,1.0],"albedo_source":"option")"));
-  REQUIRE(test::run_prt("shade " + obj + " " + dir + "/t.prt --light " + dir + "/white.json -o " + dir + "/s.ply").exit_code == 0);
-  const mesh::ColourPly shaded = mesh::read_ply_colours(dir + "/s.ply");
-  REQUIRE(shaded.colours.size() == 4);
+  const BakeAndShade run = bake_and_shade(dir, obj, "--albedo 0.5,0.25,1");
+  CHECK(contains(run.bake.output, obj + ": --albedo 0.5,0.25,1 overrides the file's texture albedo"));
+  CHECK(contains(run.info.output, R"("albedo":[0.5,0.25,1.0],"albedo_source":"option")"));
+  const mesh::ColourPly& shaded = run.shaded;
   for (int v = 0; v < 4; ++v) {
     CHECK(shaded.colours[v][0] == Approx(0.5).epsilon(1e-5));
     CHECK(shaded.colours[v][1] == Approx(0.25).epsilon(1e-5));
