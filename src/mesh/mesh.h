@@ -44,7 +44,7 @@
 // ALBEDO (Mesh::albedo: linear diffuse reflectance per vertex, clamped to [0,1]; what per-vertex bakes
 // and shading use): for a vertex whose footprint (mesh/vertex_footprint.h, the hat-weighted one-ring)
 // touches a textured triangle, the base colour averaged over that footprint (texture_albedo, by
-// quadrature finer than a texel); for any other vertex the base colour at the vertex, and where the
+// quadrature on sub-triangles of at most half a texel); for any other vertex the base colour at the vertex, and where the
 // vertex joins triangles of several materials the mean over those distinct materials. Albedo is empty
 // when the file gives no materials and no vertex colours; the caller then chooses a default.
 //

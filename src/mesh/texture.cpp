@@ -22,32 +22,17 @@ glm::vec3 texel(const Texture& texture, const TextureRef& ref, std::int64_t x, s
   return glm::vec3(texture.rgb[i], texture.rgb[i + 1], texture.rgb[i + 2]);
 }
 
-// The material of a textured triangle whose texture can be read, else null.
+// The material of a textured triangle, else null.
 const Material* textured_material(const Mesh& mesh, std::uint32_t triangle) {
   if (mesh.materials.empty() || mesh.base_color_uv.empty()) return nullptr;
   const Material& material = mesh.materials[mesh.triangle_material[triangle]];
   return material.textured() ? &material : nullptr;
 }
 
-// The base colour UV of `triangle` at barycentrics (b1, b2), interpolated in double.
-glm::dvec2 interpolated_uv(const Mesh& mesh, std::uint32_t triangle, double b1, double b2) {
-  const glm::vec2* uv = &mesh.base_color_uv[3 * std::size_t(triangle)];
-  return (1.0 - b1 - b2) * glm::dvec2(uv[0]) + b1 * glm::dvec2(uv[1]) + b2 * glm::dvec2(uv[2]);
-}
-
 // The quadrature's n for the region of `triangle` with barycentric corners `corners` (texture.h).
-int quadrature_level(const Mesh& mesh, std::uint32_t triangle, const glm::dvec2 corners[3]) {
-  const Material* material = textured_material(mesh, triangle);
-  if (!material) return kMinQuadrature;
-  const Texture& texture = mesh.textures[std::size_t(material->base_color.image)];
-  glm::dvec2 texels[3];
-  for (int k = 0; k < 3; ++k) {
-    const glm::dvec2 uv = interpolated_uv(mesh, triangle, corners[k].x, corners[k].y);
-    texels[k] = glm::dvec2(transform_uv(material->base_color.transform, glm::vec2(uv))) *
-                glm::dvec2(texture.width, texture.height);
-  }
-  const double longest = std::max({glm::length(texels[1] - texels[0]), glm::length(texels[2] - texels[1]),
-                                   glm::length(texels[0] - texels[2])});
+int quadrature_level(const TriangleColour& colour, const glm::dvec2 corners[3]) {
+  const double longest = std::max({colour.texel_length(corners[0], corners[1]), colour.texel_length(corners[1], corners[2]),
+                                   colour.texel_length(corners[2], corners[0])});
   const double n = std::ceil(kQuadraturePerTexel * longest);
   if (!(n <= kMaxQuadrature)) return kMaxQuadrature;
   return std::max(kMinQuadrature, int(n));
@@ -74,10 +59,11 @@ double triangle_area(const Mesh& mesh, std::uint32_t triangle) {
 // The integrals over `triangle` of base colour x barycentric weight k, k = 0, 1, 2.
 std::array<glm::dvec3, 3> hat_moments(const Mesh& mesh, std::uint32_t triangle) {
   static const glm::dvec2 kWhole[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
-  const int n = quadrature_level(mesh, triangle, kWhole);
+  const TriangleColour lookup(mesh, triangle);
+  const int n = quadrature_level(lookup, kWhole);
   std::array<glm::dvec3, 3> sums{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
   for_each_centroid(kWhole, n, [&](const glm::dvec2& b) {
-    const glm::dvec3 colour(base_color(mesh, triangle, b.x, b.y));
+    const glm::dvec3 colour(lookup.at(b.x, b.y));
     sums[0] += (1.0 - b.x - b.y) * colour;
     sums[1] += b.x * colour;
     sums[2] += b.y * colour;
@@ -96,6 +82,7 @@ glm::vec2 transform_uv(const TextureTransform& transform, glm::vec2 uv) {
 }
 
 int wrap_texel(std::int64_t i, int n, Wrap mode) {
+  if (i >= 0 && i < n) return int(i);  // inside the image: every mode agrees
   switch (mode) {
     case Wrap::clamp_to_edge:
       return int(std::clamp<std::int64_t>(i, 0, n - 1));
@@ -121,29 +108,46 @@ glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec
   return (1.0f - fy) * top + fy * bottom;
 }
 
-glm::vec3 base_color(const Mesh& mesh, std::uint32_t triangle, double b1, double b2) {
-  glm::vec3 colour(1.0f);
-  if (!mesh.materials.empty()) {
-    const Material& material = mesh.materials[mesh.triangle_material[triangle]];
-    colour = material.base_color_factor;
-    if (const Material* textured = textured_material(mesh, triangle)) {
-      const glm::vec2 uv = transform_uv(textured->base_color.transform, glm::vec2(interpolated_uv(mesh, triangle, b1, b2)));
-      colour *= sample_texture(mesh.textures[std::size_t(textured->base_color.image)], textured->base_color, uv);
-    }
+TriangleColour::TriangleColour(const Mesh& mesh, std::uint32_t triangle) {
+  if (!mesh.materials.empty()) factor_ = mesh.materials[mesh.triangle_material[triangle]].base_color_factor;
+  if (const Material* material = textured_material(mesh, triangle)) {
+    texture_ = &mesh.textures[std::size_t(material->base_color.image)];
+    ref_ = &material->base_color;
+    const glm::vec2* uv = &mesh.base_color_uv[3 * std::size_t(triangle)];
+    const glm::dvec2 t0(transform_uv(ref_->transform, uv[0])), t1(transform_uv(ref_->transform, uv[1])),
+        t2(transform_uv(ref_->transform, uv[2]));
+    uv0_ = t0;
+    du1_ = t1 - t0;
+    du2_ = t2 - t0;
   }
-  if (!mesh.vertex_color.empty()) {
-    const std::uint32_t* v = &mesh.indices[3 * std::size_t(triangle)];
-    colour *= glm::vec3((1.0 - b1 - b2) * glm::dvec3(mesh.vertex_color[v[0]]) + b1 * glm::dvec3(mesh.vertex_color[v[1]]) +
-                        b2 * glm::dvec3(mesh.vertex_color[v[2]]));
-  }
+  if (!mesh.vertex_color.empty())
+    for (int k = 0; k < 3; ++k) colours_[k] = &mesh.vertex_color[mesh.indices[3 * std::size_t(triangle) + std::size_t(k)]];
+}
+
+glm::vec3 TriangleColour::at(double b1, double b2) const {
+  glm::vec3 colour = factor_;
+  if (texture_) colour *= sample_texture(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
+  if (colours_[0])
+    colour *= glm::vec3((1.0 - b1 - b2) * glm::dvec3(*colours_[0]) + b1 * glm::dvec3(*colours_[1]) + b2 * glm::dvec3(*colours_[2]));
   for (int c = 0; c < 3; ++c) colour[c] = std::isnan(colour[c]) ? 0.0f : std::clamp(colour[c], 0.0f, 1.0f);
   return colour;
 }
 
+double TriangleColour::texel_length(const glm::dvec2& a, const glm::dvec2& b) const {
+  if (!texture_) return 0.0;
+  const glm::dvec2 d = (b.x - a.x) * du1_ + (b.y - a.y) * du2_;
+  return glm::length(d * glm::dvec2(texture_->width, texture_->height));
+}
+
+glm::vec3 base_color(const Mesh& mesh, std::uint32_t triangle, double b1, double b2) {
+  return TriangleColour(mesh, triangle).at(b1, b2);
+}
+
 glm::vec3 region_average(const Mesh& mesh, std::uint32_t triangle, const glm::dvec2 corners[3]) {
-  const int n = quadrature_level(mesh, triangle, corners);
+  const TriangleColour lookup(mesh, triangle);
+  const int n = quadrature_level(lookup, corners);
   glm::dvec3 sum(0.0);
-  for_each_centroid(corners, n, [&](const glm::dvec2& b) { sum += glm::dvec3(base_color(mesh, triangle, b.x, b.y)); });
+  for_each_centroid(corners, n, [&](const glm::dvec2& b) { sum += glm::dvec3(lookup.at(b.x, b.y)); });
   return glm::vec3(sum / (double(n) * double(n)));
 }
 

@@ -29,19 +29,44 @@ int wrap_texel(std::int64_t i, int n, Wrap mode);
 /// texture has width, height >= 1 and width * height * 3 values.
 glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec2 uv);
 
-/// The base colour of triangle `triangle` at barycentrics (b1, b2), the point (1 - b1 - b2) p0 + b1 p1
-/// + b2 p2: the material's texture at its transformed interpolated UV (1 if untextured) x its factor x
-/// the interpolated vertex colour (1 if none), clamped to [0, 1] (NaN: 0). (1, 1, 1) for a mesh without materials or colours (the
-/// caller's default albedo applies there: albedo_source none). Preconditions: triangle <
-/// triangle_count(); the mesh as load_mesh makes it (the vectors' sizes of mesh.h).
+/// The base colour over one triangle, set up once for many lookups on it (the quadratures below, a
+/// renderer's or a baker's loop over hits): the material's factor, texture and sampler, the affine map
+/// from barycentrics to transformed UVs (KHR_texture_transform is affine), and the vertex colours.
+/// Holds pointers into the mesh (which must outlive it). Preconditions: triangle < triangle_count();
+/// the mesh as load_mesh makes it (the vectors' sizes of mesh.h).
+class TriangleColour {
+ public:
+  TriangleColour(const Mesh& mesh, std::uint32_t triangle);
+
+  /// The base colour at barycentrics (b1, b2), the point (1 - b1 - b2) p0 + b1 p1 + b2 p2: the texture
+  /// at the transformed interpolated UV (1 if untextured) x the factor x the interpolated vertex colour
+  /// (1 if none), clamped to [0, 1] (NaN: 0). (1, 1, 1) for a mesh without materials or colours (the
+  /// caller's default albedo applies there: albedo_source none).
+  glm::vec3 at(double b1, double b2) const;
+
+  /// The length in texels of the transformed UV segment between the points with barycentrics a and b;
+  /// 0 for an untextured triangle.
+  double texel_length(const glm::dvec2& a, const glm::dvec2& b) const;
+
+ private:
+  glm::vec3 factor_{1.0f};
+  const Texture* texture_ = nullptr;
+  const TextureRef* ref_ = nullptr;
+  glm::dvec2 uv0_{0.0}, du1_{0.0}, du2_{0.0};  // transformed UV = uv0 + b1 du1 + b2 du2
+  const glm::vec3* colours_[3] = {nullptr, nullptr, nullptr};
+};
+
+/// TriangleColour(mesh, triangle).at(b1, b2), for a single lookup.
 glm::vec3 base_color(const Mesh& mesh, std::uint32_t triangle, double b1, double b2);
 
 /// The quadrature of the averages below splits a region of a triangle into n x n similar sub-triangles
 /// and takes the base colour at each one's centroid. n = ceil(kQuadraturePerTexel x the region's longest
 /// edge in texels of its texture, after the transform), clamped to [kMinQuadrature, kMaxQuadrature]:
-/// sub-triangle edges of at most 1/4 texel, where the bilinear texture is nearly linear, up to regions
-/// 512 texels across; untextured regions use kMinQuadrature (the base colour is linear there).
-inline constexpr int kQuadraturePerTexel = 4;
+/// sub-triangle edges of at most 1/2 texel, up to regions 1024 texels across (about 8 samples per
+/// texel of area: bilinear is linear between texel centres, and a texel's kinks fall inside about
+/// half of its samples' sub-triangles); untextured regions use kMinQuadrature (the base colour is
+/// linear there, up to the clamp).
+inline constexpr int kQuadraturePerTexel = 2;
 inline constexpr int kMinQuadrature = 4;
 inline constexpr int kMaxQuadrature = 2048;
 
