@@ -63,7 +63,8 @@ RawMesh load_obj(const std::string& path);
 RawMesh load_ply(const std::string& path);
 RawMesh load_gltf(const std::string& path, bool binary);
 
-/// The other files a mesh file names (mesh::referenced_files): an OBJ's "mtllib" files, a glTF's
+/// The other files a mesh file names (mesh::referenced_files): an OBJ's "mtllib" files (and their
+/// map_Kd images), a glTF's
 /// external buffers and images, resolved against the mesh's folder as the loaders resolve them.
 std::vector<std::string> obj_referenced_files(const std::string& path);
 std::vector<std::string> gltf_referenced_files(const std::string& path, bool binary);

@@ -214,6 +214,11 @@ std::vector<std::string> obj_referenced_files(const std::string& path) {
       escaped = false;
     }
   }
+  const std::size_t mtl_count = files.size();
+  for (std::size_t i = 0; i < mtl_count; ++i) {
+    const std::vector<std::string> textures = mtl_texture_files(files[i], obj_folder(path));
+    files.insert(files.end(), textures.begin(), textures.end());
+  }
   return files;
 }
 

@@ -1,6 +1,7 @@
 #include "mesh/obj_materials.h"
 
 #include <map>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -19,6 +20,25 @@ TextureTransform mtl_transform(const tinyobj::texture_option_t& option) {
 }
 
 }  // namespace
+
+std::vector<std::string> mtl_texture_files(const std::string& mtl_path, const std::string& folder) {
+  std::vector<std::string> files;
+  std::string text;
+  try {
+    text = read_file(mtl_path);
+  } catch (const Error&) {
+    return files;
+  }
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string tag, word, last;
+    if (!(words >> tag) || tag != "map_Kd") continue;
+    while (words >> word) last = word;
+    if (!last.empty()) files.push_back(folder + last);
+  }
+  return files;
+}
 
 void obj_material_list(const std::string& folder, const std::vector<tinyobj::material_t>& mtl, RawMesh* raw) {
   std::map<std::string, int> decoded;  // map_Kd file -> texture index, or -1 if it failed

@@ -165,6 +165,8 @@ TEST_CASE("OBJ map_Kd x Kd with -s and -o", "[mesh][texture][obj]") {
   // Points whose bilinear lookups stay among the quadrant's texel centres (u', v' in [4.5/8, 7.5/8]).
   for (double b1 : {0.1, 0.3, 0.5}) check_close(base_color(mesh, 0, b1, 0.3), glm::vec3(0.5f, 0.25f, 1.0f) * a, 1e-6);
   check_close(base_color(mesh, 1, 0.3, 0.3), glm::vec3(0.3f), 1e-6);
+  // The images are inputs of the OBJ as much as its MTL file (outputs may not overwrite them).
+  CHECK(referenced_files(path) == std::vector<std::string>{temp_path("tex.mtl"), temp_path("obj_checker.png"), temp_path("missing.png")});
 }
 
 TEST_CASE("BoxTextured (glTF sample model, tests/data/BoxTextured) shows its texture", "[mesh][texture][gltf][asset]") {
