@@ -156,10 +156,10 @@ struct LoadReport {
 Mesh load_mesh(const std::string& path, LoadReport* report = nullptr, bool quiet = false);
 
 /// The files a mesh file refers to, which load_mesh may read and which are inputs as much as the
-/// mesh itself: an OBJ's "mtllib" files and their map_Kd images, a glTF's (.gltf or .glb) buffer and image URIs other than
-/// data: URIs; each resolved against the mesh's folder. Empty for .ply, other extensions, and a file
-/// that cannot be read or parsed (load_mesh then names the problem). Names that do not exist are
-/// listed too.
+/// mesh itself: an OBJ's "mtllib" files and their map_Kd images, a glTF's (.gltf or .glb) buffer and
+/// image URIs other than data: URIs; each resolved against the mesh's folder. Empty for .ply, other
+/// extensions, and a file that cannot be read or parsed (load_mesh then names the problem). Names that
+/// do not exist are listed too.
 std::vector<std::string> referenced_files(const std::string& path);
 
 /// Area-weighted vertex normals: for each vertex, the normalised sum of (p1-p0)x(p2-p0) over the
