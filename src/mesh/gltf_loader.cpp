@@ -291,12 +291,8 @@ struct Loader {
       for (std::size_t i = 0; i < count; ++i) order.push_back(std::uint32_t(i));
     }
     const std::vector<glm::vec2> uv = read_uv(prim, count, what);
-    std::uint32_t material = materials.material_of(prim.material, what);
     std::vector<glm::vec2> colour_uv;
-    if (const int set = materials.texcoord_set(material); set >= 0) {
-      colour_uv = read_texcoord(prim, set, count, what);
-      if (colour_uv.empty()) material = materials.without_texture(material, what);
-    }
+    const std::uint32_t material = primitive_material(prim, count, what, &colour_uv);
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       if (mirrored) std::swap(b, c);
       raw.indices.insert(raw.indices.end(),
@@ -319,6 +315,17 @@ struct Loader {
     add_normals(prim, linear, count, what);
     add_albedo(prim, count, what);
     add_emission(prim, count);
+  }
+
+  // The primitive's mesh material, and in *colour_uv the UVs its base colour texture reads (empty if
+  // untextured; a primitive without that TEXCOORD set gets the material's untextured copy).
+  std::uint32_t primitive_material(const tinygltf::Primitive& prim, std::size_t count, const std::string& what,
+                                   std::vector<glm::vec2>* colour_uv) {
+    const std::uint32_t material = materials.material_of(prim.material, what);
+    const int set = materials.texcoord_set(material);
+    if (set < 0) return material;
+    *colour_uv = read_texcoord(prim, set, count, what);
+    return colour_uv->empty() ? materials.without_texture(material, what) : material;
   }
 
   // The primitive's TEXCOORD_<uv_set> per vertex; empty, with missing_uv noted, when it has none.
