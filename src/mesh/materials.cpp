@@ -36,8 +36,8 @@ void take_materials(RawMesh* raw, Mesh* mesh, LoadReport* result) {
   if (!raw->materials.empty() && raw->triangle_material.size() == mesh->triangle_count()) {
     mesh->materials = std::move(raw->materials);
     mesh->triangle_material = std::move(raw->triangle_material);
-    const bool any_texture = std::any_of(mesh->materials.begin(), mesh->materials.end(),
-                                         [](const Material& m) { return m.textured(); });
+    const bool any_texture = std::any_of(mesh->triangle_material.begin(), mesh->triangle_material.end(),
+                                         [&](std::uint32_t m) { return mesh->materials[m].textured(); });
     if (any_texture && raw->base_color_uv.size() == mesh->indices.size()) {
       mesh->base_color_uv = std::move(raw->base_color_uv);
       mesh->textures = std::move(raw->textures);

@@ -170,3 +170,15 @@ TEST_CASE("per-vertex albedo is the exact footprint average of a nearest checker
   texture_albedo(m, 3, &again);
   for (int v = 0; v < 4; ++v) CHECK(again[v] == albedo[v]);
 }
+
+TEST_CASE("base colour is texture x factor x interpolated vertex colour", "[mesh][texture]") {
+  TextureRef ref = linear_ref();
+  ref.filter = Filter::nearest;
+  Mesh m = quad(checker(2, 2), ref, glm::vec3(0.5f, 1.0f, 0.8f));
+  m.vertex_color = {{1, 1, 1}, {0, 1, 1}, {1, 0, 1}, {1, 1, 0}};
+  // Triangle 0 at barycentrics (0.2, 0.3): uv = (b1 + b2, b2) = (0.5, 0.3), texel (1, 0) (nearest: u
+  // = 0.5 is texel 1's left edge), kB. Vertex colour 0.5 v0 + 0.2 v1 + 0.3 v2 = (0.8, 0.7, 1).
+  const glm::vec3 want = kB * glm::vec3(0.5f, 1.0f, 0.8f) * glm::vec3(0.8f, 0.7f, 1.0f);
+  check_close(base_color(m, 0, 0.2, 0.3), want, 1e-6);
+  check_close(TriangleColour(m, 0).at(0.2, 0.3), want, 0.0);
+}

@@ -145,6 +145,20 @@ TEST_CASE("glTF images that cannot be decoded are a note; the factor alone is us
   }
 }
 
+TEST_CASE("a glTF primitive without its texture's TEXCOORD set uses the factor alone, with a note", "[mesh][texture][gltf]") {
+  checker_png("checker.png");
+  const std::string text = read_bytes(quad_gltf("no_uv", {{"uri", "checker.png"}}));
+  json doc = json::parse(text);
+  doc["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_1");
+  const std::string path = write_temp("no_uv.gltf", doc.dump());
+  LoadReport report;
+  const Mesh mesh = load_mesh(path, &report, true);
+  REQUIRE(report.notes.size() == 1);
+  CHECK(report.notes[0] == "mesh 0 primitive 0 has no TEXCOORD_1 for its base colour texture; its base colour factor alone is used");
+  CHECK(mesh.albedo_source == AlbedoSource::material);
+  check_close(base_color(mesh, 0, 0.2, 0.2), glm::vec3(0.5f, 1.0f, 1.0f), 0.0);
+}
+
 TEST_CASE("OBJ map_Kd x Kd with -s and -o", "[mesh][texture][obj]") {
   checker_png("obj_checker.png");
   // vt = (x, 1 - y) (OBJ's v up), so prt's v-down UV is (x, y) before the options. -s 0.5 0.5 -o 0.5 0:
