@@ -62,10 +62,9 @@ glm::vec3 base_color(const Mesh& mesh, std::uint32_t triangle, double b1, double
 /// The quadrature of the averages below splits a region of a triangle into n x n similar sub-triangles
 /// and takes the base colour at each one's centroid. n = ceil(kQuadraturePerTexel x the region's longest
 /// edge in texels of its texture, after the transform), clamped to [kMinQuadrature, kMaxQuadrature]:
-/// sub-triangle edges of at most 1/2 texel, up to regions 1024 texels across (about 8 samples per
-/// texel of area: bilinear is linear between texel centres, and a texel's kinks fall inside about
-/// half of its samples' sub-triangles); untextured regions use kMinQuadrature (the base colour is
-/// linear there, up to the clamp).
+/// sub-triangle edges of at most 1/2 texel for regions up to 1024 texels across; untextured regions use
+/// kMinQuadrature (the base colour is linear there, up to the clamp). tests/mesh/test_texture.cpp
+/// bounds the error on checker textures.
 inline constexpr int kQuadraturePerTexel = 2;
 inline constexpr int kMinQuadrature = 4;
 inline constexpr int kMaxQuadrature = 2048;
