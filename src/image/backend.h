@@ -27,8 +27,9 @@ struct Functions {
   std::string (*write)(const std::string& file, const std::string& format_path, int width, int height, int channels,
                        const std::vector<float>& pixels, bool display);
   /// Decodes an image file held in memory (`bytes`), in the format named by `format` (an extension
-  /// without the dot: "png", "jpg", ...), under the same limits as `read`.
-  std::string (*read_memory)(const std::string& bytes, const std::string& format, DecodedImage& out);
+  /// without the dot: "png", "jpg", ...), under the same limits as `read`, and refuses (from the header,
+  /// before decoding) an image whose decoded floats would take more than `max_bytes`.
+  std::string (*read_memory)(const std::string& bytes, const std::string& format, double max_bytes, DecodedImage& out);
 };
 
 inline constexpr int kAbiVersion = 2;

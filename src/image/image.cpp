@@ -84,9 +84,9 @@ Image read_rgb(const std::string& path) {
   return linear_rgb(raw);
 }
 
-Image decode_rgb(const std::string& bytes, const std::string& format, const std::string& name) {
+Image decode_rgb(const std::string& bytes, const std::string& format, const std::string& name, double max_bytes) {
   backend::DecodedImage raw;
-  const std::string problem = functions().read_memory(bytes, format, raw);
+  const std::string problem = functions().read_memory(bytes, format, max_bytes, raw);
   if (!problem.empty()) fail_file(name, problem);
   return linear_rgb(raw);
 }

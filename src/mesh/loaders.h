@@ -55,7 +55,8 @@ void take_materials(RawMesh* raw, Mesh* mesh, LoadReport* result);
 /// Decodes `bytes`, an image file's content, into `texture` (linear RGB, image::decode_rgb) and
 /// adds its size to *held_bytes. The format comes from the content's signature, else from `hint` (a
 /// mime type or a file name). Returns false, with the one-line *problem naming `name`, for KTX2/Basis,
-/// anything prt_image cannot decode, or when the textures held would pass half of the machine's memory.
+/// anything prt_image cannot decode, or when the image's header says that the textures held would then
+/// pass half of the machine's memory (refused before its pixels are decoded).
 bool decode_texture(const std::string& bytes, const std::string& hint, const std::string& name, std::uint64_t* held_bytes,
                     Texture* texture, std::string* problem);
 

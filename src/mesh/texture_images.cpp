@@ -44,19 +44,16 @@ bool decode_texture(const std::string& bytes, const std::string& hint, const std
     *problem = name + ": KTX2/Basis images are not decoded";
     return false;
   }
+  // The textures of one mesh may hold at most half of the machine's memory (checked from the header).
+  const std::uint64_t budget = physical_memory_bytes() / 2;
   image::Image decoded;
   try {
-    decoded = image::decode_rgb(bytes, format, name);
+    decoded = image::decode_rgb(bytes, format, name, double(budget > *held_bytes ? budget - *held_bytes : 0));
   } catch (const Error& e) {
     *problem = e.what();
     return false;
   }
-  const std::uint64_t size = std::uint64_t(decoded.pixels.size()) * sizeof(float);
-  if (*held_bytes + size > physical_memory_bytes() / 2) {
-    *problem = name + ": the decoded textures would need more than half of this machine's memory";
-    return false;
-  }
-  *held_bytes += size;
+  *held_bytes += std::uint64_t(decoded.pixels.size()) * sizeof(float);
   texture->width = decoded.width;
   texture->height = decoded.height;
   texture->rgb = std::move(decoded.pixels);

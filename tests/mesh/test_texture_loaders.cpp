@@ -112,6 +112,10 @@ TEST_CASE("glTF baseColorTexture from a file, a buffer view and a data: URI", "[
   const std::string external = quad_gltf("external", {{"uri", "checker.png"}});
   const std::string view = quad_gltf("view", {{"bufferView", 5}, {"mimeType", "image/png"}}, png_bytes);
   const std::string data = quad_gltf("data", {{"uri", "data:image/png;base64," + base64(png_bytes)}});
+  // The memory budget is checked from the header: 8 x 8 x 3 floats are 768 bytes.
+  CHECK(error_of([&] { prt::image::decode_rgb(png_bytes, "png", "budget", 767.0); }) ==
+        "budget: image of 8x8 pixels needs more memory than is left for it");
+  CHECK(prt::image::decode_rgb(png_bytes, "png", "budget", 768.0).width == 8);
   for (const std::string& path : {external, view, data}) {
     INFO(path);
     LoadReport report;
