@@ -103,10 +103,14 @@ std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bo
     j["bounces_requested"] = o.bounces < 0 ? std::string("auto") : std::to_string(o.bounces);
     j["bounces"] = bounces_done;
   }
-  if (mesh.albedo.empty())
+  // "albedo_source" (docs/formats.md): absent for the default albedo, so such bakes keep their bytes.
+  if (mesh.albedo.empty()) {
     j["albedo"] = {o.albedo.r, o.albedo.g, o.albedo.b};
-  else
+    if (o.albedo_given) j["albedo_source"] = "option";
+  } else {
     j["albedo"] = "mesh";
+    j["albedo_source"] = mesh::albedo_source_name(mesh.albedo_source);
+  }
   return j.dump();
 }
 

@@ -80,6 +80,9 @@ struct BakeOptions {
   int samples = 1024;                              ///< rays per vertex, >= 1 (shadowed, interreflected)
   int bounces = -1;       ///< interreflection passes; -1: until a pass adds < 1e-3 of the first pass's energy (cap 16)
   glm::vec3 albedo{0.8f}; ///< linear albedo in [0,1] for meshes that carry none
+  /// The user gave `albedo` (the caller has dropped the mesh's own, mesh::drop_albedo): the bake
+  /// parameters record its source as "option" rather than the default.
+  bool albedo_given = false;
   std::uint32_t seed = 1; ///< sample-set scrambling and per-vertex frame rotations
   int threads = 0;        ///< worker threads; 0 = all cores. Does not change the output.
   bool progress = false;  ///< progress bar on stderr (only drawn when stderr is a terminal)

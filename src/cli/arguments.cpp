@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 #include <vector>
 
@@ -41,6 +42,16 @@ image::ToneMap parse_tone_map(const std::string& name) {
 }
 
 bool want_progress(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
+
+mesh::Mesh load_mesh_for_albedo(const std::string& path, const std::string& albedo, mesh::LoadReport* report, bool quiet) {
+  mesh::Mesh mesh = mesh::load_mesh(path, report, quiet);
+  if (albedo.empty() || mesh.albedo_source == mesh::AlbedoSource::none) return mesh;
+  if (!quiet)
+    std::cerr << path << ": --albedo " << albedo << " overrides the file's " << mesh::albedo_source_name(mesh.albedo_source)
+              << " albedo\n";
+  mesh::drop_albedo(&mesh);
+  return mesh;
+}
 
 void add_footprint_option(CLI::App* cmd, std::string& value, const std::string& what) {
   cmd->add_option("--footprint", value, "area or vertex: " + what)->capture_default_str();

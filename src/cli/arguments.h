@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include "image/image.h"
+#include "mesh/mesh.h"
 
 namespace CLI {
 class App;
@@ -30,6 +31,11 @@ image::ToneMap parse_tone_map(const std::string& name);
 
 /// True if stderr is a terminal and `quiet` is not set: whether to draw progress bars.
 bool want_progress(bool quiet);
+
+/// load_mesh for a command with --albedo: where `albedo` (the flag's text) is given and the file has an
+/// albedo of its own, prints "<path>: --albedo R,G,B overrides the file's <source> albedo" (unless
+/// `quiet`) and drops the file's (mesh::drop_albedo), so that the option's albedo applies everywhere.
+mesh::Mesh load_mesh_for_albedo(const std::string& path, const std::string& albedo, mesh::LoadReport* report, bool quiet);
 
 /// Parses "K,N" (two integers: clusters, PCA vectors); false if the text is not of that form.
 bool parse_compress_setting(const std::string& text, int& clusters, int& pca);

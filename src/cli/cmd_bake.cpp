@@ -84,7 +84,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   // Check the outputs before spending minutes baking (rank 0 alone writes them).
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, &load_report, o.quiet || !job().is_root());
   const int bands_out = options.bands_out ? options.bands_out : o.bands;
   const std::string sized_by = std::to_string(o.bands) +
                                (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
@@ -119,7 +119,7 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap.mesh_path = o.mesh_path;
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path});
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, &load_report, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, &load_report, o.quiet || !job().is_root());
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::check_lightmap(mesh, options, lightmap);
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
@@ -151,6 +151,7 @@ void run_bake(const BakeCommandOptions& o) {
   options.progress = want_progress(o.quiet) && job().is_root();
   options.dist = &job();
   if (!o.albedo.empty()) options.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
+  options.albedo_given = !o.albedo.empty();
   if (!o.brdf.empty()) {
     if (!transfer::is_glossy(options.kind))
       fail("--brdf applies to glossy transfer only (--transfer glossy-shadowed or glossy-interreflected)");

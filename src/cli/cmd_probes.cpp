@@ -171,7 +171,7 @@ void run_probes(ProbesCommandOptions o) {
   if (job().is_root()) check_outputs({o.output}, {o.scene_path, o.environment, o.points});  // rank 0 alone writes
 
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = mesh::load_mesh(o.scene_path, &load_report, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.scene_path, o.albedo, &load_report, o.quiet || !job().is_root());
   const std::vector<glm::dvec3> positions = place_probes(o, mesh, layout, std::move(points));
   light::Environment environment = light::load_environment(o.environment);
   check_job_inputs({mesh_input(o.scene_path, mesh), environment_input(o.environment, environment),

@@ -177,7 +177,7 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
   }
   if (job().is_root()) check_outputs({o.output}, {o.mesh_path, o.env, o.brdf, o.texels});  // rank 0 alone writes
 
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, nullptr, o.quiet || !job().is_root());
   light::Environment environment = light::load_environment(o.env);
   check_job_inputs({mesh_input(o.mesh_path, mesh), environment_input(o.env, environment),
                     options_input(canonical_options(o, options))});

@@ -26,9 +26,13 @@ struct Functions {
   /// are already display values in [0,1]. `format_path` names the format by its extension.
   std::string (*write)(const std::string& file, const std::string& format_path, int width, int height, int channels,
                        const std::vector<float>& pixels, bool display);
+  /// Decodes an image file held in memory (`bytes`), in the format named by `format` (an extension
+  /// without the dot: "png", "jpg", ...), under the same limits as `read`, and refuses (from the header,
+  /// before decoding) an image whose decoded floats would take more than `max_bytes`.
+  std::string (*read_memory)(const std::string& bytes, const std::string& format, double max_bytes, DecodedImage& out);
 };
 
-inline constexpr int kAbiVersion = 1;
+inline constexpr int kAbiVersion = 2;
 
 /// Decoding limits, checked against the file's header before pixels are allocated (docs/formats.md,
 /// "Limits"): a side of at most 32768, at most 2^26 pixels (8192 x 8192, 16384 x 4096), at most 16

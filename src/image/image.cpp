@@ -55,6 +55,20 @@ const backend::Functions& functions() {
   return *table;
 }
 
+// 1 channel (grey) and 2 (grey + alpha) replicate the first channel; 3 or more keep R, G, B.
+Image linear_rgb(const backend::DecodedImage& raw) {
+  Image out(raw.width, raw.height, 3);
+  const std::size_t pixels = static_cast<std::size_t>(raw.width) * raw.height;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const int source = raw.channels >= 3 ? c : 0;
+      const float v = raw.pixels[p * raw.channels + source];
+      out.pixels[p * 3 + c] = raw.srgb_encoded ? static_cast<float>(srgb_to_linear(v)) : v;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 Image read_rgb(const std::string& path) {
@@ -67,18 +81,14 @@ Image read_rgb(const std::string& path) {
   backend::DecodedImage raw;
   const std::string problem = functions().read(path, raw);
   if (!problem.empty()) fail_file(path, problem);
+  return linear_rgb(raw);
+}
 
-  // 1 channel (grey) and 2 (grey + alpha) replicate the first channel; 3 or more keep R, G, B.
-  Image out(raw.width, raw.height, 3);
-  const std::size_t pixels = static_cast<std::size_t>(raw.width) * raw.height;
-  for (std::size_t p = 0; p < pixels; ++p) {
-    for (int c = 0; c < 3; ++c) {
-      const int source = raw.channels >= 3 ? c : 0;
-      const float v = raw.pixels[p * raw.channels + source];
-      out.pixels[p * 3 + c] = raw.srgb_encoded ? static_cast<float>(srgb_to_linear(v)) : v;
-    }
-  }
-  return out;
+Image decode_rgb(const std::string& bytes, const std::string& format, const std::string& name, double max_bytes) {
+  backend::DecodedImage raw;
+  const std::string problem = functions().read_memory(bytes, format, max_bytes, raw);
+  if (!problem.empty()) fail_file(name, problem);
+  return linear_rgb(raw);
 }
 
 bool is_display_format(const std::string& path) {

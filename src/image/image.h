@@ -30,6 +30,13 @@ inline std::string size_text(const Image& im) { return std::to_string(im.width) 
 /// subimage is read. Throws prt::Error("<path>: <problem>") if the file is missing or cannot be read.
 Image read_rgb(const std::string& path);
 
+/// Decodes an image file held in memory, `bytes`, as read_rgb decodes a file; `format` names the
+/// format as an extension without the dot ("png", "jpg", ...), which picks the one decoder tried.
+/// Throws prt::Error("<name>: <problem>") if it cannot be decoded (unknown format, corrupt data,
+/// beyond the decoding limits, docs/formats.md "Limits"), or if its header says that the decoded file
+/// (all its channels, as floats) would take more than `max_bytes`.
+Image decode_rgb(const std::string& bytes, const std::string& format, const std::string& name, double max_bytes);
+
 /// Writes an image atomically (temporary file, then rename). The format follows the extension:
 /// .exr (32-bit float, linear, no tone map), .hdr (RGBE), .pfm; or 8-bit .png/.jpg/.tga/.bmp, for which
 /// values are treated as display values already in [0,1] (see to_display()) and quantised with

@@ -3,11 +3,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/text.h"
@@ -106,14 +108,19 @@ bool decode_as_float(OIIO::ImageInput& input, const OIIO::ImageSpec& spec, float
   return true;
 }
 
-std::string read_pixels(const std::string& path, DecodedImage& out, StderrCapture& capture) {
-  auto input = OIIO::ImageInput::open(path);
+// Decodes the opened input's first subimage into `out` (limits, and at most `max_bytes` of decoded
+// floats, checked against its header first).
+std::string read_pixels(std::unique_ptr<OIIO::ImageInput> input, DecodedImage& out, StderrCapture& capture,
+                        double max_bytes = kMaxImageFloats * sizeof(float)) {
   if (!input) return with_codec_text("cannot read as an image: " + one_line(OIIO::geterror()), capture);
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return "image has no pixels";
   if (spec.depth > 1) return "volume images are not supported";
   // The header decides the allocation: refuse sizes beyond the limits before any pixel is decoded.
   if (std::string limits = limits_problem(spec.width, spec.height, spec.nchannels); !limits.empty()) return limits;
+  if (double(spec.width) * spec.height * spec.nchannels * sizeof(float) > max_bytes)
+    return "image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+           " pixels needs more memory than is left for it";
   out.width = spec.width;
   out.height = spec.height;
   out.channels = spec.nchannels;
@@ -131,7 +138,18 @@ std::string read(const std::string& path, DecodedImage& out) {
   static const bool one_reader = OIIO::attribute("try_all_readers", 0);
   (void)one_reader;
   StderrCapture capture;
-  std::string problem = read_pixels(path, out, capture);
+  std::string problem = read_pixels(OIIO::ImageInput::open(path), out, capture);
+  if (!problem.empty()) out = DecodedImage{};
+  return problem;
+}
+
+std::string read_memory(const std::string& bytes, const std::string& format, double max_bytes, DecodedImage& out) {
+  static const bool one_reader = OIIO::attribute("try_all_readers", 0);
+  (void)one_reader;
+  StderrCapture capture;
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  std::string problem =
+      read_pixels(OIIO::ImageInput::create("memory." + format, /*do_open=*/true, nullptr, &memory), out, capture, max_bytes);
   if (!problem.empty()) out = DecodedImage{};
   return problem;
 }
@@ -171,7 +189,7 @@ std::string write(const std::string& file, const std::string& format_path, int w
   return "";
 }
 
-const Functions kFunctions{kAbiVersion, &read, &write};
+const Functions kFunctions{kAbiVersion, &read, &write, &read_memory};
 
 }  // namespace
 

@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "core/json_depth.h"
+#include "mesh/gltf_materials.h"
 #include "mesh/loaders.h"
 
 namespace prt::mesh::detail {
@@ -30,11 +31,6 @@ namespace prt::mesh::detail {
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
-
-/// Image data is not needed (textures are ignored): accept every image without decoding it.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;
-}
 
 /// Extensions that change nothing prt reads (materials, textures, lights), or that it handles
 /// (KHR_mesh_quantization: integer attributes are read through the generic accessor reader).
@@ -206,9 +202,10 @@ struct Loader {
   const std::string& path;
   const tinygltf::Model& model;
   GltfReader reader;
+  GltfMaterials& materials;
   RawMesh raw;
   std::vector<std::uint8_t> visited;  // the hierarchy must be a forest: each node reached once
-  bool any_albedo_source = false, any_texture = false, any_skin_or_morph = false;
+  bool any_albedo_source = false, any_vertex_colour = false, any_skin_or_morph = false;
   bool any_emission = false, any_emissive_texture = false;
   std::size_t primitives_without_normals = 0, skipped_modes = 0;
   int uv_set = -1;  // the lightmap UV set (TEXCOORD_<uv_set>); -1 when no triangle primitive has one
@@ -289,11 +286,18 @@ struct Loader {
       for (std::size_t i = 0; i < count; ++i) order.push_back(std::uint32_t(i));
     }
     const std::vector<glm::vec2> uv = read_uv(prim, count, what);
+    std::vector<glm::vec2> colour_uv;
+    const std::uint32_t material = primitive_material(prim, count, what, &colour_uv);
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       if (mirrored) std::swap(b, c);
       raw.indices.insert(raw.indices.end(),
                          {std::uint32_t(base + a), std::uint32_t(base + b), std::uint32_t(base + c)});
       if (!uv.empty()) raw.corner_uv.insert(raw.corner_uv.end(), {uv[a], uv[b], uv[c]});
+      raw.triangle_material.push_back(material);
+      if (colour_uv.empty())
+        raw.base_color_uv.insert(raw.base_color_uv.end(), 3, glm::vec2(0.0f));
+      else
+        raw.base_color_uv.insert(raw.base_color_uv.end(), {colour_uv[a], colour_uv[b], colour_uv[c]});
     };
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       for (std::size_t t = 0; t + 2 < order.size(); t += 3) emit(order[t], order[t + 1], order[t + 2]);
@@ -308,15 +312,30 @@ struct Loader {
     add_emission(prim, count);
   }
 
-  // The primitive's TEXCOORD_<uv_set> per vertex (glTF's v-down convention is prt's); empty, with
-  // missing_uv noted, when it has none.
+  // The primitive's mesh material, and in *colour_uv the UVs its base colour texture reads (empty if
+  // untextured; a primitive without that TEXCOORD set gets the material's untextured copy).
+  std::uint32_t primitive_material(const tinygltf::Primitive& prim, std::size_t count, const std::string& what,
+                                   std::vector<glm::vec2>* colour_uv) {
+    const std::uint32_t material = materials.material_of(prim.material, what);
+    const int set = materials.texcoord_set(material);
+    if (set < 0) return material;
+    *colour_uv = read_texcoord(prim, set, count, what);
+    return colour_uv->empty() ? materials.without_texture(material, what) : material;
+  }
+
+  // The primitive's TEXCOORD_<uv_set> per vertex; empty, with missing_uv noted, when it has none.
   std::vector<glm::vec2> read_uv(const tinygltf::Primitive& prim, std::size_t count, const std::string& what) {
-    const std::string name = "TEXCOORD_" + std::to_string(uv_set < 0 ? 0 : uv_set);
+    const int set = uv_set < 0 ? 0 : uv_set;
+    std::vector<glm::vec2> uv = read_texcoord(prim, set, count, what);
+    if (uv.empty() && missing_uv.empty()) missing_uv = what + " has no TEXCOORD_" + std::to_string(set);
+    return uv;
+  }
+
+  // The primitive's TEXCOORD_<set> per vertex (glTF's v-down convention is prt's); empty when it has none.
+  std::vector<glm::vec2> read_texcoord(const tinygltf::Primitive& prim, int set, std::size_t count, const std::string& what) {
+    const std::string name = "TEXCOORD_" + std::to_string(set);
     const auto it = prim.attributes.find(name);
-    if (it == prim.attributes.end()) {
-      if (missing_uv.empty()) missing_uv = what + " has no " + name;
-      return {};
-    }
+    if (it == prim.attributes.end()) return {};
     int components = 0;
     const std::vector<double> values = reader.read_accessor(it->second, what + " " + name, &components);
     if (components != 2 || values.size() != 2 * count) reader.bad(what + ": " + name + " is not a vec2 per vertex");
@@ -375,7 +394,6 @@ struct Loader {
       const tinygltf::PbrMetallicRoughness& pbr = model.materials[std::size_t(prim.material)].pbrMetallicRoughness;
       if (pbr.baseColorFactor.size() >= 3)
         factor = glm::dvec3(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
-      if (pbr.baseColorTexture.index >= 0) any_texture = true;
       any_albedo_source = true;
     }
     std::vector<double> colours;
@@ -385,14 +403,15 @@ struct Loader {
       colours = reader.read_accessor(it->second, what + " COLOR_0", &components);
       if ((components != 3 && components != 4) || colours.size() != std::size_t(components) * count)
         reader.bad(what + ": COLOR_0 is not a vec3 or vec4 per vertex");
-      any_albedo_source = true;
+      any_albedo_source = any_vertex_colour = true;
     }
     for (std::size_t i = 0; i < count; ++i) {
-      glm::dvec3 albedo = factor;
+      glm::dvec3 colour(1.0);
       if (!colours.empty())
-        albedo *= glm::dvec3(colours[i * std::size_t(components)], colours[i * std::size_t(components) + 1],
-                             colours[i * std::size_t(components) + 2]);
-      raw.albedo.emplace_back(albedo);
+        colour = glm::dvec3(colours[i * std::size_t(components)], colours[i * std::size_t(components) + 1],
+                            colours[i * std::size_t(components) + 2]);
+      raw.vertex_color.emplace_back(colour);
+      raw.albedo.emplace_back(factor * colour);
     }
   }
 };
@@ -456,10 +475,11 @@ bool file_exists(const std::string& file, void*) {
 /// Paths are used as written: no shell-style expansion of "~" or "$VAR" in a buffer uri.
 std::string path_as_written(const std::string& file, void*) { return file; }
 
-tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bool binary, std::string* warn) {
+tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bool binary, std::string* warn,
+                           std::vector<GltfImageBytes>* images) {
   check_json_depth(binary ? glb_json_chunk(path, bytes) : std::string_view(bytes), path);
   tinygltf::TinyGLTF gltf;
-  gltf.SetImageLoader(skip_image, nullptr);
+  gltf.SetImageLoader(keep_gltf_image, images);
   gltf.SetFsCallbacks({&file_exists, &path_as_written, &read_external_file, &tinygltf::WriteWholeFile, nullptr});
   tinygltf::Model model;
   std::string err;
@@ -519,12 +539,15 @@ RawMesh load_gltf(const std::string& path, bool binary) {
   if (bytes.size() >= std::numeric_limits<unsigned int>::max())
     fail_file(path, "file too large for glTF (4 GiB or more)");
   std::string warn;
-  const tinygltf::Model model = parse_gltf(path, bytes, binary, &warn);
+  std::vector<GltfImageBytes> images;
+  const tinygltf::Model model = parse_gltf(path, bytes, binary, &warn, &images);
   for (const std::string& name : model.extensionsRequired)
     if (!extension_is_harmless(name))
       fail_file(path, "requires the glTF extension " + name + ", which prt does not support");
 
-  Loader loader{path, model, GltfReader(path, model), RawMesh{}, std::vector<std::uint8_t>(model.nodes.size(), 0)};
+  GltfMaterials materials(path, model, images);
+  Loader loader{path, model, GltfReader(path, model), materials, RawMesh{},
+                std::vector<std::uint8_t>(model.nodes.size(), 0)};
   if (!first_line(warn).empty()) loader.raw.notes_only.notes.push_back("glTF reader: " + first_line(warn));
 
   // Roots: the default scene, else scene 0, else every node that is no node's child.
@@ -551,10 +574,13 @@ RawMesh load_gltf(const std::string& path, bool binary) {
   if (loader.skipped_modes > 0)
     notes.notes.push_back("skipped " + std::to_string(loader.skipped_modes) +
                           " primitives in point or line modes or without POSITION");
-  if (loader.any_texture)
-    notes.notes.push_back("base colour textures are ignored; albedo uses baseColorFactor and COLOR_0");
   if (loader.any_skin_or_morph) notes.notes.push_back("skins and morph targets are ignored (the bind pose is used)");
-  if (!loader.any_albedo_source) raw.albedo.clear();
+  materials.finish(&raw);
+  if (!loader.any_albedo_source) {
+    raw.albedo.clear();
+    raw.materials.clear();
+  }
+  if (!loader.any_vertex_colour) raw.vertex_color.clear();
   if (!loader.any_emission) raw.emission.clear();
   if (loader.any_emissive_texture) notes.notes.push_back("emissive textures are ignored; emission uses emissiveFactor");
   if (loader.primitives_without_normals > 0)

@@ -32,6 +32,14 @@ struct RawMesh {
   std::vector<glm::vec2> corner_uv;
   std::uint32_t uv_set = 0;
   std::string missing_uv_reason;
+  /// Materials (mesh.h): empty, or one material index per triangle of `indices`; base colour UVs per
+  /// corner when some material is textured (prt's v-down convention); the decoded images; vertex
+  /// colours per position (linear) or empty. `albedo` holds the per-vertex rule's values (mesh.h).
+  std::vector<Material> materials;
+  std::vector<std::uint32_t> triangle_material;
+  std::vector<glm::vec2> base_color_uv;
+  std::vector<Texture> textures;
+  std::vector<glm::vec3> vertex_color;
   std::size_t skipped_polygons = 0;    ///< faces of fewer than 3 vertices, counted as degenerate
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives
 };
@@ -45,11 +53,25 @@ bool usable_normal(const glm::vec3& normal);
 /// Throws prt::Error("<path>: ...") for non-finite positions and when no triangle is left.
 Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet);
 
+/// Moves raw's materials, base colour UVs, textures and vertex colours into `mesh` (positions, indices
+/// and normals already final), sets mesh->albedo_source, and for a textured mesh replaces raw->albedo
+/// of the vertices whose footprint touches a textured triangle by the footprint average (texture_albedo).
+void take_materials(RawMesh* raw, Mesh* mesh, LoadReport* result);
+
+/// Decodes `bytes`, an image file's content, into `texture` (linear RGB, image::decode_rgb) and
+/// adds its size to *held_bytes. The format comes from the content's signature, else from `hint` (a
+/// mime type or a file name). Returns false, with the one-line *problem naming `name`, for KTX2/Basis,
+/// anything prt_image cannot decode, or when the image's header says that the textures held would then
+/// pass half of the machine's memory (refused before its pixels are decoded).
+bool decode_texture(const std::string& bytes, const std::string& hint, const std::string& name, std::uint64_t* held_bytes,
+                    Texture* texture, std::string* problem);
+
 RawMesh load_obj(const std::string& path);
 RawMesh load_ply(const std::string& path);
 RawMesh load_gltf(const std::string& path, bool binary);
 
-/// The other files a mesh file names (mesh::referenced_files): an OBJ's "mtllib" files, a glTF's
+/// The other files a mesh file names (mesh::referenced_files): an OBJ's "mtllib" files (and their
+/// map_Kd images), a glTF's
 /// external buffers and images, resolved against the mesh's folder as the loaders resolve them.
 std::vector<std::string> obj_referenced_files(const std::string& path);
 std::vector<std::string> gltf_referenced_files(const std::string& path, bool binary);

@@ -86,13 +86,28 @@ void check_positions_and_indices(const std::string& path, const RawMesh& raw) {
                           ", but there are " + std::to_string(vertex_count) + " vertices");
 }
 
+// Keeps the entries of `values` (`per` per triangle) of the triangles marked in `keep`; values of any
+// other length (empty: the file has none) are cleared.
+template <class T>
+void keep_triangles(const std::vector<std::uint8_t>& keep, std::size_t per, std::vector<T>* values) {
+  if (values->size() != keep.size() * per) {
+    values->clear();
+    return;
+  }
+  std::size_t out = 0;
+  for (std::size_t t = 0; t < keep.size(); ++t)
+    if (keep[t])
+      for (std::size_t k = 0; k < per; ++k) (*values)[out++] = (*values)[t * per + k];
+  values->resize(out);
+}
+
 // The non-degenerate triangles; counts the rest in result->skipped_degenerate and notes them.
-// raw->corner_uv is filtered alike (kept UVs stay with their corners).
+// raw->corner_uv, raw->base_color_uv and raw->triangle_material are filtered alike (kept entries stay
+// with their triangles).
 std::vector<std::uint32_t> drop_degenerate(const std::string& path, RawMesh* raw_mesh, LoadReport* result) {
-  const RawMesh& raw = *raw_mesh;
-  const bool with_uv = raw.corner_uv.size() == raw.indices.size() && !raw.corner_uv.empty();
-  std::vector<glm::vec2> uv;
+  RawMesh& raw = *raw_mesh;
   std::vector<std::uint32_t> indices;
+  std::vector<std::uint8_t> keep(raw.indices.size() / 3, 0);
   indices.reserve(raw.indices.size());
   std::size_t degenerate = 0;
   for (std::size_t t = 0; t + 2 < raw.indices.size(); t += 3) {
@@ -101,10 +116,12 @@ std::vector<std::uint32_t> drop_degenerate(const std::string& path, RawMesh* raw
       ++degenerate;
       continue;
     }
+    keep[t / 3] = 1;
     indices.insert(indices.end(), {a, b, c});
-    if (with_uv) uv.insert(uv.end(), raw.corner_uv.begin() + std::ptrdiff_t(t), raw.corner_uv.begin() + std::ptrdiff_t(t + 3));
   }
-  raw_mesh->corner_uv = std::move(uv);
+  keep_triangles(keep, 3, &raw.corner_uv);
+  keep_triangles(keep, 3, &raw.base_color_uv);
+  keep_triangles(keep, 1, &raw.triangle_material);
   result->skipped_degenerate = degenerate + raw.skipped_polygons;
   if (indices.empty()) {
     if (result->skipped_degenerate > 0)
@@ -228,6 +245,7 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
   mesh.positions = std::move(raw.positions);
   check_extent(path, mesh);
   assign_normals(raw, &mesh, &result);
+  take_materials(&raw, &mesh, &result);
   clamp_albedo(&raw, &mesh, &result);
   take_emission(path, &raw, &mesh, &result);
   if (!quiet)

@@ -28,19 +28,29 @@
 // the inverse transpose of the node's world matrix; where that matrix mirrors (negative determinant)
 // the triangles' winding is reversed so that front faces stay counter-clockwise.
 //
-// ALBEDO (linear diffuse reflectance per vertex, clamped to [0,1]):
-// - OBJ: the MTL "Kd" of the faces' materials (taken as linear). A vertex used by faces of several
-//   materials gets the mean of those materials' Kd (each distinct material once). If no face names a
-//   material, albedo is empty; faces without a material in a file where others have one count as
-//   Kd = 0.8 (grey). Texture maps and OBJ vertex colours are ignored.
-// - PLY: vertex properties red/green/blue (or diffuse_red/diffuse_green/diffuse_blue). Integer types
-//   (uchar 0..255, ushort 0..65535) are sRGB-encoded: divided by the type's maximum and decoded with
-//   the sRGB transfer function to linear. float/double colours are already linear and used as they are.
-// - glTF: baseColorFactor.rgb (linear) times COLOR_0.rgb (linear; float, or normalised unsigned
-//   byte/short) when both are present, as the glTF spec defines. A primitive without a material has
-//   base colour 1. If no primitive has a material or COLOR_0, albedo is empty. Base colour textures
-//   are ignored (one note on stderr).
-// Albedo is empty when the file gives none; the caller then chooses a default.
+// MATERIALS AND BASE COLOUR (docs/conventions.md, "Albedo and textures"): each triangle has a material
+// (Mesh::triangle_material), and the base colour at a point is texture(transform(uv)) x factor x vertex
+// colour (mesh/texture.h evaluates it; textures are linear RGB, alpha ignored).
+// - OBJ: one material per MTL material: factor Kd (taken as linear), texture map_Kd with its -s
+//   (scale) and -o (offset) options and -clamp on (clamp to edge; default repeat); its UVs are the
+//   corners' "vt" as for lightmap UVs. Faces without a material get a material of Kd 0.8 (grey). No
+//   vertex colours.
+// - glTF: pbrMetallicRoughness.baseColorFactor.rgb and baseColorTexture (its texCoord set,
+//   KHR_texture_transform with its texCoord override, the sampler's wrapS / wrapT and magFilter);
+//   vertex colour COLOR_0.rgb (float, or normalised unsigned byte/short). A primitive without a
+//   material gets a material of factor 1.
+// - PLY: no materials; vertex colours red/green/blue (or diffuse_red/...): integer types (uchar
+//   0..255, ushort 0..65535) are sRGB-encoded and decoded to linear, float/double are linear.
+// Images are decoded with OpenImageIO (embedded in the file or external); one it cannot decode
+// (KTX2/Basis, an unknown format, a missing file) gives one note naming the file and the image, and
+// its materials use the factor alone.
+//
+// ALBEDO (Mesh::albedo: linear diffuse reflectance per vertex, clamped to [0,1]; what per-vertex bakes
+// and shading use): for a vertex whose footprint (mesh/vertex_footprint.h, the hat-weighted one-ring)
+// touches a textured triangle, the base colour averaged over that footprint (texture_albedo, by
+// quadrature on sub-triangles of at most half a texel); for any other vertex the base colour at the vertex, and where the
+// vertex joins triangles of several materials the mean over those distinct materials. Albedo is empty
+// when the file gives no materials and no vertex colours; the caller then chooses a default.
 //
 // EMISSION (linear radiance leaving the front face, per vertex, >= 0; NaN and negative values become 0):
 // - OBJ: the MTL "Ke" of the faces' materials, averaged per vertex over its distinct materials as for
@@ -67,6 +77,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "mesh/material.h"
+
 namespace prt::mesh {
 
 /// Limits every loaded mesh satisfies (docs/formats.md, "Limits"): |coordinate| <= kMaxCoordinate
@@ -76,6 +88,16 @@ namespace prt::mesh {
 inline constexpr double kMaxCoordinate = 1e12;
 inline constexpr double kMinExtent = 1e-9;
 inline constexpr float kMaxEmission = 1e18f;
+
+/// Where a mesh's albedo comes from, the strongest source first: some material has a base colour
+/// texture; materials (factors) only; vertex colours only; none (Mesh::albedo empty).
+enum class AlbedoSource : std::uint8_t { texture, material, vertex_colours, none };
+
+/// "texture", "material", "vertex colours" or "none".
+const char* albedo_source_name(AlbedoSource source);
+
+/// Material index of a triangle of a mesh without materials.
+inline constexpr std::uint32_t kNoMaterial = 0xffffffffu;
 
 struct Mesh {
   std::vector<glm::vec3> positions;    ///< in the file's units and frame (glTF: node transforms applied)
@@ -89,10 +111,29 @@ struct Mesh {
   /// Which UV set lightmap_uv came from: glTF TEXCOORD_<n>; 0 for OBJ vt and PLY u,v.
   std::uint32_t lightmap_uv_set = 0;
 
+  /// Materials (see "MATERIALS AND BASE COLOUR"); empty when the file has none.
+  std::vector<Material> materials;
+  /// One index into materials per triangle when materials is non-empty; else empty.
+  std::vector<std::uint32_t> triangle_material;
+  /// Base colour UVs per triangle corner (as lightmap_uv: 3t + k, v down, glTF's convention), each
+  /// triangle's from its material's texcoord set; empty, or indices.size() entries when some material
+  /// has a texture (corners of untextured triangles hold (0, 0)).
+  std::vector<glm::vec2> base_color_uv;
+  /// Decoded images, indexed by TextureRef::image.
+  std::vector<Texture> textures;
+  /// Linear RGB vertex colour per vertex (glTF COLOR_0, PLY colours); empty when the file has none (1).
+  std::vector<glm::vec3> vertex_color;
+  AlbedoSource albedo_source = AlbedoSource::none;
+
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }
   bool has_lightmap_uv() const { return !lightmap_uv.empty(); }
+  bool textured() const { return !base_color_uv.empty(); }
 };
+
+/// Drops the albedo the file gave: albedo, materials, triangle_material, base_color_uv, textures and
+/// vertex_color become empty and albedo_source none (the caller's default applies, e.g. --albedo).
+void drop_albedo(Mesh* mesh);
 
 /// What loading found, for messages and tests.
 struct LoadReport {
@@ -119,10 +160,10 @@ struct LoadReport {
 Mesh load_mesh(const std::string& path, LoadReport* report = nullptr, bool quiet = false);
 
 /// The files a mesh file refers to, which load_mesh may read and which are inputs as much as the
-/// mesh itself: an OBJ's "mtllib" files, a glTF's (.gltf or .glb) buffer and image URIs other than
-/// data: URIs; each resolved against the mesh's folder. Empty for .ply, other extensions, and a file
-/// that cannot be read or parsed (load_mesh then names the problem). Names that do not exist are
-/// listed too.
+/// mesh itself: an OBJ's "mtllib" files and their map_Kd images, a glTF's (.gltf or .glb) buffer and
+/// image URIs other than data: URIs; each resolved against the mesh's folder. Empty for .ply, other
+/// extensions, and a file that cannot be read or parsed (load_mesh then names the problem). Names that
+/// do not exist are listed too.
 std::vector<std::string> referenced_files(const std::string& path);
 
 /// Area-weighted vertex normals: for each vertex, the normalised sum of (p1-p0)x(p2-p0) over the

@@ -19,13 +19,11 @@
 #include "core/text.h"
 #include "mesh/loaders.h"
 #include "mesh/obj_corner_vertices.h"
+#include "mesh/obj_materials.h"
 
 namespace prt::mesh::detail {
 
 namespace {
-
-/// Kd for faces without a material in a file where other faces have one.
-constexpr float kDefaultKd = 0.8f;
 
 /// Accumulates, per vertex, the distinct values (material indices) its corners reference.
 /// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per vertex.
@@ -212,6 +210,11 @@ std::vector<std::string> obj_referenced_files(const std::string& path) {
       escaped = false;
     }
   }
+  const std::size_t mtl_count = files.size();
+  for (std::size_t i = 0; i < mtl_count; ++i) {
+    const std::vector<std::string> textures = mtl_texture_files(files[i], obj_folder(path));
+    files.insert(files.end(), textures.begin(), textures.end());
+  }
   return files;
 }
 
@@ -312,6 +315,7 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
         if (j >= 2) {  // fan
           raw->indices.insert(raw->indices.end(), {first, previous, index});
           raw->corner_uv.insert(raw->corner_uv.end(), {first_uv, previous_uv, uv});
+          raw->triangle_material.push_back(material >= 0 ? std::uint32_t(material) : std::uint32_t(obj.materials.size()));
         }
         previous = index;
         previous_uv = uv;
@@ -372,6 +376,15 @@ RawMesh load_obj(const std::string& path) {
                                                          : std::to_string(refs.corners_without_uv) + " face corners have no vt";
   }
   obj_materials(obj, &refs, &raw);
+  if (refs.any_material) {
+    obj_material_list(obj_folder(path), obj.materials, &raw);
+    raw.base_color_uv = raw.corner_uv;
+    const bool textured = std::any_of(raw.materials.begin(), raw.materials.end(), [](const Material& m) { return m.textured(); });
+    if (textured && raw.base_color_uv.empty())
+      raw.notes_only.notes.push_back("map_Kd textures are ignored: " + raw.missing_uv_reason + "; Kd alone is used");
+  } else {
+    raw.triangle_material.clear();
+  }
   return raw;
 }
 

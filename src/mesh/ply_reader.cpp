@@ -493,6 +493,7 @@ RawMesh load_ply(const std::string& path) {
             is_integer(type) ? float(srgb_to_linear(std::max(0.0, stored) / unsigned_max(type))) : float(stored);
       }
     }
+    raw.vertex_color = raw.albedo;
   } else if (ply.partial_colours) {
     raw.notes_only.notes.push_back("ignored vertex colours: the file lacks one of red, green, blue");
   }

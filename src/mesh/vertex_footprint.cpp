@@ -69,6 +69,11 @@ double VertexFootprints::ring_area(std::uint32_t v) const {
   return begin_[g + 1] > begin_[g] ? cumulative_area_[begin_[g + 1] - 1] : 0.0;
 }
 
+std::vector<std::uint32_t> VertexFootprints::footprint_corners(std::uint32_t v) const {
+  const std::uint32_t g = group_[v];
+  return std::vector<std::uint32_t>(corners_.begin() + begin_[g], corners_.begin() + begin_[g + 1]);
+}
+
 glm::vec3 VertexFootprints::point(std::uint32_t v, double u, double w, std::uint32_t* triangle) const {
   const std::uint32_t first = begin_[group_[v]], last = begin_[group_[v] + 1];
   const double total = ring_area(v);

@@ -62,6 +62,11 @@ class VertexFootprints {
   /// The footprint's area: the sum of the areas of v's triangles (mesh units squared).
   double ring_area(std::uint32_t v) const;
 
+  /// The triangle corners of v's footprint, each as 3 t + k (corner k of triangle t): the corners of v
+  /// and of the vertices that share its position and normal, in triangle order. Empty for a vertex on
+  /// no triangle.
+  std::vector<std::uint32_t> footprint_corners(std::uint32_t v) const;
+
  private:
   const std::vector<glm::vec3>& positions_;
   std::vector<std::uint32_t> group_;        // the first vertex with v's position and normal

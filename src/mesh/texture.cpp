@@ -1,0 +1,176 @@
+#include "mesh/texture.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/parallel.h"
+#include "mesh/vertex_footprint.h"
+
+namespace prt::mesh {
+
+namespace {
+
+// Texel coordinates beyond this are clamped before the integer conversion (far beyond any image).
+constexpr double kMaxTexelCoordinate = 1e15;
+
+glm::vec3 texel(const Texture& texture, const TextureRef& ref, std::int64_t x, std::int64_t y) {
+  const std::size_t i = (std::size_t(wrap_texel(y, texture.height, ref.wrap_t)) * std::size_t(texture.width) +
+                         std::size_t(wrap_texel(x, texture.width, ref.wrap_s))) * 3;
+  return glm::vec3(texture.rgb[i], texture.rgb[i + 1], texture.rgb[i + 2]);
+}
+
+// The material of a textured triangle, else null.
+const Material* textured_material(const Mesh& mesh, std::uint32_t triangle) {
+  if (mesh.materials.empty() || mesh.base_color_uv.empty()) return nullptr;
+  const Material& material = mesh.materials[mesh.triangle_material[triangle]];
+  return material.textured() ? &material : nullptr;
+}
+
+// The quadrature's n for the region of `triangle` with barycentric corners `corners` (texture.h).
+int quadrature_level(const TriangleColour& colour, const glm::dvec2 corners[3]) {
+  const double longest = std::max({colour.texel_length(corners[0], corners[1]), colour.texel_length(corners[1], corners[2]),
+                                   colour.texel_length(corners[2], corners[0])});
+  const double n = std::ceil(kQuadraturePerTexel * longest);
+  if (!(n <= kMaxQuadrature)) return kMaxQuadrature;
+  return std::max(kMinQuadrature, int(n));
+}
+
+// Calls f(barycentrics) at the centroid of each of the n x n sub-triangles of the region with
+// barycentric corners `corners`, in a fixed order (each sub-triangle has 1 / n^2 of its area).
+template <class F>
+void for_each_centroid(const glm::dvec2 corners[3], int n, F f) {
+  const glm::dvec2 a = corners[0], e1 = (corners[1] - a) / double(n), e2 = (corners[2] - a) / double(n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      f(a + (i + 1.0 / 3.0) * e1 + (j + 1.0 / 3.0) * e2);
+      if (i + j < n - 1) f(a + (i + 2.0 / 3.0) * e1 + (j + 2.0 / 3.0) * e2);
+    }
+}
+
+double triangle_area(const Mesh& mesh, std::uint32_t triangle) {
+  const std::uint32_t* v = &mesh.indices[3 * std::size_t(triangle)];
+  const glm::dvec3 a(mesh.positions[v[0]]), b(mesh.positions[v[1]]), c(mesh.positions[v[2]]);
+  return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+// The integrals over `triangle` of base colour x barycentric weight k, k = 0, 1, 2.
+std::array<glm::dvec3, 3> hat_moments(const Mesh& mesh, std::uint32_t triangle) {
+  static const glm::dvec2 kWhole[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
+  const TriangleColour lookup(mesh, triangle);
+  const int n = quadrature_level(lookup, kWhole);
+  std::array<glm::dvec3, 3> sums{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+  for_each_centroid(kWhole, n, [&](const glm::dvec2& b) {
+    const glm::dvec3 colour(lookup.at(b.x, b.y));
+    sums[0] += (1.0 - b.x - b.y) * colour;
+    sums[1] += b.x * colour;
+    sums[2] += b.y * colour;
+  });
+  const double weight = triangle_area(mesh, triangle) / (double(n) * double(n));
+  for (glm::dvec3& s : sums) s *= weight;
+  return sums;
+}
+
+}  // namespace
+
+glm::vec2 transform_uv(const TextureTransform& transform, glm::vec2 uv) {
+  const float x = transform.scale.x * uv.x, y = transform.scale.y * uv.y;
+  const float c = std::cos(transform.rotation), s = std::sin(transform.rotation);
+  return glm::vec2(transform.offset.x + x * c + y * s, transform.offset.y - x * s + y * c);
+}
+
+int wrap_texel(std::int64_t i, int n, Wrap mode) {
+  if (i >= 0 && i < n) return int(i);  // inside the image: every mode agrees
+  switch (mode) {
+    case Wrap::clamp_to_edge:
+      return int(std::clamp<std::int64_t>(i, 0, n - 1));
+    case Wrap::mirrored_repeat: {
+      const std::int64_t period = 2 * std::int64_t(n), m = ((i % period) + period) % period;
+      return int(m < n ? m : period - 1 - m);
+    }
+    default:
+      return int(((i % n) + n) % n);
+  }
+}
+
+glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+  const double x = std::clamp(double(uv.x) * texture.width, -kMaxTexelCoordinate, kMaxTexelCoordinate);
+  const double y = std::clamp(double(uv.y) * texture.height, -kMaxTexelCoordinate, kMaxTexelCoordinate);
+  if (ref.filter == Filter::nearest) return texel(texture, ref, std::int64_t(std::floor(x)), std::int64_t(std::floor(y)));
+  const double fx0 = std::floor(x - 0.5), fy0 = std::floor(y - 0.5);
+  const float fx = float(x - 0.5 - fx0), fy = float(y - 0.5 - fy0);
+  const std::int64_t x0 = std::int64_t(fx0), y0 = std::int64_t(fy0);
+  const glm::vec3 top = (1.0f - fx) * texel(texture, ref, x0, y0) + fx * texel(texture, ref, x0 + 1, y0);
+  const glm::vec3 bottom = (1.0f - fx) * texel(texture, ref, x0, y0 + 1) + fx * texel(texture, ref, x0 + 1, y0 + 1);
+  return (1.0f - fy) * top + fy * bottom;
+}
+
+TriangleColour::TriangleColour(const Mesh& mesh, std::uint32_t triangle) {
+  if (!mesh.materials.empty()) factor_ = mesh.materials[mesh.triangle_material[triangle]].base_color_factor;
+  if (const Material* material = textured_material(mesh, triangle)) {
+    texture_ = &mesh.textures[std::size_t(material->base_color.image)];
+    ref_ = &material->base_color;
+    const glm::vec2* uv = &mesh.base_color_uv[3 * std::size_t(triangle)];
+    const glm::dvec2 t0(transform_uv(ref_->transform, uv[0])), t1(transform_uv(ref_->transform, uv[1])),
+        t2(transform_uv(ref_->transform, uv[2]));
+    uv0_ = t0;
+    du1_ = t1 - t0;
+    du2_ = t2 - t0;
+  }
+  if (!mesh.vertex_color.empty())
+    for (int k = 0; k < 3; ++k) colours_[k] = &mesh.vertex_color[mesh.indices[3 * std::size_t(triangle) + std::size_t(k)]];
+}
+
+glm::vec3 TriangleColour::at(double b1, double b2) const {
+  glm::vec3 colour = factor_;
+  if (texture_) colour *= sample_texture(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
+  if (colours_[0])
+    colour *= glm::vec3((1.0 - b1 - b2) * glm::dvec3(*colours_[0]) + b1 * glm::dvec3(*colours_[1]) + b2 * glm::dvec3(*colours_[2]));
+  for (int c = 0; c < 3; ++c) colour[c] = std::isnan(colour[c]) ? 0.0f : std::clamp(colour[c], 0.0f, 1.0f);
+  return colour;
+}
+
+double TriangleColour::texel_length(const glm::dvec2& a, const glm::dvec2& b) const {
+  if (!texture_) return 0.0;
+  const glm::dvec2 d = (b.x - a.x) * du1_ + (b.y - a.y) * du2_;
+  return glm::length(d * glm::dvec2(texture_->width, texture_->height));
+}
+
+glm::vec3 base_color(const Mesh& mesh, std::uint32_t triangle, double b1, double b2) {
+  return TriangleColour(mesh, triangle).at(b1, b2);
+}
+
+glm::vec3 region_average(const Mesh& mesh, std::uint32_t triangle, const glm::dvec2 corners[3]) {
+  const TriangleColour lookup(mesh, triangle);
+  const int n = quadrature_level(lookup, corners);
+  glm::dvec3 sum(0.0);
+  for_each_centroid(corners, n, [&](const glm::dvec2& b) { sum += glm::dvec3(lookup.at(b.x, b.y)); });
+  return glm::vec3(sum / (double(n) * double(n)));
+}
+
+void texture_albedo(const Mesh& mesh, int threads, std::vector<glm::vec3>* albedo) {
+  if (!mesh.textured()) return;
+  const std::size_t triangles = mesh.triangle_count();
+  std::vector<std::array<glm::dvec3, 3>> moments(triangles);
+  parallel_for(triangles, 16, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) moments[t] = hat_moments(mesh, std::uint32_t(t));
+  });
+  const VertexFootprints footprints(mesh);
+  for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
+    glm::dvec3 sum(0.0);
+    double weight = 0.0;
+    bool touches_texture = false;
+    for (std::uint32_t corner : footprints.footprint_corners(v)) {
+      const std::uint32_t t = corner / 3;
+      touches_texture = touches_texture || textured_material(mesh, t) != nullptr;
+      sum += moments[t][corner % 3];
+      weight += triangle_area(mesh, t) / 3.0;
+    }
+    if (touches_texture && weight > 0.0) (*albedo)[v] = glm::vec3(sum / weight);
+  }
+}
+
+}  // namespace prt::mesh
