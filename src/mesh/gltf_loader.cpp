@@ -22,6 +22,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json_depth.h"
+#include "mesh/gltf_compressed.h"
 #include "mesh/loaders.h"
 
 namespace prt::mesh::detail {
@@ -39,13 +40,6 @@ std::string first_line(const std::string& text) {
 /// Image data is not needed (textures are ignored): accept every image without decoding it.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
-}
-
-/// Extensions that change nothing prt reads (materials, textures, lights), or that it handles
-/// (KHR_mesh_quantization: integer attributes are read through the generic accessor reader).
-bool extension_is_harmless(const std::string& name) {
-  return name == "KHR_mesh_quantization" || name == "KHR_texture_transform" || name == "KHR_texture_basisu" ||
-         name == "KHR_lights_punctual" || name == "EXT_texture_webp" || name.rfind("KHR_materials_", 0) == 0;
 }
 
 std::size_t component_size(int component_type) {
@@ -464,8 +458,33 @@ bool file_exists(const std::string& file, void*) {
 /// Paths are used as written: no shell-style expansion of "~" or "$VAR" in a buffer uri.
 std::string path_as_written(const std::string& file, void*) { return file; }
 
-tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bool binary, std::string* warn) {
-  check_json_depth(binary ? glb_json_chunk(path, bytes) : std::string_view(bytes), path);
+/// The bytes to hand tinygltf: `bytes` with its JSON replaced by `json` (the GLB's other chunks kept).
+std::string with_json(const std::string& bytes, std::string_view old_json, bool binary, std::string json) {
+  if (!binary) return json;
+  json.append((4 - json.size() % 4) % 4, ' ');
+  const std::size_t rest = std::size_t(old_json.data() - bytes.data()) + old_json.size();
+  std::string out(20, '\0');
+  auto put = [&](std::size_t at, std::size_t v) {
+    for (int k = 0; k < 4; ++k) out[at + std::size_t(k)] = char((v >> (8 * k)) & 0xFF);
+  };
+  put(0, 0x46546C67u);  // "glTF"
+  put(4, 2);
+  put(8, 20 + json.size() + (bytes.size() - rest));
+  put(12, json.size());
+  put(16, 0x4E4F534Au);  // "JSON"
+  return out + json + bytes.substr(rest);
+}
+
+/// Checks extensionsRequired before any buffer is read, then parses with tinygltf and decodes the
+/// compressed geometry (gltf_compressed.h), so that the model reads as plain glTF.
+tinygltf::Model parse_gltf(const std::string& path, const std::string& file_bytes, bool binary, std::string* warn) {
+  const std::string_view text = binary ? glb_json_chunk(path, file_bytes) : std::string_view(file_bytes);
+  check_json_depth(text, path);
+  nlohmann::json document = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  check_required_extensions(path, document);  // a malformed document is tinygltf's to name
+  const bool stubbed = patch_for_tinygltf(&document);
+  const std::string patched = stubbed ? with_json(file_bytes, text, binary, document.dump()) : std::string();
+  const std::string& bytes = stubbed ? patched : file_bytes;
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(skip_image, nullptr);
   gltf.SetFsCallbacks({&file_exists, &path_as_written, &read_external_file, &tinygltf::WriteWholeFile, nullptr});
@@ -484,6 +503,8 @@ tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bo
     fail_file(path, "cannot read glTF: a buffer or buffer view is malformed (byteLength 0?)");
   }
   if (!ok) fail_file(path, "cannot read glTF: " + first_line(err.empty() ? *warn : err));
+  decode_meshopt_views(path, &model);
+  decode_draco_primitives(path, &model);
   return model;
 }
 
@@ -528,9 +549,6 @@ RawMesh load_gltf(const std::string& path, bool binary) {
     fail_file(path, "file too large for glTF (4 GiB or more)");
   std::string warn;
   const tinygltf::Model model = parse_gltf(path, bytes, binary, &warn);
-  for (const std::string& name : model.extensionsRequired)
-    if (!extension_is_harmless(name))
-      fail_file(path, "requires the glTF extension " + name + ", which prt does not support");
 
   Loader loader{path, model, GltfReader(path, model), RawMesh{}, std::vector<std::uint8_t>(model.nodes.size(), 0)};
   if (!first_line(warn).empty()) loader.raw.notes_only.notes.push_back("glTF reader: " + first_line(warn));
