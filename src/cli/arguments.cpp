@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -64,6 +65,20 @@ std::string flag_of_field(const std::string& field) {
   std::string flag = "--" + field;
   std::replace(flag.begin(), flag.end(), '_', '-');
   return flag;
+}
+
+int parse_scene(const std::string& text) {
+  if (text == "all") return mesh::kAllScenes;
+  const bool digits = !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits || std::stoll(text) > std::numeric_limits<int>::max())
+    throw Error("--scene: expected a scene index (0, 1, ...) or all, got '" + text + "'");
+  return int(std::stoll(text));
+}
+
+void add_scene_option(CLI::App* cmd, int& scene) {
+  cmd->add_option_function<std::string>(
+      "--scene", [&scene](const std::string& text) { scene = parse_scene(text); },
+      "N or all: the glTF scene to load (default: the file's default scene), or every scene");
 }
 
 }  // namespace prt::cli

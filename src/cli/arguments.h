@@ -38,4 +38,12 @@ bool parse_compress_setting(const std::string& text, int& clusters, int& pca);
 /// '_' as '-' ("sun_samples" -> "--sun-samples"), except the fields whose flag is spelled otherwise.
 std::string flag_of_field(const std::string& field);
 
+/// Parses --scene: "all" (mesh::kAllScenes) or a scene index 0..2^31-1. Throws
+/// prt::Error("--scene: expected a scene index (0, 1, ...) or all, got '<text>'").
+int parse_scene(const std::string& text);
+
+/// Adds `--scene N|all` to `cmd`, a command that loads a mesh: which glTF scene it reads, parsed into
+/// `scene` (mesh::LoadOptions::scene; left as it is, mesh::kDefaultScene, when the flag is absent).
+void add_scene_option(CLI::App* cmd, int& scene);
+
 }  // namespace prt::cli

@@ -543,7 +543,41 @@ int lightmap_uv_set(const tinygltf::Model& model) {
   return set;
 }
 
-RawMesh load_gltf(const std::string& path, bool binary) {
+// The root nodes of each scene to load, scene by scene (mesh.h, VERTEX ORDER): the chosen scene, every
+// scene, or the default one (with a note when there are several); every node that is no node's child
+// when the file has no scenes.
+std::vector<std::vector<int>> scene_roots(const std::string& path, const tinygltf::Model& model, int scene,
+                                          LoadReport* notes) {
+  const std::size_t scenes = model.scenes.size();
+  const std::string have = "the file has " + std::to_string(scenes) + (scenes == 1 ? " scene" : " scenes");
+  if (scene >= 0 && std::size_t(scene) >= scenes)
+    fail_file(path, "scene " + std::to_string(scene) + " does not exist (" + have + ")");
+  if (scene >= 0) return {model.scenes[std::size_t(scene)].nodes};
+  if (scene == kAllScenes && scenes > 0) {
+    std::vector<std::vector<int>> all;
+    for (const tinygltf::Scene& s : model.scenes) all.push_back(s.nodes);
+    return all;
+  }
+  if (model.defaultScene >= 0 && std::size_t(model.defaultScene) >= scenes)
+    fail_file(path, "the default scene does not exist");
+  if (scenes > 0) {
+    const std::size_t chosen = model.defaultScene >= 0 ? std::size_t(model.defaultScene) : 0;
+    if (scene == kDefaultScene && scenes > 1)
+      notes->notes.push_back(have + "; loaded only scene " + std::to_string(chosen) +
+                             ", the default (a scene can be chosen by index, or all of them)");
+    return {model.scenes[chosen].nodes};
+  }
+  std::vector<std::uint8_t> is_child(model.nodes.size(), 0);
+  for (const tinygltf::Node& node : model.nodes)
+    for (int child : node.children)
+      if (child >= 0 && std::size_t(child) < model.nodes.size()) is_child[std::size_t(child)] = 1;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (!is_child[i]) roots.push_back(int(i));
+  return {roots};
+}
+
+RawMesh load_gltf(const std::string& path, bool binary, int scene) {
   const std::string bytes = read_file(path);
   if (bytes.size() >= std::numeric_limits<unsigned int>::max())
     fail_file(path, "file too large for glTF (4 GiB or more)");
@@ -553,23 +587,11 @@ RawMesh load_gltf(const std::string& path, bool binary) {
   Loader loader{path, model, GltfReader(path, model), RawMesh{}, std::vector<std::uint8_t>(model.nodes.size(), 0)};
   if (!first_line(warn).empty()) loader.raw.notes_only.notes.push_back("glTF reader: " + first_line(warn));
 
-  // Roots: the default scene, else scene 0, else every node that is no node's child.
-  std::vector<int> roots;
-  if (model.defaultScene >= 0) {
-    if (std::size_t(model.defaultScene) >= model.scenes.size()) fail_file(path, "the default scene does not exist");
-    roots = model.scenes[std::size_t(model.defaultScene)].nodes;
-  } else if (!model.scenes.empty()) {
-    roots = model.scenes[0].nodes;
-  } else {
-    std::vector<std::uint8_t> is_child(model.nodes.size(), 0);
-    for (const tinygltf::Node& node : model.nodes)
-      for (int child : node.children)
-        if (child >= 0 && std::size_t(child) < model.nodes.size()) is_child[std::size_t(child)] = 1;
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) roots.push_back(int(i));
-  }
   loader.uv_set = lightmap_uv_set(model);
-  for (int root : roots) loader.visit(root, glm::dmat4(1.0), 0);
+  for (const std::vector<int>& roots : scene_roots(path, model, scene, &loader.raw.notes_only)) {
+    std::fill(loader.visited.begin(), loader.visited.end(), std::uint8_t(0));  // a node may be in several scenes
+    for (int root : roots) loader.visit(root, glm::dmat4(1.0), 0);
+  }
 
   RawMesh raw = std::move(loader.raw);
   LoadReport& notes = raw.notes_only;

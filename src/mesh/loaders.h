@@ -41,7 +41,8 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
 
 RawMesh load_obj(const std::string& path);
 RawMesh load_ply(const std::string& path);
-RawMesh load_gltf(const std::string& path, bool binary);
+/// `scene`: LoadOptions::scene.
+RawMesh load_gltf(const std::string& path, bool binary, int scene);
 
 /// The other files a mesh file names (mesh::referenced_files): an OBJ's "mtllib" files, a glTF's
 /// external buffers and images, resolved against the mesh's folder as the loaders resolve them.
