@@ -144,7 +144,9 @@ void check_scene_mesh(const Mesh& mesh, const LoadReport& report) {
   }
   for (std::size_t i = 14; i < 17; ++i) CHECK(mesh.albedo[i] == glm::vec3(1.0f));
   CHECK(report.notes ==
-        std::vector<std::string>{"skipped 2 primitives in point or line modes or without POSITION",
+        std::vector<std::string>{"the file has 2 scenes; loaded only scene 1, the default (a scene can be chosen by "
+                                 "index, or all of them)",
+                                 "skipped 2 primitives in point or line modes or without POSITION",
                                  "computed area-weighted normals for 8 of 17 vertices (2 primitives have no normals)"});
 }
 
