@@ -5,15 +5,17 @@
 // baked per-vertex data onto their own copy of the mesh). Nothing is welded, reordered or dropped:
 // - OBJ: the "v" lines, in file order.
 // - PLY: the "vertex" elements, in file order.
-// - glTF: the nodes of the scene are visited depth-first, each node before its children, children in the order of the
-//   node's "children" array; for each visited node with a mesh, that mesh's primitives in order; for
-//   each triangle primitive (modes 4, 5, 6), all `count` elements of its POSITION accessor in accessor
-//   order. A mesh instanced by two nodes appears twice. Primitives in point or line modes contribute
-//   no vertices. The hierarchy must be a set of trees (as the glTF spec requires): a node reached
-//   twice is an error. Which scene (LoadOptions::scene): by default the file's "scene", else scene 0,
-//   else (no scenes) every root node in document order, with a note when the file has several
-//   scenes; or the scene of a given index; or all: every scene in document order, each one's nodes as
-//   above (a node in two scenes appears twice).
+// - glTF: the nodes of the scene are visited depth-first, each node before its children, children in
+//   the order of the node's "children" array; for each visited node with a mesh, that mesh's
+//   primitives in order; for each triangle primitive (modes 4, 5, 6), all `count` elements of its
+//   POSITION accessor in accessor order (a Draco-compressed primitive: Draco's point order; a meshopt-
+//   compressed buffer view: its decoded order; both as gltf-transform decodes them to plain glTF). A
+//   mesh instanced by two nodes appears twice. Primitives in point or line modes contribute no
+//   vertices. The hierarchy must be a set of trees (as the glTF spec requires): a node reached twice
+//   is an error. Which scene (LoadOptions::scene): by default the file's "scene", else scene 0, else
+//   (no scenes) every root node in document order, with a note when the file has several scenes; or
+//   the scene of a given index; or all: every scene in document order, each one's nodes as above (a
+//   node in two scenes appears twice).
 // Polygons with more than 3 vertices (OBJ, PLY) are fan-triangulated: (v0, v1, v2), (v0, v2, v3), ...
 // glTF triangle strips and fans are converted to triangle lists as the glTF spec defines.
 //
