@@ -4,6 +4,7 @@
 // file is patched; after, every EXT_meshopt_compression buffer view and
 // every KHR_draco_mesh_compression primitive is decoded in place, so that the model reads as plain
 // glTF. Every error is prt::Error("<path>: <problem>").
+#include <cstddef>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -34,6 +35,12 @@ bool drop_draco_indices(nlohmann::json* document);
 /// TRIANGLES or INDICES, and its filter NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL) into a new
 /// buffer, and points the view at it. Every size is checked before anything is allocated.
 void decode_meshopt_views(const std::string& path, tinygltf::Model* model);
+
+/// Applies EXT_meshopt_compression's `filter` ("NONE", "OCTAHEDRAL", "QUATERNION" or "EXPONENTIAL")
+/// in place to `count` elements of `stride` bytes, as the spec defines it (gltf_meshopt_filters.cpp).
+/// Preconditions: data holds count * stride bytes; stride is 4 or 8 for OCTAHEDRAL, 8 for
+/// QUATERNION, a multiple of 4 for EXPONENTIAL.
+void apply_meshopt_filter(const std::string& filter, unsigned char* data, std::size_t count, std::size_t stride);
 
 /// Decodes every primitive with a KHR_draco_mesh_compression extension: its attributes named there
 /// and its triangles become new accessors (the original accessors' types, in Draco's point order),

@@ -92,9 +92,7 @@ std::vector<unsigned char> decode_view(const tinygltf::Model& model, const Mesho
   else
     rc = meshopt_decodeIndexSequence(out.data(), v.count, v.stride, src, v.length);
   if (rc != 0) fail_file(path, what + ": the compressed data is corrupt or truncated (meshoptimizer error " + std::to_string(rc) + ")");
-  if (v.filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), v.count, v.stride);
-  if (v.filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), v.count, v.stride);
-  if (v.filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), v.count, v.stride);
+  apply_meshopt_filter(v.filter, out.data(), v.count, v.stride);
   return out;
 }
 

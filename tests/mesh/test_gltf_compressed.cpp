@@ -1,6 +1,8 @@
 // Compressed glTF (KHR_draco_mesh_compression, EXT_meshopt_compression) against an independent
-// decoder (gltf-transform's, tests/data/gltf, scripts/make_compressed_gltf.sh) and a closed form (the
-// EXPONENTIAL filter); glTF scene selection (mesh::LoadOptions::scene).
+// decoder (gltf-transform's, tests/data/gltf, scripts/make_compressed_gltf.sh) and closed forms (the
+// meshopt filters, evaluated in double); glTF scene selection (mesh::LoadOptions::scene).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -10,6 +12,7 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include "mesh/gltf_compressed.h"
 #include "mesh/mesh.h"
 #include "mesh_test_util.h"
 
@@ -122,4 +125,65 @@ TEST_CASE("glTF scenes: the default one with a note, one by index, or all in ord
   CHECK(xs(load_mesh(obj, LoadOptions{kAllScenes, true})) == std::vector<float>{0, 1, 0});
   CHECK(xs(load_mesh(obj, LoadOptions{0, true})) == std::vector<float>{0, 1, 0});
   CHECK(error_of([&] { load_mesh(obj, LoadOptions{1, true}); }) == obj + ": scene 1 does not exist (the file has 1 scene)");
+}
+
+namespace {
+
+/// The spec's octahedral decoding in double: round(c * one / |(x, y, z)|) per component, with the
+/// lower hemisphere folded back; `tie` set when a component lies within 1e-4 of a rounding tie
+/// (where float and double may round apart).
+std::array<int, 3> octahedral_truth(int a, int b, int stored_one, bool* tie) {
+  double x = a, y = b;
+  const double z = stored_one - std::abs(x) - std::abs(y);
+  const double t = std::min(z, 0.0);
+  x += x >= 0 ? t : -t;
+  y += y >= 0 ? t : -t;
+  const double scale = stored_one / std::sqrt(x * x + y * y + z * z);
+  std::array<int, 3> out{};
+  const double c[3] = {x * scale, y * scale, z * scale};
+  for (int k = 0; k < 3; ++k) {
+    // float32 carries the products to within a few ulps: 1e-6 relative
+    if (std::abs(std::abs(c[k] - std::floor(c[k])) - 0.5) < 1e-6 * std::max(1.0, std::abs(c[k]))) *tie = true;
+    out[std::size_t(k)] = int(std::lround(c[k]));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("meshopt OCTAHEDRAL filter: every 8-bit code and a sweep of 16-bit codes against the closed form", "[mesh][gltf]") {
+  // Counts per width: [0] 8-bit, [1] 16-bit.
+  std::size_t checked[2] = {}, ties[2] = {}, wrong[2] = {};
+  auto check = [&](int a, int b, int one, auto zero) {
+    using T = decltype(zero);
+    const std::size_t w = sizeof(T) - 1;
+    T v[4] = {T(a), T(b), T(one), T(77)};  // w is kept
+    prt::mesh::detail::apply_meshopt_filter("OCTAHEDRAL", reinterpret_cast<unsigned char*>(v), 1, sizeof(v));
+    bool tie = false;
+    const std::array<int, 3> truth = octahedral_truth(a, b, one, &tie);
+    ++checked[w];
+    if (tie) ++ties[w];
+    else if (int(v[0]) != truth[0] || int(v[1]) != truth[1] || int(v[2]) != truth[2] || v[3] != T(77)) ++wrong[w];
+  };
+  for (int a = -127; a <= 127; ++a)
+    for (int b = -127; b <= 127; ++b) check(a, b, 127, std::int8_t(0));
+  for (int a = -32767; a <= 32767; a += 97)
+    for (int b = -32767; b <= 32767; b += 89) check(a, b, 32767, std::int16_t(0));
+  CHECK(checked[0] == 255 * 255);
+  CHECK(ties[0] < checked[0] / 1000);  // 8-bit: few products come within 1.3e-4 of a tie
+  CHECK(ties[1] < checked[1] / 10);    // 16-bit: the window is 0.03 at 32767
+  CHECK(wrong[0] == 0);
+  CHECK(wrong[1] == 0);
+}
+
+TEST_CASE("meshopt QUATERNION filter against the closed form", "[mesh][gltf]") {
+  // Largest component index 1 (w goes to slot 1), scale bits 0x7FFC | 3 = 32767: x = 16384 / 32767 / sqrt(2).
+  std::int16_t v[4] = {16384, -8000, 0, std::int16_t(0x7FFC | 1)};
+  prt::mesh::detail::apply_meshopt_filter("QUATERNION", reinterpret_cast<unsigned char*>(v), 1, 8);
+  const double x = 16384.0 / 32767.0 / std::sqrt(2.0), y = -8000.0 / 32767.0 / std::sqrt(2.0);
+  const double w = std::sqrt(1.0 - x * x - y * y);
+  CHECK(v[1] == std::lround(w * 32767.0));
+  CHECK(v[2] == std::lround(x * 32767.0));
+  CHECK(v[3] == std::lround(y * 32767.0));
+  CHECK(v[0] == 0);
 }
