@@ -72,9 +72,10 @@ int add_accessor(tinygltf::Model* model, std::vector<unsigned char> bytes, const
 std::unique_ptr<draco::Mesh> decode_mesh(const tinygltf::Model& model, const tinygltf::Value& ext,
                                          const std::string& what, const std::string& path) {
   const tinygltf::Value& index = ext.Get("bufferView");
-  if (!index.IsNumber() || index.GetNumberAsInt() < 0 || std::size_t(index.GetNumberAsInt()) >= model.bufferViews.size())
+  const int view_index = index.IsNumber() ? index.GetNumberAsInt() : -1;
+  if (view_index < 0 || std::size_t(view_index) >= model.bufferViews.size())
     fail_file(path, what + ": bufferView missing or does not exist");
-  const tinygltf::BufferView& view = model.bufferViews[std::size_t(index.GetNumberAsInt())];
+  const tinygltf::BufferView& view = model.bufferViews[std::size_t(view_index)];
   if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size())
     fail_file(path, what + ": buffer " + std::to_string(view.buffer) + " does not exist");
   const std::vector<unsigned char>& data = model.buffers[std::size_t(view.buffer)].data;
@@ -103,8 +104,9 @@ void decode_primitive(tinygltf::Model* model, tinygltf::Primitive* prim, const t
     const tinygltf::Value& id = ids.Get(name);
     const auto it = prim->attributes.find(name);
     if (it == prim->attributes.end()) continue;  // a Draco attribute the primitive does not use
+    const int unique_id = id.IsNumber() ? id.GetNumberAsInt() : -1;
     const draco::PointAttribute* attribute =
-        id.IsNumber() && id.GetNumberAsInt() >= 0 ? mesh->GetAttributeByUniqueId(std::uint32_t(id.GetNumberAsInt())) : nullptr;
+        unique_id >= 0 ? mesh->GetAttributeByUniqueId(std::uint32_t(unique_id)) : nullptr;
     if (!attribute) fail_file(path, what + ": " + name + " is not in the Draco data");
     if (it->second < 0 || std::size_t(it->second) >= model->accessors.size())
       fail_file(path, what + ": " + name + ": accessor " + std::to_string(it->second) + " does not exist");

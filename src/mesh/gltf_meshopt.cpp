@@ -18,6 +18,8 @@ namespace prt::mesh::detail {
 namespace {
 
 constexpr const char* kMeshopt = "EXT_meshopt_compression";
+/// The one-byte buffer a meshopt fallback buffer without a uri is given for tinygltf.
+constexpr const char* kFallbackStub = "data:application/octet-stream;base64,AA==";
 
 /// Extensions prt reads or that change nothing it reads (materials, textures, lights).
 bool extension_is_supported(const std::string& name) {
@@ -42,42 +44,48 @@ std::string string_property(const tinygltf::Value& ext, const char* key, const c
   return v.IsString() ? v.Get<std::string>() : std::string("(not a string)");
 }
 
-/// One compressed view's extension object, read and checked against the spec's rules.
+/// One compressed view's extension object.
 struct MeshoptView {
   std::size_t buffer = 0, offset = 0, length = 0, stride = 0, count = 0;
   std::string mode, filter;
 };
 
-MeshoptView read_meshopt_view(const tinygltf::Model& model, const tinygltf::BufferView& view,
-                              const tinygltf::Value& ext, const std::string& what, const std::string& path) {
+MeshoptView read_meshopt_view(const tinygltf::Value& ext, const std::string& what, const std::string& path) {
   const long long buffer = int_property(ext, "buffer", -1), offset = int_property(ext, "byteOffset", 0),
                   length = int_property(ext, "byteLength", -1), stride = int_property(ext, "byteStride", -1),
                   count = int_property(ext, "count", -1);
   if (buffer < 0 || offset < 0 || length < 0 || stride < 0 || count < 0)
-    fail_file(path, what + ": buffer, byteOffset, byteLength, byteStride or count missing or not a non-negative integer");
-  MeshoptView v{std::size_t(buffer), std::size_t(offset), std::size_t(length), std::size_t(stride), std::size_t(count),
-                string_property(ext, "mode", ""), string_property(ext, "filter", "NONE")};
-  if (v.buffer >= model.buffers.size()) fail_file(path, what + ": buffer " + std::to_string(buffer) + " does not exist");
+    fail_file(path, what + ": buffer, byteOffset, byteLength, byteStride or count is missing or not a "
+                           "non-negative integer");
+  return {std::size_t(buffer), std::size_t(offset), std::size_t(length), std::size_t(stride), std::size_t(count),
+          string_property(ext, "mode", ""), string_property(ext, "filter", "NONE")};
+}
+
+/// The spec's rules for `v`, and the sizes, checked before anything is allocated.
+void check_meshopt_view(const tinygltf::Model& model, const tinygltf::BufferView& view, const MeshoptView& v,
+                        const std::string& what, const std::string& path) {
+  auto bad = [&](const std::string& problem) { fail_file(path, what + ": " + problem); };
+  if (v.buffer >= model.buffers.size()) bad("buffer " + std::to_string(v.buffer) + " does not exist");
   const std::size_t have = model.buffers[v.buffer].data.size();
-  if (v.offset > have || v.length > have - v.offset) fail_file(path, what + ": compressed data runs past the end of its buffer");
+  if (v.offset > have || v.length > have - v.offset) bad("compressed data runs past the end of its buffer");
   const bool attributes = v.mode == "ATTRIBUTES";
-  if (!attributes && v.mode != "TRIANGLES" && v.mode != "INDICES") fail_file(path, what + ": unknown mode \"" + v.mode + "\"");
+  if (!attributes && v.mode != "TRIANGLES" && v.mode != "INDICES") bad("unknown mode \"" + v.mode + "\"");
   if (attributes ? (v.stride == 0 || v.stride > 256 || v.stride % 4 != 0) : (v.stride != 2 && v.stride != 4))
-    fail_file(path, what + ": byteStride " + std::to_string(v.stride) + " is invalid for mode " + v.mode);
-  if (v.mode == "TRIANGLES" && v.count % 3 != 0) fail_file(path, what + ": TRIANGLES count is not a multiple of 3");
-  const bool filter_ok = v.filter == "NONE" || (attributes && ((v.filter == "OCTAHEDRAL" && (v.stride == 4 || v.stride == 8)) ||
-                                                               (v.filter == "QUATERNION" && v.stride == 8) ||
-                                                               v.filter == "EXPONENTIAL"));
-  if (!filter_ok) fail_file(path, what + ": filter \"" + v.filter + "\" is invalid for mode " + v.mode + " and byteStride " +
-                                      std::to_string(v.stride));
+    bad("byteStride " + std::to_string(v.stride) + " is invalid for mode " + v.mode);
+  if (v.mode == "TRIANGLES" && v.count % 3 != 0) bad("TRIANGLES count is not a multiple of 3");
+  const bool filter_ok =
+      v.filter == "NONE" ||
+      (attributes && ((v.filter == "OCTAHEDRAL" && (v.stride == 4 || v.stride == 8)) ||
+                      (v.filter == "QUATERNION" && v.stride == 8) || v.filter == "EXPONENTIAL"));
+  if (!filter_ok)
+    bad("filter \"" + v.filter + "\" is invalid for mode " + v.mode + " and byteStride " + std::to_string(v.stride));
   // Each 16 decoded bytes take at least 2 bits of the vertex codec (and more in the index codecs):
   // a count that would decode to more than 64x the compressed bytes cannot be honest.
-  if (v.count > v.length * 64 / v.stride) fail_file(path, what + ": count " + std::to_string(count) + " is too large for " +
-                                                             std::to_string(length) + " compressed bytes");
+  if (v.count > v.length * 64 / v.stride)
+    bad("count " + std::to_string(v.count) + " is too large for " + std::to_string(v.length) + " compressed bytes");
   if (v.count * v.stride != view.byteLength)
-    fail_file(path, what + ": count x byteStride (" + std::to_string(v.count * v.stride) +
-                        ") differs from the buffer view's byteLength (" + std::to_string(view.byteLength) + ")");
-  return v;
+    bad("count x byteStride (" + std::to_string(v.count * v.stride) + ") differs from the buffer view's byteLength (" +
+        std::to_string(view.byteLength) + ")");
 }
 
 std::vector<unsigned char> decode_view(const tinygltf::Model& model, const MeshoptView& v, const std::string& what,
@@ -91,15 +99,19 @@ std::vector<unsigned char> decode_view(const tinygltf::Model& model, const Mesho
     rc = meshopt_decodeIndexBuffer(out.data(), v.count, v.stride, src, v.length);
   else
     rc = meshopt_decodeIndexSequence(out.data(), v.count, v.stride, src, v.length);
-  if (rc != 0) fail_file(path, what + ": the compressed data is corrupt or truncated (meshoptimizer error " + std::to_string(rc) + ")");
+  if (rc != 0)
+    fail_file(path, what + ": the compressed data is corrupt or truncated (meshoptimizer error " + std::to_string(rc) + ")");
   apply_meshopt_filter(v.filter, out.data(), v.count, v.stride);
   return out;
 }
 
-bool is_fallback(const tinygltf::Buffer& buffer) {
+/// Whether `view` uses a fallback buffer that stub_meshopt_fallback_buffers gave a placeholder.
+bool uses_stubbed_fallback(const tinygltf::Model& model, const tinygltf::BufferView& view) {
+  if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) return false;
+  const tinygltf::Buffer& buffer = model.buffers[std::size_t(view.buffer)];
   const auto it = buffer.extensions.find(kMeshopt);
-  return it != buffer.extensions.end() && it->second.IsObject() && it->second.Has("fallback") &&
-         it->second.Get("fallback").IsBool() && it->second.Get("fallback").Get<bool>();
+  return buffer.uri == kFallbackStub && it != buffer.extensions.end() && it->second.IsObject() &&
+         it->second.Has("fallback");
 }
 
 }  // namespace
@@ -125,7 +137,7 @@ static bool stub_meshopt_fallback_buffers(nlohmann::json* document) {
     if (buffer.contains("extensions") && buffer["extensions"].is_object() && buffer["extensions"].contains(kMeshopt))
       ext = &buffer["extensions"][kMeshopt];
     if (!ext || !ext->is_object() || ext->value("fallback", false) != true) continue;
-    buffer["uri"] = "data:application/octet-stream;base64,AA==";
+    buffer["uri"] = kFallbackStub;
     buffer["byteLength"] = 1;
     changed = true;
   }
@@ -143,14 +155,14 @@ void decode_meshopt_views(const std::string& path, tinygltf::Model* model) {
     const auto it = view.extensions.find(kMeshopt);
     const std::string what = "buffer view " + std::to_string(i) + " (" + kMeshopt + ")";
     if (it == view.extensions.end()) {
-      if (view.buffer >= 0 && std::size_t(view.buffer) < model->buffers.size() &&
-          is_fallback(model->buffers[std::size_t(view.buffer)]) && model->buffers[std::size_t(view.buffer)].uri.rfind("data:", 0) == 0 &&
-          model->buffers[std::size_t(view.buffer)].data.size() <= 1)
-        fail_file(path, "buffer view " + std::to_string(i) + " is not compressed but uses a meshopt fallback buffer, which holds no data");
+      if (uses_stubbed_fallback(*model, view))
+        fail_file(path, "buffer view " + std::to_string(i) + " is not compressed but uses a meshopt fallback buffer, "
+                        "which holds no data");
       continue;
     }
     if (!it->second.IsObject()) fail_file(path, what + ": the extension is not an object");
-    const MeshoptView compressed = read_meshopt_view(*model, view, it->second, what, path);
+    const MeshoptView compressed = read_meshopt_view(it->second, what, path);
+    check_meshopt_view(*model, view, compressed, what, path);
     tinygltf::Buffer decoded;
     decoded.data = decode_view(*model, compressed, what, path);
     model->buffers.push_back(std::move(decoded));
