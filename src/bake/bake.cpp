@@ -9,18 +9,11 @@
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "sh/basis.h"
 #include "trace/scene.h"
 
 namespace prt::bake {
-
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 void validate_options(const BakeOptions& o) {
   if (o.bands < 1 || o.bands > sh::kMaxBands)
@@ -103,7 +96,7 @@ std::string parameters_json(const BakeOptions& o, const mesh::Mesh& mesh, int bo
     j["seed"] = o.seed;
     j["sample_set"] = "owen-scrambled sobol, cosine-weighted hemisphere, per-vertex hashed rotation";
     j["ray_offset"] = ray_offset;
-    // Only when not the default, so that vertex bakes stay byte-identical to those of earlier versions.
+    // Only for area, so that vertex bakes stay byte-identical to those of earlier versions.
     if (o.footprint != mesh::Footprint::vertex) j["footprint"] = mesh::footprint_name(o.footprint);
   }
   if (o.kind == transfer::Kind::interreflected) {

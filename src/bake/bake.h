@@ -88,8 +88,9 @@ struct BakeOptions {
   /// Where each vertex's rays leave from (shadowed, interreflected and glossy kinds): `area`, points
   /// spread over the vertex's one-ring with its hat weight, so that the value stored is the average
   /// that linear interpolation stands for (no dark vertex at a crease that only the vertex itself
-  /// sees; docs/conventions.md "Vertex footprint"); `vertex`, the vertex itself (the radiance exactly
-  /// at the vertex, what `prt reference` estimates per vertex).
+  /// sees, no dark foot where an object stands on another; docs/conventions.md "Vertex footprint", the
+  /// default of `prt bake`); `vertex`, the vertex itself (the radiance exactly at the vertex, what
+  /// `prt reference` estimates per vertex by default).
   mesh::Footprint footprint = mesh::Footprint::vertex;
   /// The ranks of a distributed bake (dist/context.h); null: this process alone. Every rank traces its
   /// share of the vertices and the passes' results are exchanged. Rank 0's result is complete

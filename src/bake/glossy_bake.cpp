@@ -8,15 +8,12 @@
 #include "bake/passes.h"
 #include "brdf/frame.h"
 #include "brdf/projection.h"
+#include "core/stopwatch.h"
 #include "trace/scene.h"
 
 namespace prt::bake {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Sum over vertices and channels of M[0][0]: the DC response of the transferred radiance to constant
 // lighting (1 - occluded fraction of the sphere for the direct pass).

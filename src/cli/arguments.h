@@ -12,7 +12,7 @@ class App;
 
 namespace prt::cli {
 
-/// Adds `--footprint area|vertex` to `cmd`, its default the value `value` holds ("vertex"): where the
+/// Adds `--footprint area|vertex` to `cmd`, its default the value `value` holds: where the
 /// per-vertex estimates start (mesh/vertex_footprint.h); `what` says what the vertex's value then is.
 /// Parse the value with mesh::parse_footprint.
 void add_footprint_option(CLI::App* cmd, std::string& value, const std::string& what);

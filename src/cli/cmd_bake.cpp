@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/memory_check.h"
+#include "core/stopwatch.h"
 #include "lightmap/texel_bake.h"
 #include "mesh/mesh.h"
 #include "pipeline/transfer_outputs.h"
@@ -30,7 +31,7 @@ struct BakeCommandOptions {
   std::string albedo;
   std::string brdf;
   std::string compress;  // "K,N": write a .cprt instead of the .prt
-  std::string footprint = "vertex";
+  std::string footprint = "area";  // docs/conventions.md "Vertex footprint": contact stays lit
   int bands = 5;
   int bands_out = 0;
   int samples = 1024;
@@ -75,10 +76,6 @@ void print_summary(const std::string& what, const bake::BakeReport& report, tran
   if (kind == transfer::Kind::interreflected || kind == transfer::Kind::glossy_interreflected)
     std::fprintf(stderr, ", %d bounce(s)", report.bounces_done);
   std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, output.c_str());
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Per vertex: checks, bakes (split over the ranks of an MPI job) and writes the outputs from rank 0.
@@ -199,7 +196,7 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--seed", options->seed, "Seed of the sample set and per-vertex frames")->capture_default_str();
   add_footprint_option(cmd, options->footprint,
                        "where a vertex's rays leave from: points of its one-ring, hat-weighted (the value its interpolation "
-                       "stands for, no dark vertex under a fold), or the vertex itself (as prt reference per vertex)");
+                       "stands for: no dark vertex under a fold or where objects touch), or the vertex itself (as prt reference per vertex)");
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
   cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");

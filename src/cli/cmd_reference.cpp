@@ -44,7 +44,7 @@ struct ReferenceCommandOptions {
   unsigned seed = 1;
   int threads = 0;
   bool quiet = false;
-  std::string footprint = "vertex";
+  std::string footprint = "area";  // as prt bake's default (docs/conventions.md "Vertex footprint")
   // --image and the options that only it takes (as `prt render`'s).
   bool image = false;
   std::string texels;  // a lightmap (.prt): the reference at its texel sample points (cmd_reference_texels.h)

@@ -21,6 +21,14 @@ inline std::string one_line(std::string s) {
   return s;
 }
 
+/// The first line of `text` (up to its first '\n'), trailing '\r' and spaces dropped: a library's
+/// multi-line message cut to the line that names the problem.
+inline std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
 /// The extension of the last path component, dot included, in lower case: ".ply" for "a/B.PLY", "" for
 /// "a.d/file" or "file" (std::filesystem::path::extension).
 inline std::string lower_extension(const std::string& path) {

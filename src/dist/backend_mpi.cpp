@@ -11,6 +11,7 @@
 
 #include <mpi.h>
 
+#include "core/stopwatch.h"
 #include "dist/context.h"
 
 namespace prt::dist {
@@ -25,10 +26,6 @@ bool launched_by_mpirun() {
 int to_int(std::size_t value, const char* what) {
   if (value > static_cast<std::size_t>(INT_MAX)) fail(std::string("dist: ") + what + " too large for one MPI exchange");
   return static_cast<int>(value);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // A contiguous MPI datatype of one row, freed on scope exit.

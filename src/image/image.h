@@ -20,6 +20,9 @@ struct Image {
   float at(int x, int y, int c) const { return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c]; }
 };
 
+/// "WxH": an image's size as messages print it.
+inline std::string size_text(const Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); }
+
 /// Reads any file OpenImageIO reads (.exr, .hdr, .png, .tif, ...) as float, converted to linear RGB:
 /// 1-channel images are replicated to 3, extra channels (alpha) dropped; 8/16-bit integer files are
 /// linearised with the sRGB curve unless OpenImageIO reports a linear colour space for them. Values

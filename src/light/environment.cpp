@@ -13,9 +13,6 @@ namespace prt::light {
 
 namespace {
 
-
-std::string size_text(const image::Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); }
-
 // Cells of the cross layouts (column, row) per face +X..-Z; see CROSS LAYOUT in environment.h.
 constexpr int kHorizontalCell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};
 constexpr int kVerticalCell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {1, 3}};
@@ -179,7 +176,7 @@ std::array<image::Image, 6> faces_from_cross(const image::Image& cross, const st
   const bool horizontal = cross.width % 4 == 0 && cross.width / 4 * 3 == cross.height;
   const bool vertical = cross.width % 3 == 0 && cross.width / 3 * 4 == cross.height;
   if (cross.width <= 0 || (!horizontal && !vertical))
-    fail_file(name, "image is " + size_text(cross) + ": a cube cross must be 4N x 3N or 3N x 4N");
+    fail_file(name, "image is " + image::size_text(cross) + ": a cube cross must be 4N x 3N or 3N x 4N");
   const int n = horizontal ? cross.width / 4 : cross.width / 3;
   std::array<image::Image, 6> faces;
   for (int f = 0; f < 6; ++f) {
@@ -262,7 +259,7 @@ Environment load_environment(const std::string& spec) {
       env.faces = faces_from_cross(im, spec);
       for (auto& face : env.faces) add_counts(repaired, zero_invalid_values(face));
     } else {
-      fail_file(spec, "image is " + size_text(im) +
+      fail_file(spec, "image is " + image::size_text(im) +
                           ": expected an equirect map (2:1) or a cube cross (4N x 3N or 3N x 4N)");
     }
   } else {
@@ -271,9 +268,9 @@ Environment load_environment(const std::string& spec) {
       env.faces[f] = image::read_rgb(face_files[f]);
       check_radiance_range(env.faces[f], face_files[f]);
       const image::Image& im = env.faces[f];
-      if (im.width != im.height) fail_file(face_files[f], "cube face is " + size_text(im) + ", not square");
+      if (im.width != im.height) fail_file(face_files[f], "cube face is " + image::size_text(im) + ", not square");
       if (f > 0 && im.width != env.faces[0].width)
-        fail_file(face_files[f], "cube face is " + size_text(im) + " but the +X face is " + size_text(env.faces[0]));
+        fail_file(face_files[f], "cube face is " + image::size_text(im) + " but the +X face is " + image::size_text(env.faces[0]));
       add_counts(repaired, zero_invalid_values(env.faces[f]));
     }
   }

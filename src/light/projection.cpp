@@ -28,11 +28,10 @@ void check_bands(int bands) {
     fail("bands " + std::to_string(bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
 }
 
-std::string size_text(const image::Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); }
 
 void check_equirect(const image::Image& im) {
   if (im.height < 1 || im.width != 2 * im.height)
-    fail("equirect image is " + size_text(im) + ", not 2:1");
+    fail("equirect image is " + image::size_text(im) + ", not 2:1");
   if (im.channels < 3) fail("equirect image has " + std::to_string(im.channels) + " channels, not 3");
 }
 
@@ -248,7 +247,7 @@ sh::RgbCoefficients project_cube(const std::array<image::Image, 6>& faces, int b
   const int n = faces[0].width;
   for (int f = 0; f < 6; ++f) {
     if (faces[f].width != faces[f].height || faces[f].width != n || n < 1)
-      fail("cube face " + std::to_string(f) + " is " + size_text(faces[f]) + ": faces must be square and equal");
+      fail("cube face " + std::to_string(f) + " is " + image::size_text(faces[f]) + ": faces must be square and equal");
     if (faces[f].channels < 3) fail("cube face " + std::to_string(f) + " has fewer than 3 channels");
   }
   const int count = bands * bands;

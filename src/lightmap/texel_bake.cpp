@@ -10,6 +10,7 @@
 #include "bake/vertex_samples.h"
 #include "core/error.h"
 #include "core/memory_check.h"
+#include "core/stopwatch.h"
 #include "lightmap/gutter.h"
 #include "lightmap/sample_repair.h"
 #include "lightmap/uv_validation.h"
@@ -19,10 +20,6 @@
 namespace prt::lightmap {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 bool parse_side(const std::string& part, int& out) {
   if (part.empty() || part.size() > 6 || part.find_first_not_of("0123456789") != std::string::npos) return false;

@@ -21,6 +21,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/json_depth.h"
 #include "mesh/gltf_compressed.h"
 #include "mesh/loaders.h"
@@ -30,12 +31,6 @@ namespace prt::mesh::detail {
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
-
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
-}
 
 /// Image data is not needed (textures are ignored): accept every image without decoding it.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -209,7 +204,7 @@ struct Loader {
   std::vector<std::uint8_t> visited;  // the hierarchy must be a forest: each node reached once
   bool any_albedo_source = false, any_texture = false, any_skin_or_morph = false;
   bool any_emission = false, any_emissive_texture = false;
-  std::size_t primitives_without_normals = 0, primitives_with_bad_normals = 0, skipped_modes = 0;
+  std::size_t primitives_without_normals = 0, skipped_modes = 0;
   int uv_set = -1;  // the lightmap UV set (TEXCOORD_<uv_set>); -1 when no triangle primitive has one
   std::string missing_uv{};  // the first primitive without it, for missing_uv_reason
 
@@ -345,7 +340,7 @@ struct Loader {
   void add_normals(const tinygltf::Primitive& prim, const glm::dmat3& linear, std::size_t count,
                    const std::string& what) {
     raw.normals.resize(raw.positions.size(), glm::vec3(0.0f, 1.0f, 0.0f));
-    raw.normal_usable.resize(raw.positions.size(), 0);
+    raw.has_normal.resize(raw.positions.size(), 0);
     const std::size_t base = raw.positions.size() - count;
     const auto it = prim.attributes.find("NORMAL");
     if (it == prim.attributes.end()) {
@@ -359,14 +354,11 @@ struct Loader {
     for (std::size_t i = 0; i < count; ++i) {
       const glm::dvec3 n = normal_matrix * glm::dvec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
       const double len = glm::length(n);
-      if (!(len > 0.0) || !std::isfinite(len)) {
-        ++primitives_with_bad_normals;
-        std::fill(raw.normal_usable.begin() + std::ptrdiff_t(base), raw.normal_usable.end(), std::uint8_t(0));
-        return;
-      }
-      // Leave unit normals unrounded by a division (finish_mesh keeps them bit for bit).
-      raw.normals[base + i] = std::abs(len * len - 1.0) <= 1e-6 ? glm::vec3(n) : glm::vec3(n / len);
-      raw.normal_usable[base + i] = 1;
+      // Leave unit normals unrounded by a division (finish_mesh keeps them bit for bit), and zero or
+      // non-finite ones as they are (finish_mesh replaces them).
+      const bool keep = !(len > 0.0) || !std::isfinite(len) || std::abs(len * len - 1.0) <= 1e-6;
+      raw.normals[base + i] = keep ? glm::vec3(n) : glm::vec3(n / len);
+      raw.has_normal[base + i] = 1;
     }
   }
 
@@ -605,13 +597,8 @@ RawMesh load_gltf(const std::string& path, bool binary, int scene) {
   if (!loader.any_albedo_source) raw.albedo.clear();
   if (!loader.any_emission) raw.emission.clear();
   if (loader.any_emissive_texture) notes.notes.push_back("emissive textures are ignored; emission uses emissiveFactor");
-  std::string reason;
   if (loader.primitives_without_normals > 0)
-    reason = std::to_string(loader.primitives_without_normals) + " primitives have no normals";
-  if (loader.primitives_with_bad_normals > 0)
-    reason += (reason.empty() ? "" : ", ") + std::to_string(loader.primitives_with_bad_normals) +
-              " primitives have zero or non-finite normals";
-  raw.computed_normals_reason = reason;
+    raw.computed_normals_reason = std::to_string(loader.primitives_without_normals) + " primitives have no normals";
   raw.uv_set = std::uint32_t(std::max(loader.uv_set, 0));
   if (!loader.missing_uv.empty() || loader.uv_set < 0 || raw.corner_uv.size() != raw.indices.size()) {
     raw.corner_uv.clear();

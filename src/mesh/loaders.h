@@ -16,11 +16,13 @@ namespace prt::mesh::detail {
 /// A mesh as read from a file, before validation.
 struct RawMesh {
   std::vector<glm::vec3> positions;
-  /// Empty (no vertex has a file normal) or one per position; meaningful where normal_usable is 1.
+  /// Empty (no vertex has a file normal) or one per position; meaningful where has_normal is 1. Any
+  /// length; finish_mesh replaces the zero and non-finite ones with computed normals.
   std::vector<glm::vec3> normals;
-  /// One per position when normals is non-empty: 1 if the file's normal is used, 0 if computed.
-  std::vector<std::uint8_t> normal_usable;
-  /// Why some normals are computed, for the stderr note (e.g. "the file has no normals").
+  /// One per position when normals is non-empty: 1 if the file gives this vertex a normal.
+  std::vector<std::uint8_t> has_normal;
+  /// Why some vertices have no file normal, for the stderr note (e.g. "the file has no normals");
+  /// finish_mesh adds the count of zero or non-finite ones.
   std::string computed_normals_reason;
   std::vector<glm::vec3> albedo;       ///< empty or one per position (linear, not yet clamped)
   std::vector<glm::vec3> emission;     ///< empty or one per position (linear radiance, not yet clamped)
@@ -34,8 +36,12 @@ struct RawMesh {
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives
 };
 
+/// True if `normal` can be made unit length: every component finite and not all zero (checked in
+/// double, where a float's square neither overflows nor underflows).
+bool usable_normal(const glm::vec3& normal);
+
 /// Validates `raw` (finite positions, indices in range), drops degenerate triangles, computes the
-/// normals that are missing, clamps albedo, fills `report` and prints its notes unless `quiet`.
+/// normals that are missing, zero or not finite (each vertex on its own), clamps albedo, fills `report` and prints its notes unless `quiet`.
 /// Throws prt::Error("<path>: ...") for non-finite positions and when no triangle is left.
 Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet);
 

@@ -131,31 +131,43 @@ void check_extent(const std::string& path, const Mesh& mesh) {
                         " is below 1e-9, the smallest size prt shades safely (scale the mesh up)");
 }
 
-// The file's normals where usable, area-weighted ones elsewhere.
+// The file's normal unit length, kept bit for bit when already unit to float precision (files
+// written by prt round-trip); false for an unusable one.
+bool unit_file_normal(const glm::vec3& normal, glm::vec3* unit) {
+  if (!usable_normal(normal)) return false;
+  const glm::dvec3 n(normal);
+  const double length_sq = glm::dot(n, n);
+  *unit = std::abs(length_sq - 1.0) <= 1e-6 ? normal : glm::vec3(n / std::sqrt(length_sq));
+  return true;
+}
+
+// Each vertex keeps its file normal when it is valid; the other vertices of triangles get area-weighted
+// ones (counted, with the reason, in the note), vertices of no triangle +Y.
 void assign_normals(const RawMesh& raw, Mesh* mesh, LoadReport* result) {
   const std::size_t vertex_count = mesh->positions.size();
   mesh->normals.assign(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
-  std::size_t computed = 0;
+  std::vector<std::uint8_t> used(vertex_count, 0);
+  for (std::uint32_t index : mesh->indices) used[index] = 1;
+  std::size_t missing = 0, invalid = 0;
   std::vector<glm::vec3> area_weighted;
   for (std::size_t i = 0; i < vertex_count; ++i) {
-    if (!raw.normals.empty() && raw.normal_usable[i]) {
-      // Normals already unit to float precision are kept bit for bit (files written by prt round-trip).
-      const glm::dvec3 n(raw.normals[i]);
-      const double length_sq = glm::dot(n, n);
-      mesh->normals[i] = std::abs(length_sq - 1.0) <= 1e-6 ? raw.normals[i] : glm::vec3(n / std::sqrt(length_sq));
-      continue;
-    }
+    const bool given = !raw.normals.empty() && raw.has_normal[i];
+    if (given && unit_file_normal(raw.normals[i], &mesh->normals[i])) continue;
+    if (!used[i]) continue;
+    ++(given ? invalid : missing);
     if (area_weighted.empty()) area_weighted = area_weighted_normals(mesh->positions, mesh->indices);
     mesh->normals[i] = area_weighted[i];
-    ++computed;
   }
+  const std::size_t computed = missing + invalid;
   result->normals_computed = computed > 0;
   result->computed_normal_count = computed;
-  if (computed > 0) {
-    std::string reason = raw.computed_normals_reason.empty() ? "the file has no normals" : raw.computed_normals_reason;
-    result->notes.push_back("computed area-weighted normals for " + std::to_string(computed) + " of " +
-                            std::to_string(vertex_count) + " vertices (" + reason + ")");
-  }
+  if (computed == 0) return;
+  std::string reason = raw.computed_normals_reason.empty() ? "the file has no normals" : raw.computed_normals_reason;
+  if (missing == 0) reason.clear();
+  if (invalid > 0)
+    reason += (reason.empty() ? "" : ", ") + std::to_string(invalid) + " of the file's normals are zero or not finite";
+  result->notes.push_back("computed area-weighted normals for " + std::to_string(computed) + " of " +
+                          std::to_string(vertex_count) + " vertices (" + reason + ")");
 }
 
 // Albedo clamped to [0,1] (NaN -> 0).
@@ -196,6 +208,12 @@ void take_emission(const std::string& path, RawMesh* raw, Mesh* mesh, LoadReport
 }
 
 }  // namespace
+
+bool usable_normal(const glm::vec3& normal) {
+  const glm::dvec3 n(normal);
+  const double length_sq = glm::dot(n, n);
+  return length_sq > 0.0 && std::isfinite(length_sq);
+}
 
 Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool quiet) {
   LoadReport result = std::move(raw.notes_only);

@@ -3,7 +3,11 @@
 //
 // VERTEX ORDER: a loaded mesh's vertices map 1:1, in order, to the input file's vertices (engines load
 // baked per-vertex data onto their own copy of the mesh). Nothing is welded, reordered or dropped:
-// - OBJ: the "v" lines, in file order.
+// - OBJ: the "v" lines, in file order, then the hard-edge copies. A face corner stands for its "v" and
+//   the value of its normal ("none" without "vn" or for a zero or non-finite one); a "v" whose corners
+//   stand for different pairs is split: its first pair (in face order) keeps the v's index, each
+//   further distinct pair is a new vertex at the same position, numbered after all "v"s in the order
+//   the pairs first appear. A file without hard edges maps 1:1 to its "v" lines.
 // - PLY: the "vertex" elements, in file order.
 // - glTF: the nodes of the scene are visited depth-first, each node before its children, children in
 //   the order of the node's "children" array; for each visited node with a mesh, that mesh's
@@ -20,13 +24,13 @@
 // glTF triangle strips and fans are converted to triangle lists as the glTF spec defines.
 //
 // NORMALS: the file's, made unit length (kept bit for bit when already unit to within 1e-6 in squared
-// length, so meshes written by prt round-trip exactly). Where a file (OBJ, PLY) or a glTF primitive
-// has no normals, or any of its normals is zero or not finite, that mesh's normals are all computed
-// as area-weighted vertex normals (see area_weighted_normals). OBJ normals indexed apart from positions: each position
-// gets the normalised sum of the distinct unit normals its corners reference (hard edges are smoothed,
-// since a vertex carries one normal). glTF normals are transformed by the inverse transpose of the
-// node's world matrix; where that matrix mirrors (negative determinant) the triangles' winding is
-// reversed so that front faces stay counter-clockwise.
+// length, so meshes written by prt round-trip exactly), vertex by vertex: a vertex of a triangle whose
+// file normal is missing (no normals in the file or glTF primitive, an OBJ corner without "vn"), zero
+// or not finite gets an area-weighted normal (see area_weighted_normals) and every other vertex keeps
+// its own; LoadReport counts the computed ones. OBJ hard edges (one position, corners with different
+// normals) are separate vertices (VERTEX ORDER), each with its normal. glTF normals are transformed by
+// the inverse transpose of the node's world matrix; where that matrix mirrors (negative determinant)
+// the triangles' winding is reversed so that front faces stay counter-clockwise.
 //
 // ALBEDO (linear diffuse reflectance per vertex, clamped to [0,1]):
 // - OBJ: the MTL "Kd" of the faces' materials (taken as linear). A vertex used by faces of several
@@ -98,7 +102,7 @@ struct Mesh {
 struct LoadReport {
   std::size_t skipped_degenerate = 0;     ///< triangles dropped: repeated index, zero area, polygons of < 3 vertices
   bool normals_computed = false;          ///< some vertices had no (usable) file normal: area-weighted ones computed
-  std::size_t computed_normal_count = 0;  ///< how many vertices got computed normals
+  std::size_t computed_normal_count = 0;  ///< how many vertices (of triangles) got computed normals
   bool albedo_from_file = false;          ///< albedo came from materials or vertex colours
   bool emission_from_file = false;        ///< some material emits (OBJ Ke, glTF emissiveFactor)
   std::size_t skipped_primitives = 0;     ///< glTF primitives in point/line modes or without POSITION

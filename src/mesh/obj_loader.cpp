@@ -16,7 +16,9 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "mesh/loaders.h"
+#include "mesh/obj_corner_vertices.h"
 
 namespace prt::mesh::detail {
 
@@ -25,14 +27,8 @@ namespace {
 /// Kd for faces without a material in a file where other faces have one.
 constexpr float kDefaultKd = 0.8f;
 
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  return line;
-}
-
-/// Accumulates, per position, the distinct values (normal or material indices) its corners reference.
-/// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per position.
+/// Accumulates, per vertex, the distinct values (material indices) its corners reference.
+/// Pairs are collected, then sorted and deduplicated, so each distinct value counts once per vertex.
 class DistinctPairs {
  public:
   void add(std::uint32_t position, int value) { pairs_.emplace_back(position, value); }
@@ -249,8 +245,8 @@ ObjData read_obj(const std::string& path, RawMesh* raw) {
 }
 
 struct FaceRefs {
-  DistinctPairs position_normals, position_materials;
-  bool any_corner_without_normal = false, any_material = false;
+  DistinctPairs position_materials;
+  bool any_material = false;
   std::size_t corners_without_uv = 0;
 };
 
@@ -286,10 +282,12 @@ void check_corner(const std::string& path, const tinyobj::index_t& corner, std::
                         std::to_string(normal_count) + " normals");
 }
 
-// Fan-triangulates every face into raw->indices and collects, per position, its normals and materials.
+// Fan-triangulates every face into raw->indices, splitting positions by normal (CornerVertices), and
+// collects each vertex's materials.
 FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh* raw) {
   const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
   FaceRefs refs;
+  CornerVertices vertices(path, obj.attrib.normals, raw);
   std::size_t face_number = 0;
   for (const tinyobj::shape_t& shape : obj.shapes) {
     const tinyobj::mesh_t& m = shape.mesh;
@@ -308,11 +306,7 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
         const tinyobj::index_t& corner = m.indices[offset + j];
         check_corner(path, corner, face_number, vertex_count, normal_count);
         const glm::vec2 uv = corner_uv(path, obj, corner, face_number, &refs);
-        const std::uint32_t index = std::uint32_t(corner.vertex_index);
-        if (corner.normal_index < 0)
-          refs.any_corner_without_normal = true;
-        else
-          refs.position_normals.add(index, corner.normal_index);
+        const std::uint32_t index = vertices.vertex_of(corner.vertex_index, corner.normal_index);
         refs.position_materials.add(index, material);
         if (j == 0) first = index, first_uv = uv;
         if (j >= 2) {  // fan
@@ -326,53 +320,8 @@ FaceRefs triangulate_faces(const std::string& path, const ObjData& obj, RawMesh*
       offset += n;
     }
   }
+  vertices.finish();
   return refs;
-}
-
-// Normals: the normalised sum of the distinct unit normals each position's corners reference.
-void obj_normals(const ObjData& obj, FaceRefs* refs, RawMesh* raw) {
-  const std::size_t vertex_count = raw->positions.size(), normal_count = obj.attrib.normals.size() / 3;
-  if (normal_count == 0 || refs->any_corner_without_normal) {
-    raw->computed_normals_reason = normal_count == 0 ? "the file has no normals" : "some faces have no normals";
-    return;
-  }
-  const std::vector<float>& file_normals = obj.attrib.normals;
-  std::vector<glm::dvec3> sums(vertex_count, glm::dvec3(0.0));
-  std::vector<std::uint8_t> bad_normal(normal_count, 0);
-  refs->position_normals.for_each([&](std::uint32_t position, int normal) {
-    const glm::dvec3 n(file_normals[3 * normal], file_normals[3 * normal + 1], file_normals[3 * normal + 2]);
-    const double len = glm::length(n);
-    if (!(len > 0.0) || !std::isfinite(len))
-      bad_normal[std::size_t(normal)] = 1;
-    else
-      sums[position] += n / len;
-  });
-  const std::size_t bad = std::size_t(std::count(bad_normal.begin(), bad_normal.end(), 1));
-  std::vector<glm::vec3> normals(vertex_count, glm::vec3(0.0f, 1.0f, 0.0f));
-  std::vector<std::uint8_t> usable(vertex_count, 0), referenced(vertex_count, 0);
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    const double len = glm::length(sums[i]);
-    if (len > 0.0) {
-      normals[i] = glm::vec3(sums[i] / len);
-      usable[i] = 1;
-    }
-  }
-  // Positions of no face keep +Y and are marked usable: there is nothing to compute from.
-  for (std::uint32_t index : raw->indices) referenced[index] = 1;
-  std::size_t cancelled = 0;
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    if (!referenced[i])
-      usable[i] = 1;
-    else if (!usable[i])
-      ++cancelled;
-  }
-  if (bad > 0 || cancelled > 0) {
-    raw->computed_normals_reason = bad > 0 ? std::to_string(bad) + " referenced normals are zero or not finite"
-                                           : std::to_string(cancelled) + " vertices' normals cancel out";
-    return;
-  }
-  raw->normals = std::move(normals);
-  raw->normal_usable = std::move(usable);
 }
 
 // Per position, the mean over the distinct materials of its faces of value(material) (material -1:
@@ -422,7 +371,6 @@ RawMesh load_obj(const std::string& path) {
     raw.missing_uv_reason = obj.attrib.texcoords.empty() ? "the OBJ file has no vt lines"
                                                          : std::to_string(refs.corners_without_uv) + " face corners have no vt";
   }
-  obj_normals(obj, &refs, &raw);
   obj_materials(obj, &refs, &raw);
   return raw;
 }

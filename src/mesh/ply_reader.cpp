@@ -477,18 +477,9 @@ RawMesh load_ply(const std::string& path) {
   for (std::size_t k = 0; k < raw.indices.size() && !ply.uv.empty(); ++k)
     raw.corner_uv.emplace_back(ply.uv[raw.indices[k]].x, 1.0f - ply.uv[raw.indices[k]].y);
 
-  if (!ply.normals.empty()) {
-    std::size_t bad = 0;
-    for (const glm::vec3& v : ply.normals) {
-      const double len = glm::length(glm::dvec3(v));
-      if (!(len > 0.0) || !std::isfinite(len)) ++bad;
-    }
-    if (bad == 0) {
-      raw.normals = std::move(ply.normals);
-      raw.normal_usable.assign(n, 1);
-    } else {
-      raw.computed_normals_reason = std::to_string(bad) + " of the file's normals are zero or not finite";
-    }
+  if (!ply.normals.empty()) {  // finish_mesh replaces the zero and non-finite ones
+    raw.normals = std::move(ply.normals);
+    raw.has_normal.assign(n, 1);
   }
 
   if (!ply.colours.empty()) {

@@ -17,9 +17,11 @@
 #include "core/memory_check.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "core/stopwatch.h"
 #include "dist/exchange.h"
 #include "light/environment.h"
 #include "light/projection.h"
+#include "probes/pilot.h"
 #include "probes/surface.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
@@ -34,10 +36,6 @@ double process_cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string parameters_json(const ProbeBakeOptions& o, const SceneLight& light, bool mesh_albedo) {
@@ -90,12 +88,7 @@ void check_options(const ProbeBakeOptions& o) {
 
 namespace {
 
-// A probe decides once, from kPilotRays occlusion rays of its own (an independent Sobol set under an
-// independent hashed rotation), whether its rays use the control variate or the plain estimator. The
-// choice must not depend on the rays it applies to: a choice made per batch from that batch's own hit
-// count correlates with the batch's quadrature error and biases the estimate (see baker.h, ESTIMATOR).
-constexpr int kPilotRays = 16;
-constexpr std::uint32_t kPilotSalt = 0x9170u;
+// A probe's pilot (probes/pilot.h) uses an independent Sobol set.
 
 // Everything the probe loop reads, prepared once.
 struct ProbeInputs {

@@ -14,6 +14,7 @@
 #include "dist/exchange.h"
 #include "light/environment.h"
 #include "light/projection.h"
+#include "probes/pilot.h"
 #include "sh/basis.h"
 #include "sh/sampling.h"
 #include "sh/zonal.h"
@@ -25,8 +26,6 @@ namespace prt::probes {
 namespace {
 
 constexpr int kControlVariateBands = 5;
-constexpr int kPilotRays = 16;
-constexpr std::uint32_t kPilotSalt = 0x9170u;
 
 struct Context {
   const trace::Scene* scene;

@@ -13,7 +13,6 @@ namespace prt::reference {
 
 namespace {
 
-glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
 
 }  // namespace
 
@@ -130,7 +129,7 @@ class LambertSurface {
   }
 
   bool next_point(const trace::HitResult& hit, const glm::dvec3& direction, Point& next) const {
-    return tracer_.hit_point(hit, to_float(direction), next);
+    return tracer_.hit_point(hit, glm::vec3(direction), next);
   }
 
  private:
@@ -151,7 +150,7 @@ RadianceEstimate PathTracer::incoming_radiance(const glm::dvec3& origin, const g
   PathWorkspace::Buffers& ws = workspace.buffers();
   const glm::dvec3 dir = glm::normalize(direction);
   ws.single.clear();
-  ws.single.push(to_float(origin), to_float(dir));
+  ws.single.push(glm::vec3(origin), glm::vec3(dir));
   scene_.intersect(ws.single);
   const trace::HitResult hit = ws.single.hit(0);
   RadianceEstimate estimate;
@@ -159,7 +158,7 @@ RadianceEstimate PathTracer::incoming_radiance(const glm::dvec3& origin, const g
     estimate.value = environment_.radiance(dir);
   } else {
     SurfacePoint point;
-    if (hit_point(hit, to_float(dir), point)) estimate = outgoing_radiance(point, paths, stream, workspace);
+    if (hit_point(hit, glm::vec3(dir), point)) estimate = outgoing_radiance(point, paths, stream, workspace);
   }
   estimate.rays += 1;
   return estimate;

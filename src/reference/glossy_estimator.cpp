@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "reference/brdf_sampling.h"
 #include "reference/path_loop.h"
+#include "sh/sampling.h"
 #include "sh/basis.h"
 #include "trace/true_surface.h"
 
@@ -18,12 +19,10 @@ namespace prt::reference {
 
 namespace {
 
-constexpr double kUniformSpherePdf = 0.25 / M_PI;
 constexpr double kTableFraction = 0.9;          // depth-0 band-limited sampling: table vs uniform
 constexpr double kBandLimitedUniform = 0.3;     // uniform share of the lobe mixture, band-limited BRDF
 constexpr int kTableHeight = 32;                // |rho_BL| table: 2H x H equirect cells
 
-glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
 
 }  // namespace
 
@@ -166,7 +165,7 @@ class GlossySurface {
 
   bool next_point(const trace::HitResult& hit, const glm::dvec3& direction, Point& next) {
     detail::HitGeometry g;
-    if (!detail::hit_geometry(im_.mesh, im_.scene, hit, to_float(direction), g)) return false;
+    if (!detail::hit_geometry(im_.mesh, im_.scene, hit, glm::vec3(direction), g)) return false;
     next.normal = g.normal;
     next.frame = brdf::shading_frame(next.normal);
     next.origin = g.origin;
@@ -179,8 +178,8 @@ class GlossySurface {
   // Density of the BRDF strategy at local direction w.
   double strategy_pdf(const Point& p, int depth, const glm::dvec3& w) const {
     if (depth == 0 && table_)
-      return table_->has_distribution() ? kTableFraction * table_->pdf(w) + (1.0 - kTableFraction) * kUniformSpherePdf
-                                        : kUniformSpherePdf;
+      return table_->has_distribution() ? kTableFraction * table_->pdf(w) + (1.0 - kTableFraction) * sh::kSpherePdf
+                                        : sh::kSpherePdf;
     return im_.lobes.pdf(w, p.view_local);
   }
 

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "core/stopwatch.h"
 #include "light/projection.h"
 #include "reference/estimator.h"
 #include "reference/vertex_driver.h"
@@ -19,14 +20,6 @@
 #include "trace/true_surface.h"
 
 namespace prt::reference {
-
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 namespace detail {
 

@@ -10,20 +10,13 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "core/stopwatch.h"
 #include "dist/exchange.h"
 #include "reference/estimator.h"
 #include "reference/vertex_driver.h"
 #include "trace/scene.h"
 
 namespace prt::reference {
-
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 mesh::Mesh mesh_in_environment_frame(const mesh::Mesh& mesh, const glm::dmat3& environment_rotation,
                                      const glm::dmat3& object_rotation) {

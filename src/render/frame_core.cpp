@@ -7,6 +7,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "render/bindings.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
 
@@ -14,7 +15,6 @@ namespace prt::render {
 
 namespace {
 
-constexpr int kMaxCoefficients = sh::kMaxBands * sh::kMaxBands;
 constexpr GLsizeiptr kLightingBytes = kMaxCoefficients * static_cast<GLsizeiptr>(sizeof(glm::vec4));
 constexpr GLuint kEnvironmentLightingBinding = 1;  // background.frag: uniform EnvironmentLighting
 constexpr float kDefaultAlbedo = 0.8f;

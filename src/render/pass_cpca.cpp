@@ -5,6 +5,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "render/bindings.h"
 #include "render/renderer_cpca.h"
 #include "render/transfer_pass.h"
 
@@ -12,8 +13,6 @@ namespace prt::render {
 
 namespace {
 
-constexpr GLuint kPositionsBinding = 4;  // prt_cpca.comp
-constexpr GLuint kNormalsBinding = 5;
 
 class CpcaPass final : public TransferPass {
  public:

@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "render/bindings.h"
 #include "render/transfer_pass.h"
 #include "sh/basis.h"
 
@@ -15,13 +16,9 @@ namespace prt::render {
 
 namespace {
 
-constexpr int kMaxCoefficients = sh::kMaxBands * sh::kMaxBands;
 constexpr GLuint kLightingBinding = 0;         // prt_glossy.comp: uniform Lighting (object frame)
 constexpr GLuint kBrdfBinding = 1;             // prt_glossy.comp: buffer BrdfMatrix
 constexpr GLuint kOutgoingBinding = 2;         // prt_glossy.comp (written), prt_glossy.frag (read)
-constexpr GLuint kIndicesBinding = 3;          // prt_glossy.frag
-constexpr GLuint kPositionsBinding = 4;        // prt_glossy.frag
-constexpr GLuint kNormalsBinding = 5;          // prt_glossy.frag
 constexpr GLuint kBounceOutgoingBinding = 6;   // prt_glossy.comp (SUN)
 
 // A storage buffer of at least `bytes`, reallocated (contents undefined) only when it grows.

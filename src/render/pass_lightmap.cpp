@@ -4,6 +4,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "render/bindings.h"
 #include "render/renderer_lightmap.h"
 #include "render/transfer_pass.h"
 #include "sh/basis.h"
@@ -12,13 +13,9 @@ namespace prt::render {
 
 namespace {
 
-constexpr int kMaxCoefficients = sh::kMaxBands * sh::kMaxBands;
 constexpr GLuint kTransferUnit = 0;            // prt_lightmap.frag: transfer_layers
 constexpr GLuint kBounceUnit = 1;              // prt_lightmap.frag: bounce_layers
 constexpr GLuint kDiscLightingBinding = 2;     // prt_lightmap.frag: uniform DiscLighting
-constexpr GLuint kIndicesBinding = 3;          // prt_lightmap.vert
-constexpr GLuint kPositionsBinding = 4;
-constexpr GLuint kNormalsBinding = 5;
 constexpr GLuint kUvBinding = 10;
 
 class LightmapPass final : public TransferPass {

@@ -20,7 +20,7 @@ extern const int kEmbeddedShaderCount;
 
 namespace {
 
-std::string first_line(const std::string& log) {
+std::string first_log_line(const std::string& log) {
   std::size_t start = log.find_first_not_of(" \t\r\n");
   if (start == std::string::npos) return "(no log)";
   std::size_t end = log.find_first_of("\r\n", start);
@@ -96,7 +96,7 @@ GLuint compile(const std::string& name, const std::string& defines) {
   if (ok != GL_TRUE) {
     const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
-    fail_file(source.origin, "GLSL compile error: " + first_line(log));
+    fail_file(source.origin, "GLSL compile error: " + first_log_line(log));
   }
   return shader;
 }
@@ -145,7 +145,7 @@ Program::Program(const std::vector<std::string>& stage_names, const std::string&
     const std::string log = info_log(id_, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(id_);
     id_ = 0;
-    fail_file(origins, "GLSL link error: " + first_line(log));
+    fail_file(origins, "GLSL link error: " + first_log_line(log));
   }
 }
 

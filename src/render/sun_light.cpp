@@ -11,6 +11,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "render/bindings.h"
 #include "render/frame_core.h"
 #include "sh/basis.h"
 
@@ -18,9 +19,6 @@ namespace prt::render {
 
 namespace {
 
-constexpr int kMaxCoefficients = sh::kMaxBands * sh::kMaxBands;
-constexpr GLuint kPositionsBinding = 4;       // sun_visibility.comp
-constexpr GLuint kNormalsBinding = 5;         // sun_visibility.comp
 constexpr GLuint kSunAlbedoBinding = 6;       // prt_diffuse.vert, prt_lightmap.vert (SUN); sun_visibility.comp: Visibility
 constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr int kMaxTerms = kMaxBrdfTerms;

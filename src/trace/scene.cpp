@@ -34,6 +34,23 @@ static_assert(RTC_MAX_INSTANCE_LEVEL_COUNT == 1);
 static_assert(sizeof(RayHit) == sizeof(RTCRayHit) && offsetof(RayHit, hit) == offsetof(RTCRayHit, hit));
 static_assert(kNoHit == RTC_INVALID_GEOMETRY_ID);
 
+// Named, not anonymous: Scene::Impl holds them.
+namespace detail {
+
+// Bytes Embree holds, tracked by the device's memory monitor (called from Embree's build threads).
+struct MemoryCounter {
+  std::atomic<std::int64_t> now{0};
+  std::atomic<std::int64_t> peak{0};
+};
+
+// Message of the device's first error, recorded by Embree's error callback.
+struct ErrorLog {
+  std::mutex mutex;
+  std::string message;
+};
+
+}  // namespace detail
+
 namespace {
 
 const char* error_name(RTCError code) {
@@ -56,14 +73,9 @@ const char* error_name(RTCError code) {
   return "error";
 }
 
-// Bytes Embree holds, tracked by the device's memory monitor (called from Embree's build threads).
-struct MemoryCounter {
-  std::atomic<std::int64_t> now{0};
-  std::atomic<std::int64_t> peak{0};
-};
 
 bool monitor_memory(void* user, ssize_t bytes, bool post) {
-  auto* counter = static_cast<MemoryCounter*>(user);
+  auto* counter = static_cast<detail::MemoryCounter*>(user);
   // Allocations are reported before they happen (post == false) and frees after; count both once.
   std::int64_t now = counter->now.fetch_add(bytes) + bytes;
   std::int64_t peak = counter->peak.load();
@@ -72,14 +84,9 @@ bool monitor_memory(void* user, ssize_t bytes, bool post) {
   return true;
 }
 
-// Message of the device's first error, recorded by Embree's error callback.
-struct ErrorLog {
-  std::mutex mutex;
-  std::string message;
-};
 
 void record_error(void* user, RTCError code, const char* text) {
-  auto* log = static_cast<ErrorLog*>(user);
+  auto* log = static_cast<detail::ErrorLog*>(user);
   std::lock_guard<std::mutex> lock(log->mutex);
   if (log->message.empty())
     log->message = std::string(error_name(code)) + (text && *text ? std::string(": ") + text : "");
@@ -88,8 +95,8 @@ void record_error(void* user, RTCError code, const char* text) {
 }  // namespace
 
 struct Scene::Impl {
-  ErrorLog errors;
-  MemoryCounter memory;
+  detail::ErrorLog errors;
+  detail::MemoryCounter memory;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::vector<float> padded_positions;  // x,y,z per vertex + 1 float of padding; empty when shared

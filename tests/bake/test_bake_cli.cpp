@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <glm/geometric.hpp>
+
 #include "core/atomic_file.h"
 #include "mesh/writers.h"
 #include "support/run_prt.h"
@@ -57,20 +59,20 @@ bool contains(const std::string& haystack, const std::string& needle) { return h
 TEST_CASE("prt bake writes identical files for 1 and 2 threads and prt info reads them", "[bake][cli]") {
   const std::string dir = test::fresh_temp_dir("bake_threads");
   const std::string mesh = write_torus(dir, 32, 16);
-  auto r1 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads 1 -q -o " + dir + "/one.prt");
+  auto r1 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint vertex --threads 1 -q -o " + dir + "/one.prt");
   REQUIRE(r1.exit_code == 0);
-  auto r2 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads 2 -q -o " + dir + "/two.prt");
+  auto r2 = test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint vertex --threads 2 -q -o " + dir + "/two.prt");
   REQUIRE(r2.exit_code == 0);
   CHECK(read_file(dir + "/one.prt") == read_file(dir + "/two.prt"));
   auto info = test::run_prt("info " + dir + "/one.prt");
   CHECK(info.exit_code == 0);
   CHECK(contains(info.output, "kind: interreflected"));
   CHECK(contains(info.output, "bands: 4 (16 coefficients)"));
-  CHECK_FALSE(contains(info.output, "footprint"));  // the default, vertex, is not recorded
+  CHECK_FALSE(contains(info.output, "footprint"));  // vertex is not recorded (files as before area existed)
 
-  // --footprint area: also independent of the thread count, and recorded in the parameters.
+  // The default footprint, area: also independent of the thread count, and recorded in the parameters.
   for (const char* threads : {"1", "2"})
-    REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --footprint area --threads " +
+    REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bounces 2 --samples 128 --bands 4 --threads " +
                           threads + " -q -o " + dir + "/area" + threads + ".prt").exit_code == 0);
   CHECK(read_file(dir + "/area1.prt") == read_file(dir + "/area2.prt"));
   CHECK(read_file(dir + "/area1.prt") != read_file(dir + "/one.prt"));
@@ -103,6 +105,47 @@ TEST_CASE("prt shade under a white light equals the furnace radiance and prt com
   CHECK(got_abs == Approx(0.25).epsilon(1e-5));
   CHECK(got_max_rel == Approx(1.0).epsilon(1e-5));
   CHECK(contains(diff.output, "vertices=" + std::to_string(ply.colours.size())));
+}
+
+TEST_CASE("a cube OBJ of 8 v and 6 vn bakes faceted: each face's vertices shade as its flat normal", "[bake][cli][normals]") {
+  // Hard edges through normal indices: every corner of the cube is used by 3 faces with 3 normals.
+  const std::string dir = test::fresh_temp_dir("bake_hard_cube");
+  const std::string mesh = dir + "/cube.obj";
+  {
+    std::ofstream obj(mesh);
+    for (int c = 0; c < 8; ++c) obj << "v " << (c & 1) << " " << ((c >> 1) & 1) << " " << ((c >> 2) & 1) << "\n";
+    obj << "vn -1 0 0\nvn 1 0 0\nvn 0 -1 0\nvn 0 1 0\nvn 0 0 -1\nvn 0 0 1\n";
+    // Corners as x + 2y + 4z + 1; faces -X, +X, -Y, +Y, -Z, +Z, counter-clockwise seen from outside.
+    obj << "f 1//1 5//1 7//1 3//1\nf 2//2 4//2 8//2 6//2\nf 1//3 2//3 6//3 5//3\n"
+           "f 3//4 7//4 8//4 4//4\nf 1//5 3//5 4//5 2//5\nf 5//6 6//6 8//6 7//6\n";
+  }
+  // Radiance L(w) = 1 + 0.75 (d . w), exactly 2 bands (the SH table of docs/conventions.md, CS phase):
+  // c_0 = 2 sqrt(pi), (c_1-1, c_10, c_11) = 0.75 sqrt(4 pi / 3) (-d_y, d_z, -d_x). The Lambert exit
+  // radiance of a flat face of normal n is albedo (1 + (2/3) 0.75 (d . n)) = albedo (1 + (d . n) / 2).
+  const glm::dvec3 d = glm::normalize(glm::dvec3(1.0, 2.0, 3.0));
+  const double k = 0.75 * std::sqrt(4.0 * M_PI / 3.0);
+  const std::string light = dir + "/linear.json";
+  {
+    std::ofstream f(light);
+    f.precision(17);
+    f << R"({"bands": 2, "basis": "real-orthonormal-condon-shortley", "index": "l*(l+1)+m", "frame": "right-handed, +Y up", "coefficients": [)";
+    const double c[4] = {2.0 * std::sqrt(M_PI), -k * d.y, k * d.z, -k * d.x};
+    for (int i = 0; i < 4; ++i) f << (i ? ", [" : "[") << c[i] << ", " << c[i] << ", " << c[i] << "]";
+    f << "]}";
+  }
+  REQUIRE(test::run_prt("bake " + mesh + " --transfer unshadowed --bands 2 --albedo 0.5,0.5,0.5 -q -o " + dir + "/t.prt").exit_code == 0);
+  const test::RunResult shade = test::run_prt("shade " + mesh + " " + dir + "/t.prt --light " + light +
+                                              " --window none --sun none -o " + dir + "/out.ply");
+  INFO(shade.output);
+  REQUIRE(shade.exit_code == 0);
+  const mesh::ColourPly ply = mesh::read_ply_colours(dir + "/out.ply");
+  REQUIRE(ply.indices.size() == 36);
+  for (std::size_t t = 0; t < ply.indices.size(); t += 3) {
+    const glm::dvec3 a(ply.positions[ply.indices[t]]), b(ply.positions[ply.indices[t + 1]]), c(ply.positions[ply.indices[t + 2]]);
+    const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+    const double expected = 0.5 * (1.0 + 0.5 * glm::dot(d, n));
+    for (int corner = 0; corner < 3; ++corner) CHECK(ply.colours[ply.indices[t + corner]].g == Approx(expected).epsilon(1e-5));
+  }
 }
 
 TEST_CASE("prt bake and shade refuse bad input with one line and leave no file", "[bake][cli]") {

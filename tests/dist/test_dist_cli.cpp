@@ -85,7 +85,7 @@ std::string check_identical(const std::string& name, const std::string& argument
 
 TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical diffuse transfer", "[dist][bake][slow]") {
   const Inputs& in = inputs();
-  check_identical("shadowed", "bake " + in.grey + " --transfer shadowed --bands 4 --samples 64", ".prt");
+  check_identical("shadowed", "bake " + in.grey + " --transfer shadowed --bands 4 --samples 64 --footprint vertex", ".prt");
   // Interreflected with colour (3 channels): the bounce passes exchange the previous pass; the file
   // carries the bounce-only section, which must be identical too.
   const std::string file =
@@ -131,7 +131,7 @@ TEST_CASE("mpirun -np 1, 2, 3 bakes byte-identical probes and references", "[dis
   check_identical("probes",
                   "probes " + in.grey + " --env " + in.sky + " --grid 4,3,4 --format prt --rays 64 --surface-samples 16 --bounces 2 --transfer",
                   ".prt");
-  check_identical("reference", "reference " + in.grey + " --env " + in.sky + " --samples 16 --bounces 1", ".ply");
+  check_identical("reference", "reference " + in.grey + " --env " + in.sky + " --samples 16 --bounces 1 --footprint vertex", ".ply");
   check_identical("reference_area", "reference " + in.grey + " --env " + in.sky + " --samples 32 --bounces 1 --footprint area", ".ply");
   check_identical("reference_image",
                   "reference " + in.grey + " --env " + in.sky + " --samples 4 --image --size 40x30", ".exr", {3});

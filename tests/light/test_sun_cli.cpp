@@ -41,9 +41,9 @@ TEST_CASE("sun none and window none reproduce the pre-split light, bake and shad
   CHECK(bytes_of(dir.file("light.json")) == bytes_of(kData + "golden_light_sunrise_b5.json"));
 
   const std::string mesh = kData + "sphere_on_floor.ply";
-  REQUIRE(test::run_prt("bake " + mesh + " --transfer shadowed --bands 4 --samples 64 -q -o " + dir.file("s.prt")).exit_code == 0);
+  REQUIRE(test::run_prt("bake " + mesh + " --transfer shadowed --bands 4 --samples 64 --footprint vertex -q -o " + dir.file("s.prt")).exit_code == 0);
   CHECK(bytes_of(dir.file("s.prt")) == bytes_of(kData + "golden_shadowed_b4_s64.prt"));
-  REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bands 4 --samples 64 --bounces 2 -q -o " + dir.file("i.prt")).exit_code == 0);
+  REQUIRE(test::run_prt("bake " + mesh + " --transfer interreflected --bands 4 --samples 64 --bounces 2 --footprint vertex -q -o " + dir.file("i.prt")).exit_code == 0);
   REQUIRE(test::run_prt("shade " + mesh + " " + dir.file("i.prt") + " --env " + kSunrise +
                         " --rotate 270,0,0 --sun none --window none -o " + dir.file("i.ply")).exit_code == 0);
   CHECK(bytes_of(dir.file("i.ply")) == bytes_of(kData + "golden_shade_interreflected.ply"));

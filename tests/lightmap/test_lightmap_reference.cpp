@@ -85,7 +85,7 @@ TEST_CASE("lightmap: box on a two-triangle floor, shadowed texels vs prt referen
   // The per-vertex bake of the same mesh, interpolated at the same texel sample points as a renderer
   // interpolates vertex colours: the floor has four vertices and cannot show the box's shadow.
   const std::string transfer = scene.dir + "/vertex.prt", shaded = scene.dir + "/vertex.ply";
-  REQUIRE(test::run_prt("bake " + scene.mesh + " --quiet --transfer shadowed --samples 2048 -o " + transfer).exit_code == 0);
+  REQUIRE(test::run_prt("bake " + scene.mesh + " --quiet --transfer shadowed --samples 2048 --footprint vertex -o " + transfer).exit_code == 0);
   REQUIRE(test::run_prt("shade " + scene.mesh + " " + transfer + " --env " + scene.sky + " --sun none --window none -o " + shaded).exit_code == 0);
   const mesh::ColourPly vertex = mesh::read_ply_colours(shaded);
   const lightmap::TexelSamples samples = lightmap::rasterize(m, std::vector<glm::vec3>(m.vertex_count(), glm::vec3(0.8f)), 48, 48);

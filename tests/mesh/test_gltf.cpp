@@ -289,3 +289,27 @@ TEST_CASE("Garbled glTF and GLB files load or fail with prt::Error and never cra
   INFO("loaded " << loaded << ", refused " << refused);
   SUCCEED("no crash and no exception other than prt::Error");
 }
+
+TEST_CASE("glTF with one zero normal: that vertex's normal is computed, the others kept bit for bit", "[mesh][gltf][normals]") {
+  // Two triangles of the plane z = 0 whose NORMALs lean (not +Z, so computing them all would show);
+  // vertex 2's is zero and gets the area-weighted normal, +Z exactly.
+  BufferBuilder b;
+  const int p = b.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3);
+  const int n = b.floats({0.6f, 0, 0.8f, 0, 0.6f, 0.8f, 0, 0, 0, 0.48f, 0.6f, 0.64f}, "VEC3", 3);
+  const int i = b.scalars<std::uint32_t>({0, 1, 2, 0, 2, 3}, 5125);
+  json doc = {{"asset", {{"version", "2.0"}}},
+              {"nodes", {{{"mesh", 0}}}},
+              {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", p}, {"NORMAL", n}}}, {"indices", i}}}}}}}};
+  doc["bufferViews"] = b.views;
+  doc["accessors"] = b.accessors;
+  doc["buffers"] = {{{"byteLength", b.bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(b.bytes)}}};
+  LoadReport report;
+  const Mesh mesh = load_mesh(write_temp("zero_normal.gltf", doc.dump()), &report, true);
+  CHECK(report.computed_normal_count == 1);
+  CHECK(report.notes.back() ==
+        "computed area-weighted normals for 1 of 4 vertices (1 of the file's normals are zero or not finite)");
+  CHECK(mesh.normals[0] == glm::vec3(0.6f, 0.0f, 0.8f));
+  CHECK(mesh.normals[1] == glm::vec3(0.0f, 0.6f, 0.8f));
+  CHECK(mesh.normals[2] == glm::vec3(0, 0, 1));
+  CHECK(mesh.normals[3] == glm::vec3(0.48f, 0.6f, 0.64f));
+}

@@ -121,34 +121,95 @@ TEST_CASE("OBJ quads and polygons are fan-triangulated and cube normals are the 
   for (const glm::vec3& n : pentagon.normals) CHECK(n == glm::vec3(0, 0, 1));
 }
 
-TEST_CASE("OBJ normals indexed apart from positions: mean of the distinct normals per position", "[mesh][obj]") {
-  // Position 2 is used with normal 1 (twice) and normal 2 (once): each distinct normal counts once,
-  // so its normal is (1,0,1)/sqrt(2), not (1,0,2)/sqrt(5).
+TEST_CASE("OBJ hard edges: a cube of 8 v and 6 vn is faceted, each face's vertices carry its normal exactly",
+          "[mesh][obj][normals]") {
+  // The 8 corners as "v" lines (corner x + 2y + 4z), the 6 face normals as "vn" lines, each face's
+  // corners referencing its face normal: every corner is shared by 3 faces of 3 different normals.
+  std::ostringstream obj;
+  for (int c = 0; c < 8; ++c) obj << "v " << (c & 1) << " " << ((c >> 1) & 1) << " " << ((c >> 2) & 1) << "\n";
+  for (const CubeFace& face : kCube) obj << "vn " << face.normal.x << " " << face.normal.y << " " << face.normal.z << "\n";
+  for (int f = 0; f < 6; ++f) {
+    obj << "f";
+    for (const glm::vec3& p : kCube[f].corners) obj << " " << int(p.x + 2 * p.y + 4 * p.z) + 1 << "//" << f + 1;
+    obj << "\n";
+  }
+  LoadReport report;
+  const Mesh cube = load_mesh(write_temp("hard_cube.obj", obj.str()), &report, true);
+  CHECK_FALSE(report.normals_computed);
+  REQUIRE(cube.vertex_count() == 24);  // 8 "v"s keep their index, 16 copies follow
+  REQUIRE(cube.triangle_count() == 12);
+  for (int c = 0; c < 8; ++c) CHECK(cube.positions[c] == glm::vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1));
+  for (std::uint32_t f = 0; f < 6; ++f) {
+    const int corner_of_triangle[6] = {0, 1, 2, 0, 2, 3};  // the fan of each quad
+    for (int k = 0; k < 6; ++k) {
+      const std::uint32_t vertex = cube.indices[6 * f + k];
+      CHECK(cube.positions[vertex] == kCube[f].corners[corner_of_triangle[k]]);
+      CHECK(cube.normals[vertex] == kCube[f].normal);
+    }
+  }
+  // Copies are numbered in first-use order: the first mention of vertex 8 + k comes after that of 8 + k - 1.
+  std::uint32_t next_copy = 8;
+  for (std::uint32_t index : cube.indices)
+    if (index >= 8) {
+      CHECK(index <= next_copy);
+      if (index == next_copy) ++next_copy;
+    }
+  CHECK(next_copy == 24);
+  CHECK(signed_volume(cube) == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("OBJ normals indexed apart from positions: a v with two normals is split, materials follow", "[mesh][obj][normals]") {
+  // v2 is used with vn1 (faces 1 and 3) and vn2 (face 2): its first pair (v2, vn1) keeps index 1, (v2,
+  // vn2) becomes vertex 5, after the 5 "v"s. vn3 has vn1's value: (v1, vn3) is v1's own pair, no split.
+  write_temp("split.mtl", "newmtl red\nKd 0.8 0.1 0.2\n\nnewmtl blue\nKd 0.2 0.3 0.9\n");
   const std::string path = write_temp("indexed_normals.obj",
+                                      "mtllib split.mtl\n"
                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
-                                      "vn 0 0 1\nvn 1 0 0\nvn 0 1 0\n"
-                                      "f 1//1 2//1 3//1\nf 2//2 4//2 3//1\nf 2//1 5//1 4//2\n");
+                                      "vn 0 0 1\nvn 1 0 0\nvn -0 0 1\n"
+                                      "usemtl blue\nf 1//1 2//1 3//1\nusemtl red\nf 2//2 4//2 3//1\n"
+                                      "usemtl blue\nf 2//1 5//1 4//2\nf 1//3 5//1 3//1\n");
   LoadReport report;
   const Mesh mesh = load_mesh(path, &report, true);
   CHECK_FALSE(report.normals_computed);
-  const float h = float(1.0 / std::sqrt(2.0));
-  CHECK(mesh.normals[0] == glm::vec3(0, 0, 1));
-  CHECK(mesh.normals[1].x == Approx(h).epsilon(1e-7));
-  CHECK(mesh.normals[1].y == 0.0f);
-  CHECK(mesh.normals[1].z == Approx(h).epsilon(1e-7));
-  CHECK(mesh.normals[2] == glm::vec3(0, 0, 1));
-  CHECK(mesh.normals[3] == glm::vec3(1, 0, 0));
-  CHECK(mesh.normals[4] == glm::vec3(0, 0, 1));
+  REQUIRE(mesh.vertex_count() == 6);
+  CHECK(mesh.indices == std::vector<std::uint32_t>{0, 1, 2, 5, 3, 2, 1, 4, 3, 0, 4, 2});
+  CHECK(mesh.positions[5] == glm::vec3(1, 0, 0));
+  const glm::vec3 z(0, 0, 1), x(1, 0, 0);
+  CHECK(mesh.normals == std::vector<glm::vec3>{z, z, z, x, z, x});
+  const glm::vec3 red(0.8f, 0.1f, 0.2f), blue(0.2f, 0.3f, 0.9f);
+  REQUIRE(mesh.albedo.size() == 6);
+  CHECK(mesh.albedo[1] == blue);  // faces 1 and 3
+  CHECK(mesh.albedo[5] == red);   // face 2 only
+  CHECK(mesh.albedo[3] == glm::vec3((glm::dvec3(red) + glm::dvec3(blue)) / 2.0));
 }
 
-TEST_CASE("OBJ with a zero normal: the mesh's normals are all computed", "[mesh][obj]") {
+TEST_CASE("OBJ with a zero normal: that vertex's normal is computed, every other keeps the file's bit for bit",
+          "[mesh][obj][normals]") {
+  // A 3x3 grid of flat quads in z = 0 whose file normals lean (not the face normal, so computing them
+  // all would show); vn 5 (the centre's) is zero and gets the area-weighted normal, +Z exactly.
+  std::ostringstream obj;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) obj << "v " << i << " " << j << " 0\n";
+  const char* leaning[4] = {"0.6 0 0.8", "0 0.6 0.8", "-0.28 0.96 0", "0.48 0.6 0.64"};
+  for (int k = 0; k < 16; ++k) obj << "vn " << (k == 5 ? "0 0 0" : leaning[k % 4]) << "\n";
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int a = 4 * j + i + 1, b = a + 1, c = a + 5, d = a + 4;
+      obj << "f " << a << "//" << a << " " << b << "//" << b << " " << c << "//" << c << " " << d << "//" << d << "\n";
+    }
   LoadReport report;
-  const Mesh mesh = load_mesh(write_temp("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n"),
-                              &report, true);
-  CHECK(report.normals_computed);
+  const Mesh mesh = load_mesh(write_temp("zero_normal.obj", obj.str()), &report, true);
+  REQUIRE(mesh.vertex_count() == 16);
+  CHECK(report.computed_normal_count == 1);
   CHECK(report.notes.back() ==
-        "computed area-weighted normals for 3 of 3 vertices (1 referenced normals are zero or not finite)");
-  for (const glm::vec3& n : mesh.normals) CHECK(n == glm::vec3(0, 0, 1));
+        "computed area-weighted normals for 1 of 16 vertices (1 referenced normals are zero or not finite)");
+  for (int k = 0; k < 16; ++k) {
+    if (k == 5) continue;
+    float n[3];
+    std::istringstream(leaning[k % 4]) >> n[0] >> n[1] >> n[2];
+    CHECK(mesh.normals[k] == glm::vec3(n[0], n[1], n[2]));  // as parsed, not renormalised
+  }
+  CHECK(mesh.normals[5] == glm::vec3(0, 0, 1));
 }
 
 TEST_CASE("OBJ errors are one line naming the file and the problem", "[mesh][obj]") {

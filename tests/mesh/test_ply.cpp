@@ -93,7 +93,8 @@ TEST_CASE("ASCII PLY with uchar sRGB colours: linearised albedo and fan triangle
   CHECK(mesh.albedo[2] == glm::vec3(1.0f));
   REQUIRE(report.notes.size() == 2);
   CHECK(report.notes[0] == "skipped 2 degenerate triangles (repeated vertex, zero area, or fewer than 3 vertices)");
-  CHECK(report.notes[1] == "computed area-weighted normals for 5 of 5 vertices (the file has no normals)");
+  // Vertex 4 is in no triangle: +Y, not counted.
+  CHECK(report.notes[1] == "computed area-weighted normals for 4 of 5 vertices (the file has no normals)");
 }
 
 TEST_CASE("Binary PLY little and big endian give the same mesh and float colours are linear", "[mesh][ply]") {
@@ -230,4 +231,23 @@ TEST_CASE("write_ply / read_ply_colours round-trip bit for bit", "[mesh][ply][wr
         }) == temp_path("bad.ply") + ": cannot write PLY: 1 colours for 4 vertices");
   CHECK(error_of([&] { write_ply(temp_path("no_folder/x.ply"), positions, colours, indices); }) ==
         temp_path("no_folder/x.ply") + ": output folder does not exist");
+}
+
+TEST_CASE("PLY with a NaN and a zero normal: those two are computed, the others kept bit for bit", "[mesh][ply][normals]") {
+  // Two triangles of the plane z = 0 sharing an edge; file normals lean (not +Z), vertex 1's is NaN,
+  // vertex 3's zero: only those two get the area-weighted normal, +Z exactly.
+  const std::string path = write_temp("nan_normal.ply",
+                                      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                                      "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                                      "0 0 0 0.6 0 0.8\n1 0 0 nan 0 1\n1 1 0 0 0.6 0.8\n0 1 0 0 0 0\n3 0 1 2\n3 0 2 3\n");
+  LoadReport report;
+  const Mesh mesh = load_mesh(path, &report, true);
+  CHECK(report.computed_normal_count == 2);
+  CHECK(report.notes.back() ==
+        "computed area-weighted normals for 2 of 4 vertices (2 of the file's normals are zero or not finite)");
+  CHECK(mesh.normals[0] == glm::vec3(0.6f, 0.0f, 0.8f));
+  CHECK(mesh.normals[2] == glm::vec3(0.0f, 0.6f, 0.8f));
+  CHECK(mesh.normals[1] == glm::vec3(0, 0, 1));
+  CHECK(mesh.normals[3] == glm::vec3(0, 0, 1));
 }

@@ -148,8 +148,8 @@ TEST_CASE("prt reference agrees with prt bake + prt shade: rel_rms <= 1% shadowe
   // --footprint area averages over each vertex's one-ring (docs/conventions.md "Vertex footprint"): noisier
   // per ray where visibility varies across it (the blocks' edges), so 4x the samples.
   const std::vector<Case> cases = {
-      {"shadowed", "--transfer shadowed --samples 4096", "--bounces 0 --samples 2048"},
-      {"interreflected", "--transfer interreflected --bounces 2 --samples 8192", "--bounces 2 --samples 8192"},
+      {"shadowed", "--transfer shadowed --samples 4096 --footprint vertex", "--bounces 0 --samples 2048 --footprint vertex"},
+      {"interreflected", "--transfer interreflected --bounces 2 --samples 8192 --footprint vertex", "--bounces 2 --samples 8192 --footprint vertex"},
       {"shadowed_area", "--transfer shadowed --samples 16384 --footprint area", "--bounces 0 --samples 8192 --footprint area"},
   };
   for (const Case& c : cases) {

@@ -72,18 +72,18 @@ TEST_CASE("prt shade's exact disc term matches the path tracer on a penumbra, di
     image::write(black, zero);
   }
 
-  REQUIRE(test::run_prt("bake " + kMesh + " --transfer shadowed --bands 3 --samples 64 -q -o " + dir + "/s.prt").exit_code == 0);
+  REQUIRE(test::run_prt("bake " + kMesh + " --transfer shadowed --bands 3 --samples 64 --footprint vertex -q -o " + dir + "/s.prt").exit_code == 0);
   REQUIRE(test::run_prt("shade " + kMesh + " " + dir + "/s.prt --env " + black + " --sun " + sun + " --sun-samples 256 -q -o " +
                         dir + "/shade.ply").exit_code == 0);
-  REQUIRE(test::run_prt("reference " + kMesh + " --env " + dir + "/disc.exr --bounces 0 --samples 4096 -q -o " + dir + "/ref.ply").exit_code == 0);
+  REQUIRE(test::run_prt("reference " + kMesh + " --env " + dir + "/disc.exr --bounces 0 --samples 4096 --footprint vertex -q -o " + dir + "/ref.ply").exit_code == 0);
   CHECK(rel_rms(dir + "/shade.ply", dir + "/ref.ply") < 0.02);
 
   const std::string brdf = "phong:exponent=8,ks=0.6,kd=0.3";
   const std::string eye = "2.5,1.5,1.0";
-  REQUIRE(test::run_prt("bake " + kMesh + " --transfer glossy-shadowed --brdf " + brdf + " --bands 3 --samples 64 -q -o " + dir + "/g.prt").exit_code == 0);
+  REQUIRE(test::run_prt("bake " + kMesh + " --transfer glossy-shadowed --brdf " + brdf + " --bands 3 --samples 64 --footprint vertex -q -o " + dir + "/g.prt").exit_code == 0);
   REQUIRE(test::run_prt("shade " + kMesh + " " + dir + "/g.prt --env " + black + " --sun " + sun + " --sun-samples 256 --eye " + eye +
                         " -q -o " + dir + "/gshade.ply").exit_code == 0);
   REQUIRE(test::run_prt("reference " + kMesh + " --env " + dir + "/disc.exr --bounces 0 --samples 4096 --brdf " + brdf + " --eye " + eye +
-                        " -q -o " + dir + "/gref.ply").exit_code == 0);
+                        " --footprint vertex -q -o " + dir + "/gref.ply").exit_code == 0);
   CHECK(rel_rms(dir + "/gshade.ply", dir + "/gref.ply") < 0.03);
 }

@@ -69,7 +69,7 @@ TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle flo
   };
   run("light '" + std::string(spec) + "' --bands 5 -o " + dir + "/sky.json --preview " + sky + " --preview-width 256");
   run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 --lightmap 128x128 -q -o " + dir + "/lightmap.prt");
-  run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 -q -o " + dir + "/vertex.prt");
+  run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 --footprint vertex -q -o " + dir + "/vertex.prt");
   const std::string view = std::string(" --env ") + sky + " --sun none --window none --background black --camera " + kCamera +
                            " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " -q -o ";
   run("render " + scene + " " + dir + "/lightmap.prt" + view + dir + "/lightmap.exr");
