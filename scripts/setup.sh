@@ -18,7 +18,8 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config git
   libglm-dev libembree-dev libglfw3-dev libopenimageio-dev openimageio-tools catch2 libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libimgui-dev
+  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev
+  libimgui-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libeigen3-dev
   libopenmpi-dev openmpi-bin
 )

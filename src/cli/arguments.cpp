@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -43,8 +44,10 @@ image::ToneMap parse_tone_map(const std::string& name) {
 
 bool want_progress(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
 
-mesh::Mesh load_mesh_for_albedo(const std::string& path, const std::string& albedo, mesh::LoadReport* report, bool quiet) {
-  mesh::Mesh mesh = mesh::load_mesh(path, report, quiet);
+mesh::Mesh load_mesh_for_albedo(const std::string& path, const std::string& albedo, const mesh::LoadOptions& options,
+                                 mesh::LoadReport* report) {
+  const bool quiet = options.quiet;
+  mesh::Mesh mesh = mesh::load_mesh(path, options, report);
   if (albedo.empty() || mesh.albedo_source == mesh::AlbedoSource::none) return mesh;
   if (!quiet)
     std::cerr << path << ": --albedo " << albedo << " overrides the file's " << mesh::albedo_source_name(mesh.albedo_source)
@@ -75,6 +78,20 @@ std::string flag_of_field(const std::string& field) {
   std::string flag = "--" + field;
   std::replace(flag.begin(), flag.end(), '_', '-');
   return flag;
+}
+
+int parse_scene(const std::string& text) {
+  if (text == "all") return mesh::kAllScenes;
+  const bool digits = !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits || std::stoll(text) > std::numeric_limits<int>::max())
+    throw Error("--scene: expected a scene index (0, 1, ...) or all, got '" + text + "'");
+  return int(std::stoll(text));
+}
+
+void add_scene_option(CLI::App* cmd, int& scene) {
+  cmd->add_option_function<std::string>(
+      "--scene", [&scene](const std::string& text) { scene = parse_scene(text); },
+      "N or all: the glTF scene to load (default: the file's default scene), or every scene");
 }
 
 }  // namespace prt::cli

@@ -35,7 +35,8 @@ bool want_progress(bool quiet);
 /// load_mesh for a command with --albedo: where `albedo` (the flag's text) is given and the file has an
 /// albedo of its own, prints "<path>: --albedo R,G,B overrides the file's <source> albedo" (unless
 /// `quiet`) and drops the file's (mesh::drop_albedo), so that the option's albedo applies everywhere.
-mesh::Mesh load_mesh_for_albedo(const std::string& path, const std::string& albedo, mesh::LoadReport* report, bool quiet);
+mesh::Mesh load_mesh_for_albedo(const std::string& path, const std::string& albedo, const mesh::LoadOptions& options,
+                                 mesh::LoadReport* report = nullptr);
 
 /// Parses "K,N" (two integers: clusters, PCA vectors); false if the text is not of that form.
 bool parse_compress_setting(const std::string& text, int& clusters, int& pca);
@@ -43,5 +44,13 @@ bool parse_compress_setting(const std::string& text, int& clusters, int& pca);
 /// The command-line flag of an options field named in a library's OptionError: "--" and the field with
 /// '_' as '-' ("sun_samples" -> "--sun-samples"), except the fields whose flag is spelled otherwise.
 std::string flag_of_field(const std::string& field);
+
+/// Parses --scene: "all" (mesh::kAllScenes) or a scene index 0..2^31-1. Throws
+/// prt::Error("--scene: expected a scene index (0, 1, ...) or all, got '<text>'").
+int parse_scene(const std::string& text);
+
+/// Adds `--scene N|all` to `cmd`, a command that loads a mesh: which glTF scene it reads, parsed into
+/// `scene` (mesh::LoadOptions::scene; left as it is, mesh::kDefaultScene, when the flag is absent).
+void add_scene_option(CLI::App* cmd, int& scene);
 
 }  // namespace prt::cli

@@ -24,6 +24,7 @@ namespace {
 
 struct BakeCommandOptions {
   std::string mesh_path;
+  int scene = mesh::kDefaultScene;
   std::string output;
   std::string gltf_output;
   std::string kind = "shadowed";
@@ -84,7 +85,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   // Check the outputs before spending minutes baking (rank 0 alone writes them).
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, &load_report, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
   const int bands_out = options.bands_out ? options.bands_out : o.bands;
   const std::string sized_by = std::to_string(o.bands) +
                                (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
@@ -119,7 +120,7 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap.mesh_path = o.mesh_path;
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path});
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, &load_report, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::check_lightmap(mesh, options, lightmap);
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
@@ -179,6 +180,7 @@ void add_bake_command(CLI::App& app) {
   auto options = std::make_shared<BakeCommandOptions>();
   CLI::App* cmd = app.add_subcommand("bake", "Bake per-vertex PRT transfer (diffuse vectors or glossy matrices) for a mesh (.obj, .ply, .gltf, .glb)");
   cmd->add_option("MESH", options->mesh_path, "Input mesh")->required();
+  add_scene_option(cmd, options->scene);
   cmd->add_option("-o,--output", options->output, "Output transfer file (.prt)")->required();
   cmd->add_option("--transfer", options->kind,
                   "unshadowed | shadowed | interreflected | glossy-shadowed | glossy-interreflected")->capture_default_str();

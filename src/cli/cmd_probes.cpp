@@ -27,6 +27,7 @@ namespace {
 
 struct ProbesCommandOptions {
   std::string scene_path;
+  int scene = mesh::kDefaultScene;
   std::string environment;
   std::string sun = "auto";
   std::string grid;
@@ -171,7 +172,7 @@ void run_probes(ProbesCommandOptions o) {
   if (job().is_root()) check_outputs({o.output}, {o.scene_path, o.environment, o.points});  // rank 0 alone writes
 
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = load_mesh_for_albedo(o.scene_path, o.albedo, &load_report, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.scene_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
   const std::vector<glm::dvec3> positions = place_probes(o, mesh, layout, std::move(points));
   light::Environment environment = light::load_environment(o.environment);
   check_job_inputs({mesh_input(o.scene_path, mesh), environment_input(o.environment, environment),
@@ -209,6 +210,7 @@ void add_probes_command(CLI::App& app) {
   auto o = std::make_shared<ProbesCommandOptions>();
   CLI::App* cmd = app.add_subcommand("probes", "Bake SH light probes in a scene (.gltf, .glb, .obj, .ply) and export them for an engine");
   cmd->add_option("SCENE", o->scene_path, "Scene file")->required();
+  add_scene_option(cmd, o->scene);
   cmd->add_option("--env", o->environment, "Environment map (equirect, cross or six faces; see prt light)")->required();
   cmd->add_option("--sun", o->sun,
                   "auto (the map's sun, if it has one, traced as a disc), none, or a disc DX,DY,DZ,R,G,B,RADIUS_DEG "

@@ -35,6 +35,7 @@ namespace {
 
 struct ReferenceCommandOptions {
   std::string mesh_path, env, output, albedo;
+  int scene = mesh::kDefaultScene;
   std::string brdf, eye;  // glossy: the mesh's BRDF and the eye point
   int brdf_bands = 0;
   int bounces = 0;
@@ -177,7 +178,7 @@ void run_reference(const ReferenceCommandOptions& o, const GivenOptions& given) 
   }
   if (job().is_root()) check_outputs({o.output}, {o.mesh_path, o.env, o.brdf, o.texels});  // rank 0 alone writes
 
-  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, nullptr, o.quiet || !job().is_root());
+  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, nullptr);
   light::Environment environment = light::load_environment(o.env);
   check_job_inputs({mesh_input(o.mesh_path, mesh), environment_input(o.env, environment),
                     options_input(canonical_options(o, options))});
@@ -217,6 +218,7 @@ void add_reference_command(CLI::App& app) {
       "Path-traced ground truth: per-vertex outgoing radiance under an environment as a colour PLY, or with --image "
       "the image `prt render` would show (EXR linear radiance, PNG tone mapped)");
   cmd->add_option("MESH", options->mesh_path, "Input mesh (.obj, .ply, .gltf, .glb)")->required();
+  add_scene_option(cmd, options->scene);
   cmd->add_option("--env", options->env, "Environment image (equirect 2:1, cross, or six faces)")->required();
   cmd->add_option("--bounces", options->bounces,
                   "Interreflection bounces (0 = direct light with visibility, as --transfer shadowed)")

@@ -2,6 +2,7 @@
 #include "cli/arguments.h"
 #include "cli/output_paths.h"
 #include "cli/view_arguments.h"
+#include "mesh/mesh.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "image/image.h"
@@ -13,6 +14,7 @@ namespace {
 
 struct RenderCommandOptions {
   std::string mesh_path, transfer_path, env, tone_map = "aces", output, brdf;
+  int scene = mesh::kDefaultScene;
   ViewArguments view = {"", "", "auto", "1024x1024", "", 0.0, 0};
   bool quiet = false;
 };
@@ -21,6 +23,7 @@ void run_render(const RenderCommandOptions& o) {
   check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.brdf});
   render::RenderOptions options;
   options.mesh_path = o.mesh_path;
+  options.scene = o.scene;
   options.transfer_path = o.transfer_path;
   options.environment = o.env;
   options.output = o.output;
@@ -38,6 +41,7 @@ void add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Render the relit mesh headless (OpenGL 4.5 through EGL; no display needed) to PNG or EXR");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfer was baked for")->required();
+  add_scene_option(cmd, options->scene);
   cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt, or .cprt compressed): diffuse, or glossy (view-dependent); a lightmap .prt (prt bake --lightmap) is sampled per pixel")->required();
   cmd->add_option("--env", options->env,
                   "Environment image (equirect 2:1, cross, or six faces; projected to the transfer's bands) or SH "

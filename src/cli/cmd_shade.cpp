@@ -27,6 +27,7 @@ namespace {
 
 struct ShadeCommandOptions {
   std::string mesh_path, transfer_path, env, light, rotate, output, eye, brdf;
+  int scene = mesh::kDefaultScene;
   LightingArguments lighting;
   shade::DiscShadingOptions discs;
   bool quiet = false;
@@ -45,7 +46,7 @@ void run_shade(const ShadeCommandOptions& o) {
   if (!o.lightmap && !glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
   check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.light, o.brdf});
   const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, nullptr, true);
+  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, {o.scene, true});
   const transfer::TransferData transfer = compress::expand(compress::open_transfer(o.transfer_path));  // .prt or .cprt
   if (transfer.header.is_texel() != o.lightmap)
     fail_file(o.transfer_path, o.lightmap ? "--lightmap needs a lightmap (bake it with prt bake --lightmap WxH)"
@@ -92,6 +93,7 @@ void add_shade_command(CLI::App& app) {
   auto options = std::make_shared<ShadeCommandOptions>();
   CLI::App* cmd = app.add_subcommand("shade", "Per-vertex outgoing radiance (transfer . lighting) as a colour PLY or .glb (COLOR_0)");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfer was baked for")->required();
+  add_scene_option(cmd, options->scene);
   cmd->add_option("TRANSFER", options->transfer_path, "Transfer file (.prt) or compressed transfer (.cprt)")->required();
   cmd->add_option("--env", options->env, "Environment image (equirect 2:1, cross, or six faces) projected to the transfer's bands");
   cmd->add_option("--light", options->light, "SH lighting JSON written by `prt light`");

@@ -1,6 +1,7 @@
 // prt view: the interactive relighting viewer (GLFW window, Dear ImGui panel).
 #include "cli/arguments.h"
 #include "cli/view_arguments.h"
+#include "mesh/mesh.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "render/viewer.h"
@@ -11,6 +12,7 @@ namespace {
 
 struct ViewCommandOptions {
   std::string mesh_path, screenshot, brdf;
+  int scene = mesh::kDefaultScene;
   std::vector<std::string> transfer_paths, environments;
   ViewArguments view = {"", "", "auto", "1280x800", "", 0.0, 0};
   int frames = 0;
@@ -19,6 +21,7 @@ struct ViewCommandOptions {
 void run_view(const ViewCommandOptions& o) {
   render::ViewerOptions options;
   options.mesh_path = o.mesh_path;
+  options.scene = o.scene;
   options.transfer_paths = o.transfer_paths;
   options.brdf = o.brdf;
   options.environments = o.environments;
@@ -36,6 +39,7 @@ void add_view_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "view", "Interactive relighting viewer: drag orbits, Shift+drag rotates the lighting, scroll zooms, H for help");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfers were baked for")->required();
+  add_scene_option(cmd, options->scene);
   cmd->add_option("TRANSFER", options->transfer_paths, "One or more transfer files (.prt, or .cprt compressed; diffuse or glossy; lightmaps sampled per pixel); keys 1-9 switch")
       ->required();
   cmd->add_option("--env", options->environments,

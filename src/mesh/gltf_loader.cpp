@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "core/json_depth.h"
+#include "mesh/gltf_compressed.h"
 #include "mesh/gltf_materials.h"
 #include "mesh/loaders.h"
 
@@ -31,13 +32,6 @@ namespace prt::mesh::detail {
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
-
-/// Extensions that change nothing prt reads (materials, textures, lights), or that it handles
-/// (KHR_mesh_quantization: integer attributes are read through the generic accessor reader).
-bool extension_is_harmless(const std::string& name) {
-  return name == "KHR_mesh_quantization" || name == "KHR_texture_transform" || name == "KHR_texture_basisu" ||
-         name == "KHR_lights_punctual" || name == "EXT_texture_webp" || name.rfind("KHR_materials_", 0) == 0;
-}
 
 std::size_t component_size(int component_type) {
   switch (component_type) {
@@ -475,9 +469,34 @@ bool file_exists(const std::string& file, void*) {
 /// Paths are used as written: no shell-style expansion of "~" or "$VAR" in a buffer uri.
 std::string path_as_written(const std::string& file, void*) { return file; }
 
-tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bool binary, std::string* warn,
+/// The bytes to hand tinygltf: `bytes` with its JSON replaced by `json` (the GLB's other chunks kept).
+std::string with_json(const std::string& bytes, std::string_view old_json, bool binary, std::string json) {
+  if (!binary) return json;
+  json.append((4 - json.size() % 4) % 4, ' ');
+  const std::size_t rest = std::size_t(old_json.data() - bytes.data()) + old_json.size();
+  std::string out(20, '\0');
+  auto put = [&](std::size_t at, std::size_t v) {
+    for (int k = 0; k < 4; ++k) out[at + std::size_t(k)] = char((v >> (8 * k)) & 0xFF);
+  };
+  put(0, 0x46546C67u);  // "glTF"
+  put(4, 2);
+  put(8, 20 + json.size() + (bytes.size() - rest));
+  put(12, json.size());
+  put(16, 0x4E4F534Au);  // "JSON"
+  return out + json + bytes.substr(rest);
+}
+
+/// Checks extensionsRequired before any buffer is read, then parses with tinygltf and decodes the
+/// compressed geometry (gltf_compressed.h), so that the model reads as plain glTF.
+tinygltf::Model parse_gltf(const std::string& path, const std::string& file_bytes, bool binary, std::string* warn,
                            std::vector<GltfImageBytes>* images) {
-  check_json_depth(binary ? glb_json_chunk(path, bytes) : std::string_view(bytes), path);
+  const std::string_view text = binary ? glb_json_chunk(path, file_bytes) : std::string_view(file_bytes);
+  check_json_depth(text, path);
+  nlohmann::json document = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  check_required_extensions(path, document);  // a malformed document is tinygltf's to name
+  const bool stubbed = patch_for_tinygltf(&document);
+  const std::string patched = stubbed ? with_json(file_bytes, text, binary, document.dump()) : std::string();
+  const std::string& bytes = stubbed ? patched : file_bytes;
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(keep_gltf_image, images);
   gltf.SetFsCallbacks({&file_exists, &path_as_written, &read_external_file, &tinygltf::WriteWholeFile, nullptr});
@@ -496,6 +515,8 @@ tinygltf::Model parse_gltf(const std::string& path, const std::string& bytes, bo
     fail_file(path, "cannot read glTF: a buffer or buffer view is malformed (byteLength 0?)");
   }
   if (!ok) fail_file(path, "cannot read glTF: " + first_line(err.empty() ? *warn : err));
+  decode_meshopt_views(path, &model);
+  decode_draco_primitives(path, &model);
   return model;
 }
 
@@ -534,39 +555,58 @@ int lightmap_uv_set(const tinygltf::Model& model) {
   return set;
 }
 
-RawMesh load_gltf(const std::string& path, bool binary) {
+// The root nodes of each scene to load, scene by scene (mesh.h, VERTEX ORDER): the chosen scene, every
+// scene, or the default one (with a note when there are several); every node that is no node's child
+// when the file has no scenes.
+std::vector<std::vector<int>> scene_roots(const std::string& path, const tinygltf::Model& model, int scene,
+                                          LoadReport* notes) {
+  const std::size_t scenes = model.scenes.size();
+  const std::string have = "the file has " + std::to_string(scenes) + (scenes == 1 ? " scene" : " scenes");
+  if (scene >= 0 && std::size_t(scene) >= scenes)
+    fail_file(path, "scene " + std::to_string(scene) + " does not exist (" + have + ")");
+  if (scene >= 0) return {model.scenes[std::size_t(scene)].nodes};
+  if (scene == kAllScenes && scenes > 0) {
+    std::vector<std::vector<int>> all;
+    for (const tinygltf::Scene& s : model.scenes) all.push_back(s.nodes);
+    return all;
+  }
+  if (model.defaultScene >= 0 && std::size_t(model.defaultScene) >= scenes)
+    fail_file(path, "the default scene does not exist");
+  if (scenes > 0) {
+    const std::size_t chosen = model.defaultScene >= 0 ? std::size_t(model.defaultScene) : 0;
+    if (scene == kDefaultScene && scenes > 1)
+      notes->notes.push_back(have + "; loaded only scene " + std::to_string(chosen) +
+                             ", the default (a scene can be chosen by index, or all of them)");
+    return {model.scenes[chosen].nodes};
+  }
+  std::vector<std::uint8_t> is_child(model.nodes.size(), 0);
+  for (const tinygltf::Node& node : model.nodes)
+    for (int child : node.children)
+      if (child >= 0 && std::size_t(child) < model.nodes.size()) is_child[std::size_t(child)] = 1;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (!is_child[i]) roots.push_back(int(i));
+  return {roots};
+}
+
+RawMesh load_gltf(const std::string& path, bool binary, int scene) {
   const std::string bytes = read_file(path);
   if (bytes.size() >= std::numeric_limits<unsigned int>::max())
     fail_file(path, "file too large for glTF (4 GiB or more)");
   std::string warn;
   std::vector<GltfImageBytes> images;
   const tinygltf::Model model = parse_gltf(path, bytes, binary, &warn, &images);
-  for (const std::string& name : model.extensionsRequired)
-    if (!extension_is_harmless(name))
-      fail_file(path, "requires the glTF extension " + name + ", which prt does not support");
 
   GltfMaterials materials(path, model, images);
   Loader loader{path, model, GltfReader(path, model), materials, RawMesh{},
                 std::vector<std::uint8_t>(model.nodes.size(), 0)};
   if (!first_line(warn).empty()) loader.raw.notes_only.notes.push_back("glTF reader: " + first_line(warn));
 
-  // Roots: the default scene, else scene 0, else every node that is no node's child.
-  std::vector<int> roots;
-  if (model.defaultScene >= 0) {
-    if (std::size_t(model.defaultScene) >= model.scenes.size()) fail_file(path, "the default scene does not exist");
-    roots = model.scenes[std::size_t(model.defaultScene)].nodes;
-  } else if (!model.scenes.empty()) {
-    roots = model.scenes[0].nodes;
-  } else {
-    std::vector<std::uint8_t> is_child(model.nodes.size(), 0);
-    for (const tinygltf::Node& node : model.nodes)
-      for (int child : node.children)
-        if (child >= 0 && std::size_t(child) < model.nodes.size()) is_child[std::size_t(child)] = 1;
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) roots.push_back(int(i));
-  }
   loader.uv_set = lightmap_uv_set(model);
-  for (int root : roots) loader.visit(root, glm::dmat4(1.0), 0);
+  for (const std::vector<int>& roots : scene_roots(path, model, scene, &loader.raw.notes_only)) {
+    std::fill(loader.visited.begin(), loader.visited.end(), std::uint8_t(0));  // a node may be in several scenes
+    for (int root : roots) loader.visit(root, glm::dmat4(1.0), 0);
+  }
 
   RawMesh raw = std::move(loader.raw);
   LoadReport& notes = raw.notes_only;

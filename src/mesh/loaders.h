@@ -68,7 +68,8 @@ bool decode_texture(const std::string& bytes, const std::string& hint, const std
 
 RawMesh load_obj(const std::string& path);
 RawMesh load_ply(const std::string& path);
-RawMesh load_gltf(const std::string& path, bool binary);
+/// `scene`: LoadOptions::scene.
+RawMesh load_gltf(const std::string& path, bool binary, int scene);
 
 /// The other files a mesh file names (mesh::referenced_files): an OBJ's "mtllib" files (and their
 /// map_Kd images), a glTF's

@@ -257,18 +257,26 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
 }  // namespace detail
 
 Mesh load_mesh(const std::string& path, LoadReport* report, bool quiet) {
+  LoadOptions options;
+  options.quiet = quiet;
+  return load_mesh(path, options, report);
+}
+
+Mesh load_mesh(const std::string& path, const LoadOptions& options, LoadReport* report) {
   const std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".gltf" && ext != ".glb")
     fail_file(path, "unsupported mesh format \"" + ext + "\" (prt reads .obj, .ply, .gltf and .glb)");
   check_content(path, ext, read_head(path));
+  if (options.scene > 0 && (ext == ".obj" || ext == ".ply"))
+    fail_file(path, "scene " + std::to_string(options.scene) + " does not exist (the file has 1 scene)");
   detail::RawMesh raw;
   if (ext == ".obj")
     raw = detail::load_obj(path);
   else if (ext == ".ply")
     raw = detail::load_ply(path);
   else
-    raw = detail::load_gltf(path, ext == ".glb");
-  return detail::finish_mesh(path, std::move(raw), report, quiet);
+    raw = detail::load_gltf(path, ext == ".glb", options.scene);
+  return detail::finish_mesh(path, std::move(raw), report, options.quiet);
 }
 
 std::vector<std::string> referenced_files(const std::string& path) {

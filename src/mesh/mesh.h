@@ -9,13 +9,17 @@
 //   further distinct pair is a new vertex at the same position, numbered after all "v"s in the order
 //   the pairs first appear. A file without hard edges maps 1:1 to its "v" lines.
 // - PLY: the "vertex" elements, in file order.
-// - glTF: the nodes of the scene (the default scene, else scene 0, else every root node in document
-//   order) are visited depth-first, each node before its children, children in the order of the
-//   node's "children" array; for each visited node with a mesh, that mesh's primitives in order; for
-//   each triangle primitive (modes 4, 5, 6), all `count` elements of its POSITION accessor in accessor
-//   order. A mesh instanced by two nodes appears twice. Primitives in point or line modes contribute
-//   no vertices. The hierarchy must be a set of trees (as the glTF spec requires): a node reached
-//   twice is an error.
+// - glTF: the nodes of the scene are visited depth-first, each node before its children, children in
+//   the order of the node's "children" array; for each visited node with a mesh, that mesh's
+//   primitives in order; for each triangle primitive (modes 4, 5, 6), all `count` elements of its
+//   POSITION accessor in accessor order (a Draco-compressed primitive: Draco's point order; a meshopt-
+//   compressed buffer view: its decoded order; both as gltf-transform decodes them to plain glTF). A
+//   mesh instanced by two nodes appears twice. Primitives in point or line modes contribute no
+//   vertices. The hierarchy must be a set of trees (as the glTF spec requires): a node reached twice
+//   is an error. Which scene (LoadOptions::scene): by default the file's "scene", else scene 0, else
+//   (no scenes) every root node in document order, with a note when the file has several scenes; or
+//   the scene of a given index; or all: every scene in document order, each one's nodes as above (a
+//   node in two scenes appears twice).
 // Polygons with more than 3 vertices (OBJ, PLY) are fan-triangulated: (v0, v1, v2), (v0, v2, v3), ...
 // glTF triangle strips and fans are converted to triangle lists as the glTF spec defines.
 //
@@ -149,6 +153,20 @@ struct LoadReport {
   std::string missing_uv_reason;
 };
 
+/// LoadOptions::scene: the file's default scene (see VERTEX ORDER).
+inline constexpr int kDefaultScene = -1;
+/// LoadOptions::scene: every scene, one after the other (see VERTEX ORDER).
+inline constexpr int kAllScenes = -2;
+
+/// How load_mesh reads a file.
+struct LoadOptions {
+  /// Which glTF scene: kDefaultScene, kAllScenes, or a scene index >= 0 (load_mesh throws
+  /// "<path>: scene N does not exist (the file has M scenes)" when it is out of range). An OBJ or
+  /// PLY file is one scene, index 0.
+  int scene = kDefaultScene;
+  bool quiet = false;  ///< no notes on stderr
+};
+
 /// Loads .obj (+ .mtl Kd), .ply (ASCII / binary little or big endian, optional red/green/blue),
 /// .gltf / .glb (every triangle primitive of the scene, node transforms, baseColorFactor and COLOR_0
 /// as albedo); the extension (case-insensitive) picks the format, and the content must match it.
@@ -158,6 +176,8 @@ struct LoadReport {
 /// Prints each note of the report (normals computed, triangles or primitives skipped) as one line
 /// "<path>: <note>" on stderr, unless `quiet`.
 Mesh load_mesh(const std::string& path, LoadReport* report = nullptr, bool quiet = false);
+/// load_mesh as above, reading the scene(s) that `options` names.
+Mesh load_mesh(const std::string& path, const LoadOptions& options, LoadReport* report = nullptr);
 
 /// The files a mesh file refers to, which load_mesh may read and which are inputs as much as the
 /// mesh itself: an OBJ's "mtllib" files and their map_Kd images, a glTF's (.gltf or .glb) buffer and

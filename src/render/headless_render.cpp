@@ -34,7 +34,7 @@ void check_output_extension(const std::string& path) {
 
 void render_to_file(const RenderOptions& options) {
   check_output_extension(options.output);
-  const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path});
+  const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path}, options.scene);
   const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
   used_bands(scene.transfers[0].header, options.bands);  // before any GL work
   light::WindowRequest window = options.window;

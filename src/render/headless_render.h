@@ -7,12 +7,14 @@
 
 #include "image/image.h"
 #include "light/scene_lighting.h"
+#include "mesh/mesh.h"
 #include "render/renderer.h"
 
 namespace prt::render {
 
 struct RenderOptions {
   std::string mesh_path;
+  int scene = mesh::kDefaultScene;  ///< mesh::LoadOptions::scene
   std::string transfer_path;
   std::string environment;              ///< environment image or SH lighting JSON (see load_render_lighting)
   std::string output;                   ///< .png (tone mapped, 8-bit sRGB) or .exr (linear radiance)

@@ -34,9 +34,9 @@ image::Image equirect_from_cube(const light::Environment& environment) {
 
 }  // namespace
 
-SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths) {
+SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths, int scene_index) {
   SceneInputs scene;
-  scene.mesh = mesh::load_mesh(mesh_path, nullptr, /*quiet=*/true);
+  scene.mesh = mesh::load_mesh(mesh_path, {scene_index, /*quiet=*/true});
   const std::uint64_t fingerprint = mesh::fingerprint(scene.mesh);
   for (const std::string& path : transfer_paths) {
     compress::TransferFile file = compress::open_transfer(path);

@@ -27,11 +27,12 @@ struct SceneInputs {
   std::vector<std::shared_ptr<const compress::CompressedTransfer>> compressed;
 };
 
-/// Loads the mesh (quietly: no notes on stderr, as `prt shade`) and each transfer (compress::open_transfer:
+/// Loads the mesh (its scene `scene`, mesh::LoadOptions::scene; quietly: no notes on stderr, as `prt shade`) and each transfer (compress::open_transfer:
 /// .prt, or .cprt: compressed, a compressed lightmap decompressed), checks every transfer against the mesh
 /// (transfer::check_mesh_match with mesh::fingerprint). Throws prt::Error("<file>: <problem>") for the
 /// first file that fails.
-SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths);
+SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths,
+                       int scene = mesh::kDefaultScene);
 
 /// Distant lighting for the renderer.
 struct Lighting {

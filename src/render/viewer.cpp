@@ -381,7 +381,7 @@ void run_frames(GLFWwindow* window, Session& session, Renderer& renderer, const 
 
 void run_viewer(const ViewerOptions& options) {
   check_screenshot_option(options);
-  SceneInputs scene = load_scene(options.mesh_path, options.transfer_paths);
+  SceneInputs scene = load_scene(options.mesh_path, options.transfer_paths, options.scene);
   Session session;
   ViewerState& state = session.state;
   init_state(state, scene, options);

@@ -34,12 +34,14 @@
 
 #include "image/image.h"
 #include "light/scene_lighting.h"
+#include "mesh/mesh.h"
 #include "render/renderer.h"
 
 namespace prt::render {
 
 struct ViewerOptions {
   std::string mesh_path;
+  int scene = mesh::kDefaultScene;  ///< mesh::LoadOptions::scene
   std::vector<std::string> transfer_paths;  ///< one or more, all for the mesh (diffuse or glossy)
   std::string brdf;                         ///< glossy transfers: BRDF SPEC; empty = each one's baked BRDF
   std::vector<std::string> environments;    ///< one or more (images or SH lighting .json)

@@ -144,7 +144,9 @@ void check_scene_mesh(const Mesh& mesh, const LoadReport& report) {
   }
   for (std::size_t i = 14; i < 17; ++i) CHECK(mesh.albedo[i] == glm::vec3(1.0f));
   CHECK(report.notes ==
-        std::vector<std::string>{"skipped 2 primitives in point or line modes or without POSITION",
+        std::vector<std::string>{"the file has 2 scenes; loaded only scene 1, the default (a scene can be chosen by "
+                                 "index, or all of them)",
+                                 "skipped 2 primitives in point or line modes or without POSITION",
                                  "computed area-weighted normals for 8 of 17 vertices (2 primitives have no normals)"});
 }
 
@@ -217,12 +219,13 @@ TEST_CASE("glTF errors are one line naming the file and the problem", "[mesh][gl
   const std::string overrun = write_temp("overrun.gltf", long_count.dump());
   CHECK(error_of([&] { load_mesh(overrun, nullptr, true); }) ==
         overrun + ": mesh 0 primitive 0 POSITION: accessor runs past the end of its buffer view");
-  json draco = one_triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2});
-  draco["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-  draco["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-  const std::string compressed = write_temp("draco.gltf", draco.dump());
-  CHECK(error_of([&] { load_mesh(compressed, nullptr, true); }) ==
-        compressed + ": requires the glTF extension KHR_draco_mesh_compression, which prt does not support");
+  json instanced = one_triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2});
+  instanced["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+  instanced["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  instanced["buffers"][0]["byteLength"] = 1u << 30;  // checked before any buffer is read
+  const std::string unsupported = write_temp("instanced.gltf", instanced.dump());
+  CHECK(error_of([&] { load_mesh(unsupported, nullptr, true); }) ==
+        unsupported + ": requires glTF extension EXT_mesh_gpu_instancing, which prt does not support");
   json cyclic = one_triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2});
   cyclic["nodes"] = {{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}};
   cyclic["scenes"] = {{{"nodes", {0}}}};
