@@ -11,17 +11,18 @@
 #               llvm-cov (the fuzz targets of tests/fuzz, scripts/fuzz.sh).
 #   --no-build  install only.
 #   --target    build only this target (repeatable); default: everything (libraries, prt, tests, benches).
+#               Open MPI (distributed bakes, -DPRT_WITH_MPI=ON) is installed for a full build or --tests;
+#               a build of named targets alone is for one machine unless MPI is already there.
 # Environment: PRT_BUILD_DIR (default build), PRT_EXTRA_PACKAGES (more packages to install).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake ninja-build pkg-config git
-  libglm-dev libembree-dev libglfw3-dev libopenimageio-dev openimageio-tools catch2 libbenchmark-dev
+  build-essential cmake ninja-build pkg-config
+  libglm-dev libembree-dev libglfw3-dev libopenimageio-dev catch2 libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev
   libimgui-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libeigen3-dev
-  libopenmpi-dev openmpi-bin
 )
 with_tests=0
 build=1
@@ -36,6 +37,12 @@ while (($#)); do
   esac
   shift
 done
+# Open MPI (and the gfortran it pulls in) for a full build or the tests, not for named targets alone:
+# the demo's prt runs on one machine. A build/ first configured without MPI gets it now.
+if ((with_tests)) || ((${#targets[@]} == 0)); then
+  packages+=(libopenmpi-dev openmpi-bin)
+  cmake_args+=(-DPRT_WITH_MPI=ON)
+fi
 if ((with_tests)); then
   packages+=(xvfb xauth chromium mono-mcs clang-14 libfuzzer-14-dev llvm-14)
   command -v node >/dev/null || packages+=(nodejs)
