@@ -12,4 +12,11 @@ if [ -n "$unlabelled" ]; then
   echo "$unlabelled" >&2
   exit 1
 fi
+# Catch reads a test name that begins with '-' as an option, so such a test can never run from ctest.
+dashed=$(ctest -N | grep -E '^ *Test +#[0-9]+: [A-Za-z0-9_]+:-' || true)
+if [ -n "$dashed" ]; then
+  echo "test: these test names begin with '-', which Catch reads as an option:" >&2
+  echo "$dashed" >&2
+  exit 1
+fi
 ctest --output-on-failure -j"$(nproc)" "$@"

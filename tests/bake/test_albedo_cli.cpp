@@ -82,7 +82,7 @@ TEST_CASE("prt shade per vertex on a textured checker quad equals the footprint 
     for (int c = 0; c < 3; ++c) CHECK(double(shaded.colours[v][c]) == Approx(want[v][c]).epsilon(0.01));
 }
 
-TEST_CASE("--albedo overrides the file's textures with a note, and prt info says so", "[bake][cli][albedo]") {
+TEST_CASE("prt bake --albedo overrides the file's textures with a note, and prt info says so", "[bake][cli][albedo]") {
   const std::string dir = test::fresh_temp_dir("albedo_override");
   glm::dvec3 a, b;
   const std::string obj = write_checker_quad(dir, &a, &b);

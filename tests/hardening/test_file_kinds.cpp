@@ -191,7 +191,7 @@ TEST_CASE("a probe grid or a bake whose memory cannot fit is refused at once, na
                                    "--format prt -q -o " + files().dir + "/big.prtprobes");
   require_one_line_error(probes, "--grid 4096,4096,4");
   REQUIRE_THAT(probes.output, Contains("GiB"));
-  REQUIRE(seconds() < 5.0);
+  REQUIRE(seconds() < 15.0);  // ~0.5 s alone; the bound only tells a refusal from a run (a loaded CI machine has taken 5 s)
   REQUIRE_FALSE(fs::exists(files().dir + "/big.prtprobes"));
   // Glossy 32 x 32 bands: 12 MiB of transfer per vertex; 128 x 128 vertices need about 1 TiB.
   std::string grid;
@@ -208,7 +208,7 @@ TEST_CASE("a probe grid or a bake whose memory cannot fit is refused at once, na
                                  "--bands 32 --bands-out 32 --samples 64 -q -o " + files().dir + "/big.prt");
   require_one_line_error(bake, "--bands 32");
   REQUIRE_THAT(bake.output, Contains("GiB"));
-  REQUIRE(seconds() < 10.0);
+  REQUIRE(seconds() < 20.0);
   REQUIRE_FALSE(fs::exists(files().dir + "/big.prt"));
 }
 
