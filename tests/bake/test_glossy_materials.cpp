@@ -22,6 +22,7 @@
 #include "reference/glossy_estimator.h"
 #include "shade/glossy.h"
 #include "shade/scene_shading.h"
+#include "glossy_sky.h"
 #include "support/run_prt.h"
 #include "support/shapes.h"
 #include "transfer/transfer_file.h"
@@ -186,29 +187,12 @@ mesh::Mesh two_bowls(int rings, int segments) {
   return m;
 }
 
-// A sky gradient with a broad warm lobe: directional enough that the BRDFs differ.
-light::Environment lobe_sky() {
-  const glm::dvec3 sun = glm::normalize(glm::dvec3(-0.5, 0.8, 0.3));
-  light::Environment env;
-  env.layout = light::Environment::Layout::equirect;
-  env.equirect = image::Image(128, 64, 3);
-  for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 128; ++x) {
-      const glm::dvec3 d = light::equirect_direction((x + 0.5) / 128.0, (y + 0.5) / 64.0);
-      const double lobe = std::pow(std::max(0.0, glm::dot(d, sun)), 6.0);
-      const glm::dvec3 v(0.3 + 0.3 * std::max(d.y, 0.0) + 3.0 * lobe, 0.3 + 0.4 * std::max(d.y, 0.0) + 2.0 * lobe, 0.4 + 0.5 * std::max(d.y, 0.0) + lobe);
-      for (int c = 0; c < 3; ++c) env.equirect.at(x, y, c) = static_cast<float>(v[c]);
-    }
-  env.source = "lobe sky";
-  return env;
-}
-
 }  // namespace
 
 TEST_CASE("--brdf mesh interreflected: each vertex as the bake with its own BRDF, and the reference agrees",
           "[glossy][materials][reference][slow]") {
   const int bands = 5;
-  const mesh::Mesh mesh = two_bowls(6, 12);
+  const mesh::Mesh mesh = two_bowls(10, 20);
   const std::size_t half = mesh.positions.size() / 2;
   bake::BakeOptions o;
   o.kind = transfer::Kind::glossy_interreflected;
@@ -221,7 +205,7 @@ TEST_CASE("--brdf mesh interreflected: each vertex as the bake with its own BRDF
   const brdf::VertexBrdfs brdfs = shade::baked_brdfs(multi.header, "multi");
   REQUIRE(brdfs.table.size() == 2);
   CHECK(report.notes.empty());
-  const light::Environment env = lobe_sky();
+  const light::Environment env = test::directional_sky();
   const sh::RgbCoefficients lighting = light::project(env, bands);
   const reference::EnvironmentSampler limited(reference::band_limited_environment(env, bands));
   const glm::vec3 eye(1.5f, 3.0f, 2.5f);
