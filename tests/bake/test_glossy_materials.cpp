@@ -5,12 +5,15 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <glm/common.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "bake/bake.h"
+#include "bake/mesh_brdfs.h"
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
 #include "image/compare.h"
@@ -19,6 +22,7 @@
 #include "light/projection.h"
 #include "mesh/mesh.h"
 #include "mesh/mesh_test_util.h"
+#include "mesh/writers.h"
 #include "reference/glossy_estimator.h"
 #include "shade/glossy.h"
 #include "shade/scene_shading.h"
@@ -102,6 +106,11 @@ std::string write_dim_light(const std::string& dir) {
 
 bool contains(const std::string& haystack, const std::string& needle) { return haystack.find(needle) != std::string::npos; }
 
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 }  // namespace
 
 // Lobe by lobe, parameters and weights within `tolerance`.
@@ -157,9 +166,50 @@ TEST_CASE("--brdf mesh: a two-material glTF shades each vertex as the bake with 
   CHECK(differ > 60);      // the two BRDFs shade differently, so the choice per vertex shows
   CHECK(largest > 0.05);
   CHECK(largest < 1.0);    // the PLY loader clamps colours to [0, 1]
-  // A reader of one BRDF refuses the file in one line.
+  // Any thread count gives the same bytes.
+  REQUIRE(test::run_prt(common + " --brdf mesh --threads 1 -o " + dir + "/one.prt").exit_code == 0);
+  CHECK(read_bytes(dir + "/one.prt") == read_bytes(dir + "/multi.prt"));
+  // A reader of one BRDF refuses the file in one line; so does --brdf mesh on a mesh without materials.
   CHECK(test::fails_in_one_line(test::run_prt("compress " + dir + "/multi.prt --clusters 2 --pca 1 -o " + dir + "/c.cprt"),
                                 "one BRDF per material"));
+  const mesh::Mesh plain = test::bowl(3, 6);
+  mesh::write_ply(dir + "/plain.ply", plain.positions, {}, plain.indices);
+  for (const char* brdf : {"", " --brdf mesh"})
+    CHECK(test::fails_in_one_line(test::run_prt("bake " + dir + "/plain.ply --transfer glossy-shadowed" + brdf + " -o " + dir + "/p.prt"),
+                                  "plain.ply: has no materials"));
+  CHECK(!std::filesystem::exists(dir + "/p.prt"));
+  CHECK(!std::filesystem::exists(dir + "/c.cprt"));
+}
+
+TEST_CASE("mesh_brdfs: a vertex takes its first triangle's BRDF, equal materials share an entry, notes", "[glossy][materials]") {
+  // Three triangles in a strip (vertices 0-1-2, 1-3-2, 3-4-2), materials 1, 0, 2; materials 0 and 2 are
+  // equal, material 1 has roughness 0 and a metallic-roughness texture.
+  mesh::Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}};
+  m.normals.assign(5, glm::vec3(0, 0, 1));
+  m.indices = {0, 1, 2, 1, 3, 2, 3, 4, 2};
+  m.materials.resize(3);
+  m.materials[0].roughness_factor = 0.5f;
+  m.materials[1].roughness_factor = 0.0f;
+  m.materials[1].metallic_roughness_textured = true;
+  m.materials[2].roughness_factor = 0.5f;
+  m.triangle_material = {1, 0, 2};
+  std::vector<std::string> notes;
+  const brdf::VertexBrdfs b = bake::mesh_brdfs(m, &notes);
+  REQUIRE(b.table.size() == 2);  // material 1 first (triangle 0), then 0 and 2 together
+  CHECK(b.table[0].lobes.back().roughness == Approx(0.01));
+  CHECK(b.table[1].lobes.back().roughness == Approx(0.5));
+  CHECK(b.vertex == std::vector<std::uint32_t>{0, 0, 0, 1, 1});
+  REQUIRE(notes.size() == 3);
+  CHECK(contains(notes[0], "2 vertices join triangles of different materials"));  // vertices 1 and 2
+  CHECK(contains(notes[1], "1 materials have roughness below 0.01"));
+  CHECK(contains(notes[2], "1 materials have base colour or metallic-roughness textures"));
+  // One distinct BRDF: no per-vertex indices (the file's single-BRDF form).
+  m.triangle_material = {0, 0, 2};
+  notes.clear();
+  const brdf::VertexBrdfs one = bake::mesh_brdfs(m, &notes);
+  CHECK(one.table.size() == 1);
+  CHECK(one.vertex.empty());
 }
 
 namespace {
