@@ -92,7 +92,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
       load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, !notes || options.brdf_from_mesh}, &load_report);
   if (options.brdf_from_mesh) {
     if (mesh.materials.empty())
-      fail_file(o.mesh_path, !o.albedo.empty() ? "--albedo drops the materials that --brdf mesh needs; give --brdf SPEC"
+      fail_file(o.mesh_path, !o.albedo.empty() ? "--albedo replaces the materials (if any) that --brdf mesh needs; give --brdf SPEC"
                              : o.brdf.empty()  ? "has no materials, so glossy transfer needs --brdf SPEC"
                                                : "has no materials for --brdf mesh; give --brdf SPEC");
     if (notes)
