@@ -19,7 +19,7 @@ void validate_options(const BakeOptions& o) {
   if (o.bands < 1 || o.bands > sh::kMaxBands)
     fail_option("bands", " " + std::to_string(o.bands) + " is out of range 1.." + std::to_string(sh::kMaxBands));
   if (transfer::is_glossy(o.kind)) {
-    if (o.brdf.empty()) fail_option("brdf", std::string(": ") + transfer::kind_name(o.kind) + " transfer needs a BRDF spec");
+    if (o.brdf.empty() && !o.brdf_from_mesh) fail_option("brdf", std::string(": ") + transfer::kind_name(o.kind) + " transfer needs a BRDF spec");
     if (o.bands_out < 0 || o.bands_out > o.bands)
       fail_option("bands_out", " " + std::to_string(o.bands_out) + " is out of range 1..bands (" + std::to_string(o.bands) + ")");
   } else if (o.bands_out != 0) {

@@ -55,9 +55,11 @@
 //                     r_s the hit's radiance row (world lighting -> radiance). Back faces are black.
 //   glossy-interreflected = M^0 + M^1 + ... (bounces as for diffuse: a fixed count, or until a pass's
 //                     energy sum_p,c M_p[0][0] falls below 1e-3 of the direct pass's).
-// One BRDF (options.brdf) for the whole mesh: the mesh's per-vertex albedo is not used. CHANNELS:
-// glossy-shadowed has 1 (geometry only; the BRDF is applied when shading); glossy-interreflected has 1
-// if the BRDF is grey, else 3 (the bounce light is coloured by the BRDF).
+// One BRDF (options.brdf) for the whole mesh, or with options.brdf_from_mesh each vertex's own, from its
+// material (mesh_brdfs.h; a bounce's hit corner q is then shaded with q's BRDF B_q); the mesh's
+// per-vertex albedo is not used. CHANNELS: glossy-shadowed has 1 (geometry only; the BRDF is applied
+// when shading, so its transfer does not depend on the BRDFs); glossy-interreflected has 1 if every
+// BRDF is grey, else 3 (the bounce light is coloured by the BRDF).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -86,7 +88,10 @@ struct BakeOptions {
   std::uint32_t seed = 1; ///< sample-set scrambling and per-vertex frame rotations
   int threads = 0;        ///< worker threads; 0 = all cores. Does not change the output.
   bool progress = false;  ///< progress bar on stderr (only drawn when stderr is a terminal)
-  brdf::Brdf brdf;        ///< glossy kinds: the BRDF of the whole mesh (required); unused otherwise
+  brdf::Brdf brdf;        ///< glossy kinds: the BRDF of the whole mesh (required unless brdf_from_mesh); unused otherwise
+  /// Glossy kinds: each vertex's BRDF from the mesh's materials (mesh_brdfs.h; `brdf` unused). The mesh
+  /// must have materials.
+  bool brdf_from_mesh = false;
   int bands_out = 0;      ///< glossy kinds: transferred-radiance bands 1..bands; 0 = bands
   /// Where each vertex's rays leave from (shadowed, interreflected and glossy kinds): `area`, points
   /// spread over the vertex's one-ring with its hat weight, so that the value stored is the average
@@ -108,6 +113,7 @@ struct BakeReport {
   std::vector<double> pass_energy;   ///< per pass (0 = direct): sum over vertices and channels of T[0]
   std::uint64_t rays_traced = 0;    ///< by all ranks together
   double seconds_build = 0, seconds_visibility = 0, seconds_bounces = 0;
+  std::vector<std::string> notes;   ///< one-line notes for the user (e.g. mesh_brdfs's)
 };
 
 /// The automatic bounce rule: stop after the first pass whose energy is below this fraction of pass 0's.

@@ -1,13 +1,16 @@
 // Glossy bakes (bake.h, GLOSSY): the direct pass, interreflection passes and the file header.
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
 #include <nlohmann/json.hpp>
 
 #include "bake/glossy_passes.h"
+#include "bake/mesh_brdfs.h"
 #include "bake/passes.h"
 #include "brdf/frame.h"
 #include "brdf/projection.h"
+#include "core/error.h"
 #include "core/stopwatch.h"
 #include "trace/scene.h"
 
@@ -23,13 +26,14 @@ double pass_energy(const std::vector<float>& values, std::size_t matrix_size, st
   return sum;
 }
 
-std::string parameters_json(const BakeOptions& o, int bands_out, int bounces_done, float ray_offset) {
+std::string parameters_json(const BakeOptions& o, const brdf::VertexBrdfs& brdfs, int bands_out, int bounces_done,
+                            float ray_offset) {
   nlohmann::ordered_json j;
   j["tool"] = "prt 0.1.0";
   j["kind"] = transfer::kind_name(o.kind);
   j["bands"] = o.bands;
   j["bands_out"] = bands_out;
-  j["brdf"] = brdf::to_spec(o.brdf);
+  brdf::write_vertex_brdfs(brdfs, j);
   j["samples"] = o.samples;
   j["seed"] = o.seed;
   j["sample_set"] = "owen-scrambled sobol, uniform hemisphere, per-vertex hashed rotation";
@@ -52,6 +56,17 @@ std::vector<float> three_channels(const std::vector<float>& direct, std::size_t 
   return out;
 }
 
+// The BRDF of every vertex: options.brdf for all, or each material's (mesh_brdfs).
+brdf::VertexBrdfs brdfs_of_vertices(const mesh::Mesh& mesh, const BakeOptions& options, std::vector<std::string>* notes) {
+  if (!options.brdf_from_mesh) return brdf::VertexBrdfs{{options.brdf}, {}};
+  if (mesh.materials.empty()) fail_option("brdf", " mesh: the mesh has no materials; give a BRDF spec");
+  return mesh_brdfs(mesh, notes);
+}
+
+bool all_brdfs_grey(const brdf::VertexBrdfs& brdfs) {
+  return std::all_of(brdfs.table.begin(), brdfs.table.end(), [](const brdf::Brdf& b) { return b.is_grey(); });
+}
+
 }  // namespace
 
 transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& options, BakeReport* report) {
@@ -60,7 +75,8 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
   rep = BakeReport{};
   const int bands_out = options.bands_out > 0 ? options.bands_out : options.bands;
   const bool interreflected = options.kind == transfer::Kind::glossy_interreflected;
-  const int channels = interreflected && !options.brdf.is_grey() ? 3 : 1;
+  const brdf::VertexBrdfs brdfs = brdfs_of_vertices(mesh, options, &rep.notes);
+  const int channels = interreflected && !all_brdfs_grey(brdfs) ? 3 : 1;
   const std::size_t vertices = mesh.positions.size();
   const std::size_t matrix_size = static_cast<std::size_t>(bands_out) * bands_out * options.bands * options.bands;
 
@@ -100,7 +116,8 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     use_robust_scene(scene, mesh, options.threads, rep.seconds_build);
     ctx.scene = scene.get();
     start = std::chrono::steady_clock::now();
-    const brdf::BrdfMatrix brdf_matrix = brdf::project(options.brdf, bands_out);
+    std::vector<brdf::BrdfMatrix> brdf_matrices;
+    for (const brdf::Brdf& b : brdfs.table) brdf_matrices.push_back(brdf::project(b, bands_out));
     const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
     std::vector<float> prev = data.values, next;
     // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
@@ -109,7 +126,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     h.bounce_only_section = true;
     for (int b = 1; b <= max_passes; ++b) {
       const std::string label = "bake glossy bounce " + std::to_string(b);
-      rep.rays_traced += glossy_bounce_pass(ctx, brdf_matrix, channels, prev, next, label.c_str());
+      rep.rays_traced += glossy_bounce_pass(ctx, brdf_matrices, brdfs, channels, prev, next, label.c_str());
       dist::allgather_items(dist, next, matrix_size * channels, &order);  // the next pass and the stopping rule need it
       for (std::size_t i = 0; i < next.size(); ++i) {
         data.values[i] += next[i];
@@ -124,7 +141,7 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
     rep.seconds_bounces = seconds_since(start);
   }
   rep.rays_traced = dist.sum(rep.rays_traced);
-  h.parameters_json = parameters_json(options, bands_out, rep.bounces_done, scene->ray_offset());
+  h.parameters_json = parameters_json(options, brdfs, bands_out, rep.bounces_done, scene->ray_offset());
   return data;
 }
 

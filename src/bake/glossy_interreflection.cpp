@@ -25,11 +25,11 @@ std::vector<int> nonzero_rows(int bands) {
   return rows;
 }
 
-// P_q,c = B_c M_q,c for every vertex q and channel c: the map from world lighting to the outgoing
+// P_q,c = B_q,c M_q,c for every vertex q (B_q = b[brdfs.of(q)]) and channel c: the map from world lighting to the outgoing
 // radiance coefficients of q (local frame), rows restricted to `rows`. Layout: vertex-major,
 // channel-major, [rows.size()][n_in].
-void outgoing_matrices(const GlossyContext& ctx, const brdf::BrdfMatrix& b, int channels, const std::vector<int>& rows,
-                       const std::vector<float>& transfer, std::vector<float>& out) {
+void outgoing_matrices(const GlossyContext& ctx, const std::vector<brdf::BrdfMatrix>& b, const brdf::VertexBrdfs& brdfs, int channels,
+                       const std::vector<int>& rows, const std::vector<float>& transfer, std::vector<float>& out) {
   const int n_in = ctx.bands * ctx.bands, n_out = ctx.bands_out * ctx.bands_out;
   const std::size_t matrix_size = static_cast<std::size_t>(n_out) * n_in;
   const std::size_t block = rows.size() * static_cast<std::size_t>(n_in);
@@ -39,7 +39,8 @@ void outgoing_matrices(const GlossyContext& ctx, const brdf::BrdfMatrix& b, int 
     std::vector<double> row_sum(static_cast<std::size_t>(n_in));
     for (std::size_t q = begin; q < end; ++q)
       for (int c = 0; c < channels; ++c) {
-        const double* bc = b.channel(b.channels == 1 ? 0 : c);
+        const brdf::BrdfMatrix& bq = b[brdfs.of(q)];
+        const double* bc = bq.channel(bq.channels == 1 ? 0 : c);
         const float* m = transfer.data() + (q * channels + c) * matrix_size;
         float* p = out.data() + (q * channels + c) * block;
         for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -144,11 +145,12 @@ class GlossyBounceWorker {
 
 }  // namespace
 
-std::uint64_t glossy_bounce_pass(const GlossyContext& ctx, const brdf::BrdfMatrix& brdf_matrix, int channels,
+std::uint64_t glossy_bounce_pass(const GlossyContext& ctx, const std::vector<brdf::BrdfMatrix>& brdf_matrices,
+                                 const brdf::VertexBrdfs& brdfs, int channels,
                                  const std::vector<float>& prev, std::vector<float>& next, const char* label) {
   const std::vector<int> rows = nonzero_rows(ctx.bands_out);
   std::vector<float> outgoing;
-  outgoing_matrices(ctx, brdf_matrix, channels, rows, prev, outgoing);
+  outgoing_matrices(ctx, brdf_matrices, brdfs, channels, rows, prev, outgoing);
   next.assign(prev.size(), 0.0f);
   Progress progress(label, "vertices", ctx.mesh->positions.size(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::closest_hit), progress,

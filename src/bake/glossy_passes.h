@@ -11,6 +11,7 @@
 #include "bake/bake.h"
 #include "bake/vertex_samples.h"
 #include "brdf/projection.h"
+#include "brdf/vertex_brdfs.h"
 #include "dist/exchange.h"
 #include "mesh/mesh.h"
 #include "sh/rotation.h"
@@ -51,9 +52,11 @@ transfer::TransferData bake_glossy(const mesh::Mesh& mesh, const BakeOptions& op
 std::uint64_t glossy_direct_pass(const GlossyContext& ctx, std::vector<float>& out);
 
 /// One interreflection pass. `prev` holds the previous pass's matrices (`channels` per vertex); the
-/// radiance leaving a hit corner q toward the gathering vertex is sum_k (B_c prev_q,c)_k Y_k(F_q^T (-w)).
-/// `brdf_matrix` has bands_out bands and 1 or `channels` channels. Returns the number of rays traced.
-std::uint64_t glossy_bounce_pass(const GlossyContext& ctx, const brdf::BrdfMatrix& brdf_matrix, int channels,
+/// radiance leaving a hit corner q toward the gathering vertex is sum_k (B_q,c prev_q,c)_k Y_k(F_q^T (-w)).
+/// Corner q's BRDF matrix is brdf_matrices[brdfs.of(q)] (one per entry of brdfs.table), each with
+/// bands_out bands and 1 or `channels` channels. Returns the number of rays traced.
+std::uint64_t glossy_bounce_pass(const GlossyContext& ctx, const std::vector<brdf::BrdfMatrix>& brdf_matrices,
+                                 const brdf::VertexBrdfs& brdfs, int channels,
                                  const std::vector<float>& prev, std::vector<float>& next, const char* label);
 
 /// matrix (rows x r.bands()^2, row-major) := matrix Rot(r)^T, i.e. every row replaced by r applied to it.

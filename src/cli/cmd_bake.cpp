@@ -1,6 +1,7 @@
 // prt bake: bakes per-vertex transfer (src/bake: diffuse vectors, glossy matrices) and writes the .prt file (and a .glb).
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 
 #include "bake/bake.h"
@@ -50,7 +51,7 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
   return std::string("bake ") + transfer::kind_name(b.kind) + " bands " + std::to_string(b.bands) + " out " +
          std::to_string(b.bands_out) + " samples " + std::to_string(b.samples) + " bounces " + std::to_string(b.bounces) +
          " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," + exact(b.albedo.b) + " seed " +
-         std::to_string(b.seed) + " footprint " + mesh::footprint_name(b.footprint) + " brdf " + (b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
+         std::to_string(b.seed) + " footprint " + mesh::footprint_name(b.footprint) + " brdf " + (b.brdf_from_mesh ? "mesh" : b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
          std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty()) +
          " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair);
 }
@@ -85,7 +86,18 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   // Check the outputs before spending minutes baking (rank 0 alone writes them).
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path, o.brdf});
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
+  // --brdf mesh: the materials are checked before the loader's notes are printed (bad input is one line).
+  const bool notes = !o.quiet && job().is_root();
+  const mesh::Mesh mesh =
+      load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, !notes || options.brdf_from_mesh}, &load_report);
+  if (options.brdf_from_mesh) {
+    if (mesh.materials.empty())
+      fail_file(o.mesh_path, !o.albedo.empty() ? "--albedo replaces the materials (if any) that --brdf mesh needs; give --brdf SPEC"
+                             : o.brdf.empty()  ? "has no materials, so glossy transfer needs --brdf SPEC"
+                                               : "has no materials for --brdf mesh; give --brdf SPEC");
+    if (notes)
+      for (const std::string& note : load_report.notes) std::cerr << o.mesh_path << ": " << note << "\n";
+  }
   const int bands_out = options.bands_out ? options.bands_out : o.bands;
   const std::string sized_by = std::to_string(o.bands) +
                                (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
@@ -97,6 +109,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   bake::BakeReport report;
   transfer::TransferData data = bake::bake(mesh, options, &report);
   if (!job().is_root()) return;  // only rank 0 holds the whole result
+  for (const std::string& note : report.notes) std::cerr << o.mesh_path << ": " << note << "\n";
   const double seconds = seconds_since(start);
   const transfer::Header header = data.header;
   pipeline::write_transfer_outputs(mesh, std::move(data), out);
@@ -153,11 +166,11 @@ void run_bake(const BakeCommandOptions& o) {
   options.dist = &job();
   if (!o.albedo.empty()) options.albedo = glm::vec3(parse_triple(o.albedo, "--albedo", "R,G,B in [0,1]"));
   options.albedo_given = !o.albedo.empty();
-  if (!o.brdf.empty()) {
-    if (!transfer::is_glossy(options.kind))
-      fail("--brdf applies to glossy transfer only (--transfer glossy-shadowed or glossy-interreflected)");
-    options.brdf = brdf::parse_brdf(o.brdf);
-  }
+  if (!o.brdf.empty() && !transfer::is_glossy(options.kind))
+    fail("--brdf applies to glossy transfer only (--transfer glossy-shadowed or glossy-interreflected)");
+  // Glossy kinds without --brdf take the mesh's materials (bake_vertices checks that it has some).
+  options.brdf_from_mesh = transfer::is_glossy(options.kind) && (o.brdf.empty() || o.brdf == "mesh");
+  if (!o.brdf.empty() && !options.brdf_from_mesh) options.brdf = brdf::parse_brdf(o.brdf);
   options.bands_out = o.bands_out;
   bake::validate_options(options);
   pipeline::TransferOutputs out;
@@ -185,7 +198,8 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--transfer", options->kind,
                   "unshadowed | shadowed | interreflected | glossy-shadowed | glossy-interreflected")->capture_default_str();
   cmd->add_option("--brdf", options->brdf,
-                  "Glossy kinds: the mesh's BRDF, e.g. phong:exponent=32,ks=0.5,kd=0.3 or ggx:roughness=0.3,f0=0.04,albedo=0.5 "
+                  "Glossy kinds: the mesh's BRDF: mesh (the default when the file has materials: each glTF material's metallic-roughness "
+                  "factors as its own BRDF), or e.g. phong:exponent=32,ks=0.5,kd=0.3 or ggx:roughness=0.3,f0=0.04,albedo=0.5 "
                   "or a .json material (see prt brdf)");
   cmd->add_option("--bands-out", options->bands_out,
                   "Glossy kinds: bands of the transferred radiance (matrix rows), 1..--bands; default --bands");

@@ -70,11 +70,11 @@ void run_shade(const ShadeCommandOptions& o) {
   }
   std::vector<glm::vec3> radiance;
   if (glossy) {
-    // The BRDF matrix at the transfer's output bands, from --brdf or the BRDF recorded at bake time.
+    // From --brdf, or the BRDFs recorded at bake time (each vertex's own for --brdf mesh).
     const glm::vec3 eye(parse_triple(o.eye, "--eye", "X,Y,Z (mesh units)"));
-    const brdf::Brdf surface = o.brdf.empty() ? shade::baked_brdf(transfer.header, o.transfer_path) : brdf::parse_brdf(o.brdf);
-    const brdf::BrdfMatrix matrix = brdf::project(surface, static_cast<int>(transfer.header.bands_out));
-    radiance = shade::shade_glossy_split(mesh, transfer, surface, matrix, lighting, eye, o.transfer_path, disc_options, &report);
+    const brdf::VertexBrdfs brdfs = o.brdf.empty() ? shade::baked_brdfs(transfer.header, o.transfer_path)
+                                                   : brdf::VertexBrdfs{{brdf::parse_brdf(o.brdf)}, {}};
+    radiance = shade::shade_glossy_vertex_brdfs(mesh, transfer, brdfs, lighting, eye, o.transfer_path, disc_options, &report);
   } else {
     radiance = shade::shade_diffuse_split(mesh, transfer, lighting, o.transfer_path, disc_options, &report);
   }

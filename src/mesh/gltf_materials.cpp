@@ -70,6 +70,9 @@ Material GltfMaterials::read_material(const tinygltf::Material& material, std::s
   const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
   if (pbr.baseColorFactor.size() >= 3)
     m.base_color_factor = glm::vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]));
+  m.metallic_factor = float(pbr.metallicFactor);
+  m.roughness_factor = float(pbr.roughnessFactor);
+  m.metallic_roughness_textured = pbr.metallicRoughnessTexture.index >= 0;
   const tinygltf::TextureInfo& info = pbr.baseColorTexture;
   if (info.index < 0) return m;
   m.base_color.image = texture_image(info, "material " + std::to_string(index) + " baseColorTexture");
@@ -141,7 +144,7 @@ std::uint32_t GltfMaterials::material_of(int material, const std::string& what) 
   }
   if (default_ < 0) {
     default_ = std::int64_t(materials_.size());
-    materials_.push_back(Material{"(none)", glm::vec3(1.0f), TextureRef{}});
+    materials_.push_back(Material{"(none)", glm::vec3(1.0f), TextureRef{}, 1.0f, 1.0f, false});
   }
   return std::uint32_t(default_);
 }

@@ -42,6 +42,13 @@ struct Material {
   std::string name;                   ///< as the file names it (may be empty)
   glm::vec3 base_color_factor{1.0f};  ///< linear RGB (glTF baseColorFactor.rgb, MTL Kd)
   TextureRef base_color;
+  /// glTF pbrMetallicRoughness.metallicFactor and roughnessFactor, each in [0, 1] (a glTF primitive
+  /// without a material: glTF's defaults 1 and 1). OBJ/MTL states neither: 0 and 1, a rough
+  /// dielectric. What `--brdf mesh` makes of them: brdf/brdf.h, the gltf lobe.
+  float metallic_factor = 0.0f;
+  float roughness_factor = 1.0f;
+  /// glTF: the material has a metallicRoughnessTexture (not read; the factors alone are used).
+  bool metallic_roughness_textured = false;
   bool textured() const { return base_color.image >= 0; }
 };
 

@@ -83,16 +83,21 @@ std::vector<glm::vec3> shade_glossy_eye(const transfer::TransferData& transfer, 
   return shade_glossy(transfer, b, lighting, normals, view);
 }
 
-brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what) {
+brdf::VertexBrdfs baked_brdfs(const transfer::Header& header, const std::string& what) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(header.parameters_json);
   } catch (const nlohmann::json::exception&) {
     fail_file(what, "bake parameters are not valid JSON");
   }
-  if (!j.is_object() || !j.contains("brdf") || !j["brdf"].is_string())
-    fail_file(what, "the transfer records no BRDF; give one");
-  return brdf::parse_brdf(j["brdf"].get<std::string>());
+  return brdf::read_vertex_brdfs(j, header.vertex_count, what);
+}
+
+brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what) {
+  brdf::VertexBrdfs brdfs = baked_brdfs(header, what);
+  if (brdfs.table.size() != 1)
+    fail_file(what, "the transfer has one BRDF per material (--brdf mesh), which only prt shade applies per vertex; give one BRDF");
+  return brdfs.table[0];
 }
 
 }  // namespace prt::shade

@@ -17,6 +17,7 @@
 
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
+#include "brdf/vertex_brdfs.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
@@ -41,8 +42,13 @@ std::vector<glm::vec3> shade_glossy_eye(const transfer::TransferData& transfer, 
                                         const sh::RgbCoefficients& lighting, const std::vector<glm::vec3>& positions,
                                         const std::vector<glm::vec3>& normals, const glm::vec3& eye);
 
-/// The BRDF a glossy transfer was baked with: parse_brdf of the "brdf" entry of its parameters JSON.
-/// Throws prt::Error("<what>: ...") naming `what` (e.g. the file) if the header has none.
+/// The BRDFs a glossy transfer was baked with, from its parameters JSON (brdf/vertex_brdfs.h: one
+/// "brdf", or a "brdfs" table with each vertex's index). Throws prt::Error("<what>: ...") naming `what`
+/// (e.g. the file) if the header has none or they are malformed.
+brdf::VertexBrdfs baked_brdfs(const transfer::Header& header, const std::string& what);
+
+/// The one BRDF a glossy transfer was baked with (baked_brdfs). Throws prt::Error("<what>: ...") as
+/// baked_brdfs, and for a transfer with one BRDF per material (the caller applies a single BRDF).
 brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what);
 
 }  // namespace prt::shade

@@ -95,4 +95,19 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
   return clamped(std::move(out), lighting);
 }
 
+std::vector<glm::vec3> shade_glossy_vertex_brdfs(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
+                                                 const brdf::VertexBrdfs& brdfs, const light::SceneLighting& lighting,
+                                                 const glm::vec3& eye, const std::string& origin,
+                                                 const DiscShadingOptions& options, SplitReport* report) {
+  std::vector<glm::vec3> out(mesh.positions.size());
+  for (std::size_t k = 0; k < brdfs.table.size(); ++k) {
+    const brdf::BrdfMatrix matrix = brdf::project(brdfs.table[k], static_cast<int>(transfer.header.bands_out));
+    const std::vector<glm::vec3> shaded =
+        shade_glossy_split(mesh, transfer, brdfs.table[k], matrix, lighting, eye, origin, options, report);
+    for (std::size_t v = 0; v < out.size(); ++v)
+      if (brdfs.of(v) == k) out[v] = shaded[v];
+  }
+  return out;
+}
+
 }  // namespace prt::shade

@@ -15,6 +15,7 @@
 
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
+#include "brdf/vertex_brdfs.h"
 #include "light/scene_lighting.h"
 #include "mesh/mesh.h"
 #include "shade/disc_direct.h"
@@ -49,5 +50,12 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
                                           const light::SceneLighting& lighting, const glm::vec3& eye,
                                           const std::string& origin, const DiscShadingOptions& options = {},
                                           SplitReport* report = nullptr);
+
+/// As shade_glossy_split, each vertex v with its own BRDF brdfs.table[brdfs.of(v)]: a vertex's value
+/// depends only on its own transfer and BRDF, so it is shade_glossy_split's with that BRDF alone.
+std::vector<glm::vec3> shade_glossy_vertex_brdfs(const mesh::Mesh& mesh, const transfer::TransferData& transfer,
+                                                 const brdf::VertexBrdfs& brdfs, const light::SceneLighting& lighting,
+                                                 const glm::vec3& eye, const std::string& origin,
+                                                 const DiscShadingOptions& options = {}, SplitReport* report = nullptr);
 
 }  // namespace prt::shade

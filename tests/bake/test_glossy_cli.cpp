@@ -97,7 +97,7 @@ TEST_CASE("glossy bake and shade errors are one line", "[glossy][cli]") {
   const std::string light = write_light(dir);
   const std::string out = dir + "/o.prt";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"bake " + mesh_path + " --transfer glossy-shadowed -o " + out, "--brdf: glossy-shadowed transfer needs a BRDF spec"},
+      {"bake " + mesh_path + " --transfer glossy-shadowed -o " + out, "has no materials, so glossy transfer needs --brdf"},
       {"bake " + mesh_path + " --transfer glossy-shadowed --brdf velvet -o " + out, "unknown BRDF 'velvet'"},
       {"bake " + mesh_path + " --transfer glossy-shadowed --brdf phong:exponent=-2 -o " + out, "out of range"},
       {"bake " + mesh_path + " --transfer glossy-shadowed --brdf lambert --bands 3 --bands-out 4 -o " + out, "--bands-out 4 is out of range"},

@@ -21,6 +21,7 @@
 #include "reference/glossy_estimator.h"
 #include "reference/reference.h"
 #include "shade/glossy.h"
+#include "glossy_sky.h"
 #include "support/shapes.h"
 
 using namespace prt;
@@ -50,25 +51,6 @@ mesh::Mesh welded_cup(int cells) {
   return out;
 }
 
-// Sky gradient, a bright broad lobe (a low sun) and a coloured horizon band: strongly directional.
-light::Environment sky() {
-  const glm::dvec3 sun = glm::normalize(glm::dvec3(0.6, 0.7, 0.4));
-  light::Environment env;
-  env.layout = light::Environment::Layout::equirect;
-  env.equirect = image::Image(256, 128, 3);
-  for (int y = 0; y < 128; ++y)
-    for (int x = 0; x < 256; ++x) {
-      const glm::dvec3 d = light::equirect_direction((x + 0.5) / 256.0, (y + 0.5) / 128.0);
-      const double lobe = std::pow(std::max(0.0, glm::dot(d, sun)), 8.0);
-      const double horizon = std::exp(-8.0 * d.y * d.y);
-      const glm::dvec3 v(0.25 + 0.3 * std::max(d.y, 0.0) + 4.0 * lobe + 0.4 * horizon, 0.3 + 0.35 * std::max(d.y, 0.0) + 3.0 * lobe,
-                         0.45 + 0.5 * std::max(d.y, 0.0) + 1.5 * lobe);
-      for (int c = 0; c < 3; ++c) env.equirect.at(x, y, c) = static_cast<float>(v[c]);
-    }
-  env.source = "synthetic sky";
-  return env;
-}
-
 double rel_rms(const std::vector<glm::vec3>& test, const std::vector<glm::vec3>& reference) {
   return image::compare_values(&test[0].x, &reference[0].x, 3 * test.size()).rel_rms;
 }
@@ -94,7 +76,7 @@ TEST_CASE("glossy PRT agrees with the glossy reference under band-limited lighti
   // For --footprint area: a floor with small lids over five vertices, which darken those vertices far
   // more than the surface around them (so a reference that ignored the footprint would fail).
   const mesh::Mesh lids = test::floor_with_lids(8, {-6, -3, 0, 3, 6}, 0.1, 0.05);
-  const light::Environment env = sky();
+  const light::Environment env = test::directional_sky();
   const sh::RgbCoefficients lighting = light::project(env, bands);
   const reference::EnvironmentSampler limited(reference::band_limited_environment(env, bands));
   struct Case {
@@ -143,7 +125,7 @@ TEST_CASE("report: glossy PRT against the reference per band count", "[.report]"
   // (bake 8192 directions, 3, 5 and 9 bands for lighting and output) against (a) the reference under
   // the band-limited environment and BRDF of the same band count, (b) the unlimited reference (full
   // environment, true BRDF); reference 8192 paths per vertex, eye point kEyes[1].
-  const light::Environment env = sky();
+  const light::Environment env = test::directional_sky();
   const reference::EnvironmentSampler full(env);
   struct Surface {
     const char* name;
