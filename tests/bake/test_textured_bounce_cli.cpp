@@ -1,0 +1,86 @@
+// Colour bleeding from a textured floor (issue 33, "Bounces"): light that bounces off the floor onto a
+// white wall carries the floor's base colour at the hit point, so an interreflected `prt bake` shaded
+// per vertex by `prt shade` agrees with `prt reference` (the path tracer, which looks the texture up at
+// each hit) on the wall's vertices. The floor's texture is red near the wall and green beyond; its two
+// triangles' vertex albedos (footprint averages) mix the two, so a bake that interpolated vertex
+// albedos at the hits would bleed a red-green mix onto the wall.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+
+#include "image/compare.h"
+#include "image/image.h"
+#include "mesh/writers.h"
+#include "support/run_prt.h"
+
+using namespace prt;
+
+namespace {
+
+constexpr int kWallGrid = 5;  // wall vertices per side
+
+// A 64 x 64 PNG (8-bit sRGB codes 255 and 13): red in the image rows py >= 48 (v < 1/4 with OBJ's v up:
+// the floor's first metre, z < 1), green elsewhere.
+void write_floor_texture(const std::string& path) {
+  image::Image png(64, 64, 3);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool red = y >= 48;
+      png.at(x, y, 0) = red ? 1.0f : 0.05f;
+      png.at(x, y, 1) = red ? 0.05f : 1.0f;
+      png.at(x, y, 2) = 0.05f;
+    }
+  image::write(path, png);
+}
+
+// The floor y = 0, x in [-2, 2], z in [0, 4], facing +y, textured (vt = ((x + 2) / 4, z / 4)), and a
+// white wall z = 0, x in [-1, 1], y in [0, 2], facing +z, as a kWallGrid^2 vertex grid (untextured; its
+// corners name a vt only because OBJ ignores map_Kd when some corner has none).
+std::string write_scene(const std::string& dir) {
+  write_floor_texture(dir + "/floor.png");
+  std::ofstream(dir + "/scene.mtl") << "newmtl floor\nKd 1 1 1\nmap_Kd -clamp on floor.png\nnewmtl wall\nKd 0.8 0.8 0.8\n";
+  std::ofstream obj(dir + "/scene.obj");
+  obj << "mtllib scene.mtl\nv -2 0 0\nv 2 0 0\nv 2 0 4\nv -2 0 4\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\nvn 0 0 1\n"
+         "usemtl floor\nf 1/1/1 4/4/1 3/3/1\nf 1/1/1 3/3/1 2/2/1\n";
+  for (int j = 0; j < kWallGrid; ++j)
+    for (int i = 0; i < kWallGrid; ++i)
+      obj << "v " << -1.0 + 2.0 * i / (kWallGrid - 1) << ' ' << 2.0 * j / (kWallGrid - 1) << " 0\n";
+  obj << "usemtl wall\n";
+  auto index = [](int i, int j) { return 5 + i + j * kWallGrid; };
+  for (int j = 0; j + 1 < kWallGrid; ++j)
+    for (int i = 0; i + 1 < kWallGrid; ++i) {
+      obj << "f " << index(i, j) << "/1/2 " << index(i + 1, j) << "/1/2 " << index(i + 1, j + 1) << "/1/2\n";
+      obj << "f " << index(i, j) << "/1/2 " << index(i + 1, j + 1) << "/1/2 " << index(i, j + 1) << "/1/2\n";
+    }
+  image::Image env(64, 32, 3);
+  for (float& x : env.pixels) x = 1.0f;
+  image::write(dir + "/white.exr", env);
+  return dir + "/scene.obj";
+}
+
+// The wall's vertices (after the floor's 4) of a colour PLY, as floats.
+std::vector<float> wall_values(const std::string& path) {
+  const mesh::ColourPly ply = mesh::read_ply_colours(path);
+  REQUIRE(ply.colours.size() == 4 + kWallGrid * kWallGrid);
+  std::vector<float> out;
+  for (std::size_t v = 4; v < ply.colours.size(); ++v)
+    for (int c = 0; c < 3; ++c) out.push_back(ply.colours[v][c]);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("an interreflected bake bleeds a textured floor's colour at the hits onto a white wall as the reference does",
+          "[bake][cli][albedo][bounces]") {
+  const std::string dir = test::fresh_temp_dir("textured_bounce");
+  const std::string obj = write_scene(dir);
+  const std::string env = " --env " + dir + "/white.exr";
+  REQUIRE(test::run_prt("bake " + obj + " --transfer interreflected --bounces 2 --bands 1 --samples 4096 -q -o " + dir + "/t.prt").exit_code == 0);
+  REQUIRE(test::run_prt("shade " + obj + " " + dir + "/t.prt" + env + " -q -o " + dir + "/shade.ply").exit_code == 0);
+  REQUIRE(test::run_prt("reference " + obj + env + " --bounces 2 --samples 16384 -q -o " + dir + "/ref.ply").exit_code == 0);
+  const std::vector<float> shade = wall_values(dir + "/shade.ply"), ref = wall_values(dir + "/ref.ply");
+  const double rel_rms = image::compare_values(shade.data(), ref.data(), shade.size()).rel_rms;
+  INFO("wall rel_rms " << rel_rms);
+  CHECK(rel_rms < 0.03);
+}
