@@ -3,7 +3,8 @@
 // per vertex by `prt shade` agrees with `prt reference` (the path tracer, which looks the texture up at
 // each hit) on the wall's vertices. The floor's texture is red near the wall and green beyond; its two
 // triangles' vertex albedos (footprint averages) mix the two, so a bake that interpolated vertex
-// albedos at the hits would bleed a red-green mix onto the wall.
+// albedos at the hits would bleed a red-green mix onto the wall. The same per lightmap texel: a texel
+// bake shaded by `prt shade --lightmap` against `prt reference --texels` on the wall's texels.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "image/image.h"
 #include "mesh/writers.h"
 #include "support/run_prt.h"
+#include "transfer/transfer_file.h"
 
 using namespace prt;
 
@@ -34,24 +36,30 @@ void write_floor_texture(const std::string& path) {
   image::write(path, png);
 }
 
-// The floor y = 0, x in [-2, 2], z in [0, 4], facing +y, textured (vt = ((x + 2) / 4, z / 4)), and a
-// white wall z = 0, x in [-1, 1], y in [0, 2], facing +z, as a kWallGrid^2 vertex grid (untextured; its
-// corners name a vt only because OBJ ignores map_Kd when some corner has none).
+// The floor y = 0, x in [-2, 2], z in [0, 4], facing +y, textured (vt = ((x + 2) / 8, z / 4)), and a
+// white wall z = 0, x in [-1, 1], y in [0, 2], facing +z, as a kWallGrid^2 vertex grid, untextured, its
+// vt in [0.55, 0.95] x [0.05, 0.95] (OBJ ignores map_Kd unless every corner has a vt; the vt are also
+// the lightmap UVs, one chart per surface).
 std::string write_scene(const std::string& dir) {
   write_floor_texture(dir + "/floor.png");
   std::ofstream(dir + "/scene.mtl") << "newmtl floor\nKd 1 1 1\nmap_Kd -clamp on floor.png\nnewmtl wall\nKd 0.8 0.8 0.8\n";
   std::ofstream obj(dir + "/scene.obj");
-  obj << "mtllib scene.mtl\nv -2 0 0\nv 2 0 0\nv 2 0 4\nv -2 0 4\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\nvn 0 0 1\n"
+  obj << "mtllib scene.mtl\nv -2 0 0\nv 2 0 0\nv 2 0 4\nv -2 0 4\nvt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvn 0 1 0\nvn 0 0 1\n"
          "usemtl floor\nf 1/1/1 4/4/1 3/3/1\nf 1/1/1 3/3/1 2/2/1\n";
   for (int j = 0; j < kWallGrid; ++j)
-    for (int i = 0; i < kWallGrid; ++i)
-      obj << "v " << -1.0 + 2.0 * i / (kWallGrid - 1) << ' ' << 2.0 * j / (kWallGrid - 1) << " 0\n";
+    for (int i = 0; i < kWallGrid; ++i) {
+      const double s = double(i) / (kWallGrid - 1), t = double(j) / (kWallGrid - 1);
+      obj << "v " << -1.0 + 2.0 * s << ' ' << 2.0 * t << " 0\nvt " << 0.55 + 0.4 * s << ' ' << 0.05 + 0.9 * t << '\n';
+    }
   obj << "usemtl wall\n";
-  auto index = [](int i, int j) { return 5 + i + j * kWallGrid; };
+  auto corner = [](int i, int j) {  // the wall's vertex (i, j) with its own vt: "v/vt/2"
+    const int v = 5 + i + j * kWallGrid;
+    return std::to_string(v) + "/" + std::to_string(v) + "/2 ";
+  };
   for (int j = 0; j + 1 < kWallGrid; ++j)
     for (int i = 0; i + 1 < kWallGrid; ++i) {
-      obj << "f " << index(i, j) << "/1/2 " << index(i + 1, j) << "/1/2 " << index(i + 1, j + 1) << "/1/2\n";
-      obj << "f " << index(i, j) << "/1/2 " << index(i + 1, j + 1) << "/1/2 " << index(i, j + 1) << "/1/2\n";
+      obj << "f " << corner(i, j) << corner(i + 1, j) << corner(i + 1, j + 1) << '\n';
+      obj << "f " << corner(i, j) << corner(i + 1, j + 1) << corner(i, j + 1) << '\n';
     }
   image::Image env(64, 32, 3);
   for (float& x : env.pixels) x = 1.0f;
@@ -82,5 +90,27 @@ TEST_CASE("an interreflected bake bleeds a textured floor's colour at the hits o
   const std::vector<float> shade = wall_values(dir + "/shade.ply"), ref = wall_values(dir + "/ref.ply");
   const double rel_rms = image::compare_values(shade.data(), ref.data(), shade.size()).rel_rms;
   INFO("wall rel_rms " << rel_rms);
+  CHECK(rel_rms < 0.03);
+}
+
+TEST_CASE("a texel bake bleeds a textured floor's colour at the hits onto a white wall as prt reference --texels does",
+          "[bake][cli][albedo][bounces][lightmap]") {
+  const std::string dir = test::fresh_temp_dir("textured_bounce_texels");
+  const std::string obj = write_scene(dir);
+  const std::string env = " --env " + dir + "/white.exr", lm = dir + "/lm.prt";
+  REQUIRE(test::run_prt("bake " + obj + " --lightmap 64 --transfer interreflected --bounces 2 --bands 1 --samples 1024 -q -o " + lm).exit_code == 0);
+  REQUIRE(test::run_prt("shade " + obj + " " + lm + env + " --sun none --window none --lightmap -q -o " + dir + "/lit.exr").exit_code == 0);
+  REQUIRE(test::run_prt("reference " + obj + env + " --texels " + lm + " --bounces 2 --samples 1024 -q -o " + dir + "/ref.exr").exit_code == 0);
+  const std::vector<std::uint8_t> coverage = transfer::read_transfer(lm).coverage;
+  const image::Image lit = image::read_rgb(dir + "/lit.exr"), ref = image::read_rgb(dir + "/ref.exr");
+  // The wall's chart: u > 0.5, the lightmap's right half.
+  std::vector<float> a, b;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 32; x < 64; ++x)
+      if (coverage[std::size_t(y) * 64 + x] == transfer::kTexelCovered)
+        for (int c = 0; c < 3; ++c) a.push_back(lit.at(x, y, c)), b.push_back(ref.at(x, y, c));
+  REQUIRE(a.size() > 3 * 500);
+  const double rel_rms = image::compare_values(a.data(), b.data(), a.size()).rel_rms;
+  INFO("wall texels " << a.size() / 3 << " rel_rms " << rel_rms);
   CHECK(rel_rms < 0.03);
 }
