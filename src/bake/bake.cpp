@@ -61,24 +61,47 @@ std::vector<float> apply_albedo(std::vector<float>&& geometric, const std::vecto
   return values;
 }
 
+namespace {
+
+// out = channel transfer `free` (albedo-free, `channels` blocks of n floats per point) times each
+// point's albedo per channel.
+void fold_albedo(const std::vector<float>& free, const std::vector<glm::vec3>& albedo, int channels, std::size_t n,
+                 std::vector<float>& out) {
+  const std::size_t stride = n * static_cast<std::size_t>(channels);
+  out.resize(free.size());
+  for (std::size_t p = 0; p < albedo.size(); ++p)
+    for (int ch = 0; ch < channels; ++ch)
+      for (std::size_t c = 0; c < n; ++c) out[p * stride + ch * n + c] = albedo[p][ch] * free[p * stride + ch * n + c];
+}
+
+}  // namespace
+
+std::vector<float> albedo_free_channels(const std::vector<float>& geometric, int channels, std::size_t n) {
+  return apply_albedo(std::vector<float>(geometric), std::vector<glm::vec3>(geometric.size() / n, glm::vec3(1.0f)), channels, n);
+}
+
 void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const BakeOptions& options,
                   std::vector<float> prev, const PrevFromNext& prev_from_next, std::vector<float>& values,
                   std::vector<float>& bounce_only, BakeReport& rep) {
   const std::size_t n = static_cast<std::size_t>(options.bands) * options.bands;
   const std::size_t stride = n * static_cast<std::size_t>(channels);
   const int max_passes = options.bounces >= 0 ? options.bounces : kMaxAutoBounces;
-  std::vector<float> next;
+  const bool at_hits = albedo_at_hits(*ctx.mesh);
+  std::vector<float> next, shaded;
   bounce_only.assign(values.size(), 0.0f);
   for (int b = 1; b <= max_passes; ++b) {
     const std::string label = "bake bounce " + std::to_string(b);
     rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
     // Distributed: the next pass and the stopping rule need every point's result.
     dist::allgather_items(dist::or_single(ctx.dist), next, stride, ctx.order);
-    for (std::size_t i = 0; i < next.size(); ++i) {
-      values[i] += next[i];
-      bounce_only[i] += next[i];
+    // At hits: next is albedo-free (the following pass gathers it); the receivers' albedo goes in here.
+    if (at_hits) fold_albedo(next, albedo, channels, n, shaded);
+    const std::vector<float>& pass = at_hits ? shaded : next;
+    for (std::size_t i = 0; i < pass.size(); ++i) {
+      values[i] += pass[i];
+      bounce_only[i] += pass[i];
     }
-    const double energy = pass_energy(next, stride, n, channels);
+    const double energy = pass_energy(pass, stride, n, channels);
     rep.pass_energy.push_back(energy);
     rep.bounces_done = b;
     if (options.bounces < 0 && !(energy >= kBounceEnergyThreshold * rep.pass_energy.front())) break;
@@ -189,6 +212,9 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     rep.seconds_visibility = seconds_since(start);
   }
 
+  // What the first bounce pass gathers from, when it is not the direct pass's channel transfer.
+  std::vector<float> source;
+  if (options.kind == transfer::Kind::interreflected && albedo_at_hits(mesh)) source = albedo_free_channels(geometric, channels, n);
   data.values = apply_albedo(std::move(geometric), albedo, channels, n);
   rep.pass_energy.push_back(pass_energy(data.values, stride, n, channels));
 
@@ -199,7 +225,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
     // The bounce-only part (interreflected minus direct) goes into the file's second section, so that a
     // renderer can shade a disc's direct light exactly and only its bounces through the transfer.
     h.bounce_only_section = true;
-    interreflect(ctx, albedo, channels, options, data.values, [](std::vector<float>& next, std::vector<float>& prev) { prev.swap(next); },
+    interreflect(ctx, albedo, channels, options, source.empty() ? data.values : std::move(source), [](std::vector<float>& next, std::vector<float>& prev) { prev.swap(next); },
                  data.values, data.bounce_only, rep);
     rep.seconds_bounces = seconds_since(start);
   }

@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include "bake/passes.h"
+#include "mesh/texture.h"
 
 namespace prt::bake {
 
@@ -11,7 +12,8 @@ namespace {
 
 // Sums of barycentric weights per vertex, in first-insertion order, for one gathering vertex: the
 // hits of S rays land on few distinct vertices, so each previous-pass vector is read once per
-// distinct vertex instead of three times per hit.
+// distinct vertex instead of three times per hit. A weight has one value per channel: the
+// barycentric weight times the albedo at the hit (1 unless albedo_at_hits).
 class WeightMap {
  public:
   explicit WeightMap(std::size_t max_entries) {
@@ -23,7 +25,7 @@ class WeightMap {
     weights_.reserve(max_entries);
     slot_of_.reserve(max_entries);
   }
-  void add(std::uint32_t key, float weight) {
+  void add(std::uint32_t key, const glm::vec3& weight) {
     std::size_t slot = (key * 0x9e3779b1u) & mask_;
     for (;;) {
       std::uint32_t entry = slots_[slot];
@@ -49,19 +51,21 @@ class WeightMap {
   }
   std::size_t size() const { return keys_.size(); }
   std::uint32_t key(std::size_t i) const { return keys_[i]; }
-  float weight(std::size_t i) const { return weights_[i]; }
+  const glm::vec3& weight(std::size_t i) const { return weights_[i]; }
 
  private:
   static constexpr std::uint32_t kEmpty = 0xffffffffu;
   std::vector<std::uint32_t> slots_, keys_, slot_of_;
-  std::vector<float> weights_;
+  std::vector<glm::vec3> weights_;
   std::size_t mask_ = 0;
 };
 
 // The hit's lightmap UV (barycentric over the triangle's corner UVs) spread bilinearly over the four
 // nearest texel centres of `grid` (clamped to the edge); empty texels are left out and the remaining
 // weights renormalised, so a hit beside a chart without gutter still reads the chart's own values.
-void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, float v, WeightMap& weights) {
+// Each weight is multiplied by `albedo`, the albedo at the hit.
+void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, float v, const glm::vec3& albedo,
+                       WeightMap& weights) {
   const glm::vec2* c = grid.corner_uv->data() + 3 * triangle;
   const glm::vec2 uv = (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
   const float x = uv.x * static_cast<float>(grid.width) - 0.5f, y = uv.y * static_cast<float>(grid.height) - 0.5f;
@@ -79,18 +83,20 @@ void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, flo
   }
   if (!(total > 0.0f)) return;
   for (int k = 0; k < 4; ++k)
-    if (w[k] > 0.0f) weights.add(texel[k], w[k] / total);
+    if (w[k] > 0.0f) weights.add(texel[k], (w[k] / total) * albedo);
 }
 
 // Per chunk: merges the barycentric weights of v's front-face hits per hit vertex, then reads each
-// distinct vertex's previous transfer once.
+// distinct vertex's previous transfer once. Without albedo_at_hits the receiver's albedo scales the
+// sum (prev includes the hit vertices' albedo); with it each hit's weights carry the base colour at
+// the hit and the result stays albedo-free (interreflect folds the receiver's albedo in).
 class BounceWorker {
  public:
   BounceWorker(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const std::vector<float>& prev,
                std::vector<float>& next)
       : ctx_(ctx), albedo_(albedo), channels_(channels), prev_(prev), next_(next),
         n_(static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands), stride_(n_ * channels),
-        weights_(4 * ctx.samples->directions.size()), gathered_(stride_) {}
+        at_hits_(albedo_at_hits(*ctx.mesh)), weights_(4 * ctx.samples->directions.size()), gathered_(stride_) {}
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
 
@@ -103,27 +109,29 @@ class BounceWorker {
       const glm::vec3& p0 = mesh.positions[tri[0]];
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
+      const glm::vec3 albedo = at_hits_ ? mesh::TriangleColour(mesh, hit.prim_id).at(hit.u, hit.v) : glm::vec3(1.0f);
       if (ctx_.grid) {
-        add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, weights_);
+        add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, albedo, weights_);
         continue;
       }
-      weights_.add(tri[0], 1.0f - hit.u - hit.v);
-      weights_.add(tri[1], hit.u);
-      weights_.add(tri[2], hit.v);
+      weights_.add(tri[0], (1.0f - hit.u - hit.v) * albedo);
+      weights_.add(tri[1], hit.u * albedo);
+      weights_.add(tri[2], hit.v * albedo);
     }
   }
 
   void finish(std::uint32_t v, const glm::mat3&) {
     std::fill(gathered_.begin(), gathered_.end(), 0.0f);
     for (std::size_t e = 0; e < weights_.size(); ++e) {
-      const float w = weights_.weight(e);
+      const glm::vec3& w = weights_.weight(e);
       const float* p = prev_.data() + static_cast<std::size_t>(weights_.key(e)) * stride_;
-      for (std::size_t c = 0; c < stride_; ++c) gathered_[c] += w * p[c];
+      for (int ch = 0; ch < channels_; ++ch)
+        for (std::size_t c = ch * n_; c < (ch + 1) * n_; ++c) gathered_[c] += w[ch] * p[c];
     }
     const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
     float* o = next_.data() + static_cast<std::size_t>(v) * stride_;
     for (int ch = 0; ch < channels_; ++ch) {
-      const float scale = albedo_[v][ch] * inv_samples;
+      const float scale = (at_hits_ ? 1.0f : albedo_[v][ch]) * inv_samples;
       for (std::size_t c = 0; c < n_; ++c) o[ch * n_ + c] = scale * gathered_[ch * n_ + c];
     }
   }
@@ -135,11 +143,14 @@ class BounceWorker {
   const std::vector<float>& prev_;
   std::vector<float>& next_;
   std::size_t n_, stride_;
+  bool at_hits_;
   WeightMap weights_;
   std::vector<float> gathered_;
 };
 
 }  // namespace
+
+bool albedo_at_hits(const mesh::Mesh& mesh) { return mesh.textured(); }
 
 std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label) {

@@ -79,10 +79,18 @@ void unshadowed_geometric(const std::vector<glm::vec3>& normals, int bands, int 
 /// Returns the number of rays traced.
 std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out);
 
-/// One interreflection pass: next[v] = albedo_v / S * sum over front-face hits of prev interpolated at
-/// the hit (barycentrically over the hit triangle's vertices, or bilinearly in ctx.grid). `albedo` has
-/// one entry per point; `channels` is 1 (albedo grey: its red value is used) or 3. `prev` has a block
-/// per vertex (per texel of ctx.grid); `next` gets one per point. Returns the number of rays traced.
+/// True if the bounce passes take the albedo of the surface a ray hits from the base colour at the hit
+/// point (mesh::TriangleColour), not from the hit vertices' albedo: meshes with base-colour textures
+/// (docs/conventions.md, "Albedo and textures"). Other meshes keep the vertex rule below.
+bool albedo_at_hits(const mesh::Mesh& mesh);
+
+/// One interreflection pass. Vertex rule: next[v] = albedo_v / S * sum over front-face hits of prev
+/// interpolated at the hit (barycentrically over the hit triangle's vertices, or bilinearly in
+/// ctx.grid), prev being the previous pass's channel transfer. With albedo_at_hits(*ctx.mesh):
+/// next[v] = 1 / S * sum over front-face hits q of rho(q) * prev interpolated at q, rho(q) the base
+/// colour at q, prev and next albedo-free (the receiver's albedo is not applied). `albedo` has one
+/// entry per point; `channels` is 1 (grey: red values are used) or 3. `prev` has a block per vertex
+/// (per texel of ctx.grid); `next` gets one per point. Returns the number of rays traced.
 std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label);
 
@@ -101,9 +109,15 @@ double pass_energy(const std::vector<float>& values, std::size_t point_stride, s
 /// from (vertex bakes: the same buffer, swapped; texel bakes: scattered into the texel grid and dilated).
 using PrevFromNext = std::function<void(std::vector<float>& next, std::vector<float>& prev)>;
 
+/// What the first bounce pass gathers from when albedo_at_hits: the albedo-free transfer `geometric`
+/// (n floats per point) repeated in `channels` blocks per point.
+std::vector<float> albedo_free_channels(const std::vector<float>& geometric, int channels, std::size_t n);
+
 /// The interreflection passes after the direct pass (bounce rule of BakeOptions::bounces):
 /// `values` (per point, the direct pass) gains every pass; `bounce_only` (resized) receives their sum
-/// alone. `prev` starts as what the first pass gathers from. Fills rep's bounces_done, pass_energy
+/// alone. `prev` starts as what the first pass gathers from: the direct pass's channel transfer, or
+/// with albedo_at_hits its albedo-free transfer (albedo_free_channels); then each pass's result,
+/// albedo-free, gets `albedo` (the receivers') folded in before it is added. Fills rep's bounces_done, pass_energy
 /// (after the direct pass's entry) and rays_traced.
 void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const BakeOptions& options,
                   std::vector<float> prev, const PrevFromNext& prev_from_next, std::vector<float>& values,

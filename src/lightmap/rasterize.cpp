@@ -10,6 +10,7 @@
 
 #include "core/parallel.h"
 #include "lightmap/uv_validation.h"
+#include "mesh/texture.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::lightmap {
@@ -167,7 +168,8 @@ TexelSample make_sample(const mesh::Mesh& mesh, const std::vector<glm::vec3>& al
   s.position = glm::vec3(position);
   const double length = glm::length(normal);
   if (length > 0.0) s.normal = glm::vec3(normal / length);
-  s.albedo = glm::vec3(colour);
+  // Textured: the base colour at the texel's point (docs/conventions.md, "Albedo and textures").
+  s.albedo = mesh.textured() ? mesh::base_color(mesh, t, w.y, w.z) : glm::vec3(colour);
   return s;
 }
 

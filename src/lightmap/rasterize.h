@@ -11,7 +11,8 @@
 // part inside the texel's square; ties go to the lower triangle index. The sample is that nearest
 // point: the centre itself when it is inside, else a point of the triangle's boundary clipped to the
 // texel (an edge texel samples the nearest point inside the triangle, and stays in its texel). Position, normal (normalised) and albedo are interpolated barycentrically from that
-// triangle's corners at the sample's barycentrics.
+// triangle's corners at the sample's barycentrics; on a textured mesh the albedo is the base colour
+// there (mesh::base_color), the texel receiver's albedo of docs/conventions.md "Albedo and textures".
 //
 // OVERLAP. Two triangles whose UV triangles both contain a texel centre strictly inside (every
 // barycentric above kInsideEpsilon) overlap at that texel: the charts overlap. Adjacent triangles of
@@ -36,7 +37,7 @@ struct TexelSample {
   glm::vec3 barycentric{0.0f}; ///< of the sample in the triangle's corners 0, 1, 2 (sum 1, each >= 0)
   glm::vec3 position{0.0f};    ///< interpolated (before any repair, sample_repair.h)
   glm::vec3 normal{0.0f, 1.0f, 0.0f};  ///< interpolated vertex normals, unit
-  glm::vec3 albedo{0.0f};      ///< interpolated per-vertex albedo
+  glm::vec3 albedo{0.0f};      ///< interpolated per-vertex albedo; textured meshes: the base colour at the point
 };
 
 struct TexelSamples {

@@ -204,6 +204,10 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
     else dist::gather_items(dist, geometric, geometric_stride, &order);
   }
   rep.bake.seconds_visibility = seconds_since(start);
+  // What the first bounce pass gathers from: the direct pass, or its albedo-free transfer (albedo_at_hits).
+  std::vector<float> source;
+  if (options.kind == transfer::Kind::interreflected && bake::albedo_at_hits(mesh))
+    source = bake::albedo_free_channels(geometric, channels, n);
   std::vector<float> values = bake::apply_albedo(std::move(geometric), albedo, channels, n), bounce_only;
   rep.bake.pass_energy.push_back(bake::pass_energy(values, stride, n, channels));
 
@@ -212,7 +216,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   if (options.kind == transfer::Kind::interreflected) {
     start = std::chrono::steady_clock::now();
     std::vector<float> prev;
-    to_grid(values, prev);
+    to_grid(source.empty() ? values : source, prev);
     bake::interreflect(ctx, albedo, channels, options, std::move(prev),
                        [&](std::vector<float>& next, std::vector<float>& prev_grid) { to_grid(next, prev_grid); }, values,
                        bounce_only, rep.bake);

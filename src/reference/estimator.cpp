@@ -7,6 +7,7 @@
 
 #include "core/constants.h"
 #include "core/hash.h"
+#include "mesh/texture.h"
 #include "reference/path_loop.h"
 
 namespace prt::reference {
@@ -81,6 +82,11 @@ bool PathTracer::hit_point(const trace::HitResult& hit, const glm::vec3& directi
   point.origin = g.origin;
   point.surface = trace::TrueSurface{g.geometric_normal};
   const std::uint32_t* tri = g.triangle;
+  if (mesh_.textured()) {  // the base colour at the hit (docs/conventions.md, "Albedo and textures")
+    const auto triangle = static_cast<std::uint32_t>((tri - mesh_.indices.data()) / 3);
+    point.albedo = glm::dvec3(mesh::base_color(mesh_, triangle, g.u, g.v));
+    return true;
+  }
   point.albedo = g.w * glm::dvec3(albedo_[tri[0]]) + g.u * glm::dvec3(albedo_[tri[1]]) + g.v * glm::dvec3(albedo_[tri[2]]);
   return true;
 }

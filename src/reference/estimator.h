@@ -14,7 +14,12 @@
 // rule holds (trace/true_surface.h): directions with ng . w <= 0 carry no light (the integrand is 0
 // there: neither strategy traces them, a BSDF sample there ends its path).
 // At a hit point q: position, shading normal (normalised) and albedo are interpolated barycentrically
-// from the triangle's corners (Embree's u, v). So with b = 0 this is direct lighting with binary
+// from the triangle's corners (Embree's u, v); on a textured mesh (Mesh::textured) the albedo at q is
+// the base colour there, mesh::base_color (docs/conventions.md, "Albedo and textures"). A mesh vertex
+// as the estimated point (vertex_point, and the footprint points of reference.h) keeps the vertex's
+// albedo, Mesh::albedo: the per-vertex estimate is albedo_v times the footprint's mean irradiance / pi,
+// the quantity prt shade predicts from the transfer, not the mean of albedo(x) E(x) / pi over the
+// footprint that a renderer multiplying the texture per pixel shows. So with b = 0 this is direct lighting with binary
 // visibility (what the baker's shadowed transfer predicts), and each bounce adds one interreflection.
 //
 // ESTIMATOR (pbrt's path tracer with next-event estimation, Veach's multiple importance sampling; the
