@@ -9,6 +9,8 @@
 //   CHUNKS             1..8 buffer-texture views the transfer is split into (see TransferBuffer)
 //   SUN                (defined only with discs) add the discs' bounce light (per-vertex, computed when the
 //                      lighting changes); their direct light is prt_sun.frag's deferred pass
+//   TEXTURED           (a textured mesh) the radiance divided by the vertex's albedo (albedo_free.glsl);
+//                      the base colour multiplies it per pixel (prt_texture.frag, or prt_sun.frag)
 const int channels = CHANNELS;
 const int coefficient_count = COEFFICIENT_COUNT;
 const int used_count = USED_COUNT;
@@ -48,6 +50,9 @@ layout(std140, binding = 0) uniform Lighting { vec4 lighting[1024]; };
 uniform mat4 model_view_projection;
 
 out vec3 radiance;
+#ifdef TEXTURED
+#include "albedo_free.glsl"
+#endif
 #ifdef SUN
 // Per vertex, x y z packed: the discs' bounce light.
 layout(std430, binding = 7) readonly buffer SunBounce { float sun_bounce[]; };
@@ -109,6 +114,9 @@ void main() {
 #ifdef SUN
   int i3 = 3 * gl_VertexID;
   sum += vec3(sun_bounce[i3], sun_bounce[i3 + 1], sun_bounce[i3 + 2]);
+#endif
+#ifdef TEXTURED
+  sum = albedo_free(sum);
 #endif
   radiance = sum;
   gl_Position = model_view_projection * vec4(position, 1.0);
