@@ -1,6 +1,6 @@
-// pass: prt_diffuse and prt_cpca with TEXTURED (included by their vertex stages): the albedo split
-// (docs/conventions.md, "Albedo and textures"): a vertex's shaded value divided by the albedo it was
-// baked with, per channel; 0 where that albedo is 0 (the texture is black over the footprint).
+// pass: prt_diffuse and prt_cpca with TEXTURED (their vertex stages); mirrors the albedo split of docs/conventions.md.
+// ("Albedo and textures"): a vertex's shaded value divided by the albedo it was baked with, per
+// channel; 0 where that albedo is 0 (the texture is black over the footprint).
 layout(location = 2) in vec3 vertex_albedo;
 
 vec3 albedo_free(vec3 shaded) {

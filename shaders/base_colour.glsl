@@ -1,6 +1,6 @@
-// pass: base colour (included by prt_texture.frag and prt_sun.frag with TEXTURED); mirrors
-// prt::mesh::TriangleColour::at and prt::mesh::sample_texture (docs/conventions.md, "Albedo and
-// textures"). The mesh's materials, base-colour UVs and textures as render/base_colour.h uploads them.
+// pass: texture (included by prt_texture.frag, prt_sun.frag with TEXTURED); mirrors prt::mesh::TriangleColour::at.
+// The base colour at a point of a triangle, the texture filtered as prt::mesh::sample_texture
+// (docs/conventions.md, "Albedo and textures"). The mesh's materials, base-colour UVs and textures as render/base_colour.h uploads them.
 
 // Per material: factor (rgb); the affine KHR_texture_transform, u' = dot(transform_u.xyz, (u, v, 1)),
 // v' likewise; image = (first texel in `texels`, width, height, 1 if textured else 0); sampler = (wrap

@@ -1,6 +1,6 @@
-// pass: sun and texture (included by prt_sun.frag and prt_texture.frag): where the pixel's ray meets a
-// triangle the mesh draw recorded, as barycentrics (the rasteriser's perspective-correct weights at the
-// pixel centre). Uniforms set by render::set_pixel_rays (frame_core.h).
+// pass: sun and texture (included by prt_sun.frag, prt_texture.frag); mirrors camera::orbit_view's pixel rays.
+// Where the pixel's ray meets a triangle the mesh draw recorded, as barycentrics (the rasteriser's
+// perspective-correct weights at the pixel centre). Uniforms set by FrameCore::begin_deferred.
 uniform vec2 frame_size;       // pixels
 uniform vec3 eye_object;       // the eye, mesh coordinates
 uniform mat3 ray_basis;        // ray direction (mesh coordinates) = ray_basis * (ndc x, ndc y, 1)

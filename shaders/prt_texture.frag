@@ -1,7 +1,7 @@
-// pass: texture, deferred over the mesh's pixels after a per-vertex diffuse draw of a textured mesh
-// without discs (with discs prt_sun.frag with TEXTURED does the same); mirrors the albedo split
-// (docs/conventions.md, "Albedo and textures"): the draw left the interpolated albedo-free radiance,
-// this multiplies it by the base colour at the pixel.
+// pass: texture, deferred over a textured mesh's pixels; mirrors prt::mesh::base_color times the albedo-free radiance.
+// After a per-vertex diffuse draw without discs (with discs prt_sun.frag with TEXTURED does the same),
+// the albedo split (docs/conventions.md, "Albedo and textures"): the draw left the interpolated
+// albedo-free radiance, this multiplies it by the base colour at the pixel.
 #version 450 core
 
 layout(binding = 11) uniform sampler2D frame_radiance;    // the mesh draw's radiance (attachment 0)
