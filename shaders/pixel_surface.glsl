@@ -1,4 +1,4 @@
-// pass: sun and texture (included by prt_sun.frag, prt_texture.frag); mirrors camera::orbit_view's pixel rays.
+// pass: sun (included by prt_sun.frag); mirrors camera::orbit_view's pixel rays.
 // Where the pixel's ray meets a triangle the mesh draw recorded, as barycentrics (the rasteriser's
 // perspective-correct weights at the pixel centre). Uniforms set by FrameCore::begin_deferred.
 uniform vec2 frame_size;       // pixels

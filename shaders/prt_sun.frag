@@ -2,7 +2,7 @@
 // Per pixel, once: the PRT radiance the mesh draw left (sky and the discs' bounce light) plus each
 // disc's direct light, (albedo / pi) E max(n . l, 0) V (prt::shade::disc_direct_diffuse), clamped at 0
 // as split shading clamps. TEXTURED (a textured mesh, docs/conventions.md "Albedo and textures"): the
-// draw's radiance is albedo-free and both it and the direct light take the base colour at the pixel.
+// direct light takes the base colour at the pixel as its albedo, as the mesh draw did.
 // The surface point is where the pixel's ray meets the triangle the mesh draw recorded; normal and
 // albedo are interpolated with its barycentrics, as the rasteriser interpolates them
 // perspective-correctly at the pixel centre. Shading each covered pixel exactly once, rather than
@@ -21,7 +21,17 @@ layout(location = 0) out vec4 radiance_out;
 #include "sun_light.glsl"
 #include "pixel_surface.glsl"
 #ifdef TEXTURED
-#include "base_colour.glsl"
+#include "base_material.glsl"
+#include "base_texture.glsl"
+
+// The base colour at barycentrics b of triangle t (prt::mesh::TriangleColour::at).
+vec3 base_colour(uint t, vec3 b) {
+  Material m = materials[triangle_material[t]];
+  vec2 uv = b.x * base_uv[3u * t] + b.y * base_uv[3u * t + 1u] + b.z * base_uv[3u * t + 2u];
+  vec3 tint = b.x * vertex_colour_at(indices[3u * t]) + b.y * vertex_colour_at(indices[3u * t + 1u]) +
+              b.z * vertex_colour_at(indices[3u * t + 2u]);
+  return clamp_colour(m.factor.rgb * tint * sample_slot(m.slot.x, material_uv(m, uv)));
+}
 #endif
 
 // Texel `which` (0 position, 1 normal, 2 albedo) of vertex v.
@@ -39,9 +49,7 @@ void main() {
   float b0 = b.x, b1 = b.y, b2 = b.z;
   vec3 n = normalize(b0 * load3(1, i0) + b1 * load3(1, i1) + b2 * load3(1, i2));
 #ifdef TEXTURED
-  // The albedo split: the draw left the albedo-free radiance; both terms take the base colour here.
-  vec3 albedo = base_colour(triangle, b);
-  radiance *= albedo;
+  vec3 albedo = base_colour(triangle, b);  // the draw's radiance has it already (surface.frag)
 #else
   vec3 albedo = b0 * load3(2, i0) + b1 * load3(2, i1) + b2 * load3(2, i2);
 #endif

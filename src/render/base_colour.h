@@ -1,14 +1,17 @@
 #pragma once
 // Internal to the renderer: a textured mesh's base colour on the GPU, per pixel (renderer.h, PASSES:
-// texture; docs/conventions.md "Albedo and textures", the albedo split). Every texture of the mesh in one
-// float buffer (GL_RGB32F, linear as the loader decoded it, rows one texture after another) read through
-// a buffer texture; the materials (factor, KHR_texture_transform as an affine map, the texture's place
-// and size, its wrap modes and filter), the per-corner base-colour UVs, the per-triangle material and
-// the vertex colours in storage buffers. shaders/base_colour.glsl filters by hand, as
-// mesh::sample_texture does: one buffer takes any number of textures of any sizes, the per-pixel
-// material index needs no uniform control flow (an array of samplers would), and the lookup is the
-// conventions' exactly (float weights, texel centres, the three wrap modes, the nearest filter).
+// texture; docs/conventions.md "Albedo and textures", the albedo split). Each image is one GL_RGB32F
+// texture (linear, as the loader decoded it: exact); each distinct (image, wrap s, wrap t, filter) of the
+// materials is a texture slot, the image on texture unit 16 + slot with a sampler object of the glTF
+// sampler's wrap modes and filter (bilinear, or nearest; no mipmaps). The materials (factor,
+// KHR_texture_transform as an affine map, slot), the per-corner base-colour UVs, the per-triangle
+// material and the vertex colours are storage buffers (shaders/base_material.glsl). A textured draw
+// runs the vertex stage per triangle corner (draw_corners), so UVs follow the corners across seams and
+// the rasteriser interpolates them; the fragment stage picks its slot from a loop over the slots
+// (shaders/base_texture.glsl: a sampler array may only be indexed uniformly).
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "mesh/mesh.h"
 #include "render/gl.h"
@@ -17,7 +20,9 @@
 namespace prt::render {
 
 struct FrameCore;
-struct FrameSettings;
+
+/// Most texture slots of one mesh (texture units 16 .. 16 + kMaxTextureSlots - 1).
+inline constexpr int kMaxTextureSlots = 16;
 
 class BaseColour {
  public:
@@ -27,21 +32,27 @@ class BaseColour {
   BaseColour& operator=(const BaseColour&) = delete;
 
   /// Uploads the base colour of `mesh` if it is textured (mesh::Mesh::textured()), else drops the
-  /// previous mesh's. Throws prt::Error if the textures together exceed GL_MAX_TEXTURE_BUFFER_SIZE texels.
+  /// previous mesh's. Throws prt::Error if its materials need more than kMaxTextureSlots slots.
   void set_mesh(const mesh::Mesh& mesh);
   /// The mesh has a texture (set_mesh uploaded its base colour).
-  bool present() const { return texels_ != 0; }
-  /// Binds the buffers base_colour.glsl reads (storage buffers 12-15, texture unit 15) and sets
-  /// `program`'s has_vertex_colour (the program in use). The triangle indices (binding 3) are the caller's.
+  bool present() const { return !textures_.empty(); }
+  /// "#define TEXTURED 1" and "#define TEXTURE_SLOTS n" for the textured variants of the shaders.
+  std::string defines() const;
+  /// Binds what base_material.glsl and base_texture.glsl read (storage buffers 12-15, texture units and
+  /// samplers 16 + slot) and sets `program`'s has_vertex_colour (the program in use). The triangle
+  /// indices (binding 3) are the caller's.
   void bind(const Program& program) const;
-  /// Multiplies the radiance of every pixel the mesh draw covered by the base colour there (prt_texture.frag):
-  /// after a draw of albedo-free radiance without discs. Precondition: present().
-  void draw_deferred(FrameCore& core, const FrameSettings& settings) const;
+  /// A textured per-vertex draw with `program` (in use): binds the above and the mesh's indices (3),
+  /// positions (4) and albedo (11), and draws every triangle corner unindexed (textured_vertex.glsl).
+  void draw_corners(const FrameCore& core, const Program& program) const;
 
  private:
   GLuint materials_ = 0, uv_ = 0, triangle_material_ = 0, vertex_colour_ = 0;
-  GLuint texel_buffer_ = 0, texels_ = 0;  // the buffer and its GL_RGB32F buffer texture
+  std::vector<GLuint> textures_;  // per image
+  std::vector<GLuint> samplers_;  // per slot
+  std::vector<int> slot_image_;   // per slot: its image
   bool has_vertex_colour_ = false;
+  void release();
 };
 
 }  // namespace prt::render

@@ -18,8 +18,8 @@ namespace {
 constexpr GLsizeiptr kLightingBytes = kMaxCoefficients * static_cast<GLsizeiptr>(sizeof(glm::vec4));
 constexpr GLuint kEnvironmentLightingBinding = 1;  // background.frag: uniform EnvironmentLighting
 constexpr float kDefaultAlbedo = 0.8f;
-constexpr GLuint kFrameRadianceUnit = 11;  // prt_sun.frag, prt_texture.frag: frame_radiance
-constexpr GLuint kFrameTriangleUnit = 12;  // prt_sun.frag, prt_texture.frag: frame_triangles
+constexpr GLuint kFrameRadianceUnit = 11;  // prt_sun.frag: frame_radiance
+constexpr GLuint kFrameTriangleUnit = 12;  // prt_sun.frag: frame_triangles
 
 glm::mat3 to_float(const glm::dmat3& m) { return glm::mat3(m); }
 
@@ -176,13 +176,6 @@ void FrameCore::end_deferred() const {
   glNamedFramebufferDrawBuffers(framebuffer, 2, both);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
-}
-
-void FrameCore::finish_diffuse(const FrameSettings& settings, bool with_sun, SunSurface& surface, bool textured) {
-  if (with_sun)
-    sun->draw_deferred(*this, settings, surface, textured ? &base_colour : nullptr);
-  else if (textured)
-    base_colour.draw_deferred(*this, settings);
 }
 
 void FrameCore::resize(int new_width, int new_height) {

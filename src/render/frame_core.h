@@ -57,17 +57,13 @@ struct FrameCore {
   /// The eye of the frame in mesh coordinates: p = c + R_object^T (eye - c).
   glm::vec3 eye_object(const FrameSettings& settings) const;
   void draw_mesh_elements() const;  ///< glDrawElements of the whole mesh (mesh_vao bound by the caller)
-  /// A deferred pass over the pixels the mesh draw covered (prt_sun.frag, prt_texture.frag): writes to
+  /// A deferred pass over the pixels the mesh draw covered (prt_sun.frag): writes to
   /// the radiance attachment only, with the depth test passing only where the mesh is; uses `program`,
   /// binds the frame's radiance (unit 11) and triangle index (unit 12) and sets pixel_surface.glsl's
   /// uniforms for `settings`. The caller then binds its own inputs and calls end_deferred, which draws
   /// and restores the frame's state.
   void begin_deferred(const Program& program, const FrameSettings& settings) const;
   void end_deferred() const;
-  /// After a per-vertex diffuse draw (prt_diffuse, prt_cpca): the discs' direct light (with `sun`,
-  /// SunLight::draw_deferred of `surface`) and, for `textured` (the draw was albedo-free), the base
-  /// colour per pixel.
-  void finish_diffuse(const FrameSettings& settings, bool sun, SunSurface& surface, bool textured);
 
   // The mesh.
   GLuint empty_vao = 0, mesh_vao = 0;

@@ -64,7 +64,7 @@ void CpcaPass::draw(FrameCore& core, const Frame& frame) {
   const bool forward_sun = frame.sun && glossy;
   const bool textured = textured_ && !glossy;  // the albedo split holds for diffuse transfer only
   const Program& draw = forward_sun ? core.program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
-                                    : core.program({"prt_cpca.vert", "surface.frag"}, textured ? "#define TEXTURED 1\n" : "");
+                                    : core.program({"prt_cpca.vert", "surface.frag"}, textured ? core.base_colour.defines() : "");
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(core.mesh_vao);
@@ -74,8 +74,11 @@ void CpcaPass::draw(FrameCore& core, const Frame& frame) {
     core.sun->bind(core, draw, sun_surface_, true);
     glUniform3f(draw.uniform("eye_object"), eye_object.x, eye_object.y, eye_object.z);
   }
-  core.draw_mesh_elements();
-  if (!glossy) core.finish_diffuse(frame.settings, frame.sun, sun_surface_, textured);
+  if (textured)
+    core.base_colour.draw_corners(core, draw);  // prt_cpca.vert reads the radiance prepare() bound
+  else
+    core.draw_mesh_elements();
+  if (frame.sun && !glossy) core.sun->draw_deferred(core, frame.settings, sun_surface_, textured ? &core.base_colour : nullptr);
 }
 
 }  // namespace

@@ -263,7 +263,7 @@ void SunLight::bind_surface(const FrameCore& core, SunSurface& t) {
 void SunLight::draw_deferred(FrameCore& core, const FrameSettings& settings, SunSurface& surface,
                              const BaseColour* base_colour) {
   const Program& program = base_colour != nullptr
-                               ? core.program({"sun_fullscreen.vert", "prt_sun.frag"}, lookup_defines() + "#define TEXTURED 1\n")
+                               ? core.program({"sun_fullscreen.vert", "prt_sun.frag"}, lookup_defines() + base_colour->defines())
                                : deferred_program_;
   core.begin_deferred(program, settings);
   bind(core, program, surface, false);

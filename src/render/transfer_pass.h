@@ -60,7 +60,7 @@ class TransferPass {
   /// How the discs light this transfer.
   SunSurface& sun_surface() { return sun_surface_; }
   /// Renderer::set_textured: draw albedo-free radiance per vertex and multiply it by the base colour per
-  /// pixel (FrameCore::finish_diffuse). Only the per-vertex diffuse passes (diffuse, cpca of diffuse
+  /// pixel (BaseColour::draw_corners). Only the per-vertex diffuse passes (diffuse, cpca of diffuse
   /// transfer) do; the others ignore it.
   void set_textured(bool textured) { textured_ = textured; }
 
@@ -79,9 +79,9 @@ class TransferPass {
 std::unique_ptr<TransferPass> make_pass(FrameCore& core, const PassInput& input);
 
 /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks, discs,
-/// albedo-free radiance for a textured mesh).
+/// and for a textured draw BaseColour::defines()).
 const Program& diffuse_program(FrameCore& core, int channels, int coefficient_count, int used_count, int chunks, bool sun,
-                               bool textured = false);
+                               const std::string& textured_defines = "");
 
 /// Fails with "<origin>: transfer has N vertices, the mesh M" unless the counts match (every pass's
 /// first check).
