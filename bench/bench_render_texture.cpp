@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "bench_frames.h"
@@ -20,11 +21,10 @@ using namespace prt;
 namespace {
 
 constexpr int kFrameSize = 1024;
-constexpr int kTextureSize = 1024;
 
-// A floor of n x n quads over [-1, 1]^2 (y = 0) with one material: a kTextureSize^2 pattern repeated
-// twice across the floor (bilinear, repeat), per-corner UVs, a grey per-vertex albedo.
-mesh::Mesh textured_floor(int n) {
+// A floor of n x n quads over [-1, 1]^2 (y = 0) with one material: a size^2 pattern repeated twice
+// across the floor (bilinear, repeat), per-corner UVs, a grey per-vertex albedo.
+mesh::Mesh textured_floor(int n, int size) {
   std::vector<glm::vec2> uv;
   mesh::Mesh m = bench::floor_grid(n, &uv, 2.0f);
   m.base_color_uv = uv;
@@ -34,18 +34,18 @@ mesh::Mesh textured_floor(int n) {
   material.base_color.image = 0;
   m.materials.push_back(material);
   mesh::Texture texture;
-  texture.width = texture.height = kTextureSize;
-  texture.rgb.resize(3 * static_cast<std::size_t>(kTextureSize) * kTextureSize);
+  texture.width = texture.height = size;
+  texture.rgb.resize(3 * static_cast<std::size_t>(size) * size);
   for (std::size_t i = 0; i < texture.rgb.size(); ++i) texture.rgb[i] = 0.01f * static_cast<float>((i * 7919) % 97);
   m.textures.push_back(texture);
   m.albedo_source = mesh::AlbedoSource::texture;
   return m;
 }
 
-double textured_ms = 0.0, untextured_ms = 0.0;
+std::map<int, bench::FramePair> results;  // per texture size: textured (a), untextured (b)
 
-void frame_textured_vs_untextured(benchmark::State& state, render::Renderer& renderer) {
-  const mesh::Mesh mesh = textured_floor(64);
+void frame_textured_vs_untextured(benchmark::State& state, render::Renderer& renderer, int size) {
+  const mesh::Mesh mesh = textured_floor(64, size);
   renderer.set_mesh(mesh);
   const transfer::TransferData data = bench::synthetic_diffuse(mesh);
   const int textured = renderer.add_transfer(data, "synthetic");
@@ -55,11 +55,10 @@ void frame_textured_vs_untextured(benchmark::State& state, render::Renderer& ren
   const render::Camera camera{30.0, 40.0, 0.0};
   const bench::FramePair times = bench::alternate_frames(state, renderer, bench::black_frame(textured, camera),
                                                          bench::black_frame(plain, camera), kFrameSize);
-  textured_ms = times.a_ms;
-  untextured_ms = times.b_ms;
-  state.counters["textured_ms"] = textured_ms;
-  state.counters["untextured_ms"] = untextured_ms;
-  state.counters["textured/untextured"] = textured_ms / untextured_ms;
+  results[size] = times;
+  state.counters["textured_ms"] = times.a_ms;
+  state.counters["untextured_ms"] = times.b_ms;
+  state.counters["textured/untextured"] = times.a_ms / times.b_ms;
 }
 
 }  // namespace
@@ -68,15 +67,18 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   render::HeadlessContext context;
-  std::printf("bench_render_texture: %s; frames %dx%d, 5 bands RGB, a %dx%d texture\n", context.description().c_str(), kFrameSize,
-              kFrameSize, kTextureSize, kTextureSize);
+  std::printf("bench_render_texture: %s; frames %dx%d, 5 bands RGB\n", context.description().c_str(), kFrameSize, kFrameSize);
   render::Renderer renderer;
-  benchmark::RegisterBenchmark("frame_textured_vs_untextured/1024", [&renderer](benchmark::State& state) {
-    frame_textured_vs_untextured(state, renderer);
-  })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
+  for (int size : {256, 1024}) {
+    const std::string name = "frame_textured_vs_untextured/texture:" + std::to_string(size);
+    benchmark::RegisterBenchmark(name.c_str(), [&renderer, size](benchmark::State& state) {
+      frame_textured_vs_untextured(state, renderer, size);
+    })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
+  }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  std::printf("\nSummary (floor of 8192 triangles filling most of the frame): textured %.2f ms, untextured %.2f ms, ratio %.3f\n",
-              textured_ms, untextured_ms, textured_ms / untextured_ms);
+  std::printf("\nSummary (floor of 8192 triangles filling most of the frame, the texture repeated twice across it)\n");
+  for (const auto& [size, r] : results)
+    std::printf("texture %4dx%-4d  textured %7.2f ms  untextured %7.2f ms  ratio %.3f\n", size, size, r.a_ms, r.b_ms, r.a_ms / r.b_ms);
   return 0;
 }
