@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "camera/camera.h"
@@ -27,14 +28,15 @@ void run_ok(const std::string& arguments) {
   REQUIRE(r.exit_code == 0);
 }
 
-// The pixel of quad point (x, y, 0) from camera "0,0,auto" (looking down -Z at the quad).
-glm::ivec2 quad_pixel(double x, double y) {
+// The pixel of point (x, y, 0) from camera "0,0,auto" (looking down -Z) in a width x height frame of a
+// mesh whose bounds are [0, extent] x [0, 1] x {0}.
+glm::ivec2 quad_pixel(double x, double y, double extent = 1.0, int width = kSize, int height = kSize) {
   mesh::Bounds bounds;
   bounds.lo = glm::vec3(0.0f);
-  bounds.hi = glm::vec3(1.0f, 1.0f, 0.0f);
-  const camera::ViewMatrices view = camera::orbit_view(camera::parse_camera("0,0,auto"), bounds, kSize, kSize);
+  bounds.hi = glm::vec3(float(extent), 1.0f, 0.0f);
+  const camera::ViewMatrices view = camera::orbit_view(camera::parse_camera("0,0,auto"), bounds, width, height);
   const glm::dvec4 clip = view.projection * view.view * view.model * glm::dvec4(x, y, 0.0, 1.0);
-  return {int(std::floor((clip.x / clip.w + 1.0) * 0.5 * kSize)), int(std::floor((1.0 - clip.y / clip.w) * 0.5 * kSize))};
+  return {int(std::floor((clip.x / clip.w + 1.0) * 0.5 * width)), int(std::floor((1.0 - clip.y / clip.w) * 0.5 * height))};
 }
 
 // Every pixel on a 5 x 5 grid over the middle half of each checker square has radiance scale x the
@@ -87,6 +89,50 @@ TEST_CASE("prt render of a bake with --albedo shows no texture", "[render][gl][t
   run_ok("render " + obj + " " + dir + "/t.prt --sun none" + render_args(dir, "option.exr"));
   const glm::dvec3 grey(0.5, 0.25, 1.0);
   check_squares(image::read_rgb(dir + "/option.exr"), grey, grey, 1.0);
+}
+
+namespace {
+
+// Two unit quads side by side in z = 0 ([0, 1] and [1, 2] in x), each with its own material and a
+// uniform PNG of its own size and 8-bit sRGB codes; returns the OBJ and sets the linear colours.
+std::string write_two_textures(const std::string& dir, glm::dvec3 colour[2]) {
+  const int codes[2][3] = {{200, 60, 30}, {40, 120, 230}}, sizes[2][2] = {{8, 8}, {32, 16}};
+  std::ofstream mtl(dir + "/two.mtl");
+  for (int q = 0; q < 2; ++q) {
+    image::Image png(sizes[q][0], sizes[q][1], 3);
+    for (int c = 0; c < 3; ++c) {
+      const double code = codes[q][c] / 255.0;
+      colour[q][c] = code <= 0.04045 ? code / 12.92 : std::pow((code + 0.055) / 1.055, 2.4);
+      for (int y = 0; y < sizes[q][1]; ++y)
+        for (int x = 0; x < sizes[q][0]; ++x) png.at(x, y, c) = float(code);
+    }
+    image::write(dir + "/t" + std::to_string(q) + ".png", png);
+    mtl << "newmtl m" << q << "\nKd 1 1 1\nmap_Kd t" << q << ".png\n";
+  }
+  std::ofstream(dir + "/two.obj") << "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nusemtl m0\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n"
+                                     "usemtl m1\nf 2/1/1 5/2/1 6/3/1\nf 2/1/1 6/3/1 3/4/1\n";
+  return dir + "/two.obj";
+}
+
+}  // namespace
+
+TEST_CASE("prt render of two materials with textures of different sizes shows each its own", "[render][gl][texture][cli]") {
+  const std::string dir = test::fresh_temp_dir("render_texture_two");
+  glm::dvec3 a, b, colour[2];
+  test::write_checker_quad(dir, &a, &b);  // for white.json
+  const std::string obj = write_two_textures(dir, colour);
+  run_ok("bake " + obj + " --transfer unshadowed --bands 1 -q -o " + dir + "/two.prt");
+  run_ok("render " + obj + " " + dir + "/two.prt --sun none --env " + dir + "/white.json --window none --background black "
+         "--camera 0,0,auto --size 96x48 -q -o " + dir + "/two.exr");
+  const image::Image image = image::read_rgb(dir + "/two.exr");
+  for (int q = 0; q < 2; ++q) {
+    const glm::ivec2 p = quad_pixel(q + 0.5, 0.5, 2.0, 96, 48);  // the middle of quad q
+    for (int c = 0; c < 3; ++c) {
+      INFO("quad " << q << ", pixel (" << p.x << ", " << p.y << "), channel " << c);
+      CHECK(double(image.at(p.x, p.y, c)) == Approx(colour[q][c]).epsilon(0.01));
+    }
+  }
 }
 
 namespace {
