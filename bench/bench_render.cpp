@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_meshes.h"
+#include "bench_frames.h"
 #include "bench_lighting.h"
 #include "render/gl.h"
 #include "render/headless_context.h"
@@ -104,28 +105,10 @@ void register_frames(render::Renderer& renderer, Results& results) {
       prt.camera = render::Camera{30.0, 20.0, 0.0};
       render::FrameSettings lambert = prt;
       lambert.shading = render::Shading::lambert;
-      for (const auto* settings : {&prt, &lambert}) {  // warm-up: shader compilation, first-use allocation
-        renderer.render(*settings, kFrameSize, kFrameSize);
-        glFinish();
-      }
-      double prt_seconds = 0.0, lambert_seconds = 0.0;
-      for (auto _ : state) {
-        auto start = Clock::now();
-        renderer.render(prt, kFrameSize, kFrameSize);
-        glFinish();
-        const double p = seconds_since(start);
-        start = Clock::now();
-        renderer.render(lambert, kFrameSize, kFrameSize);
-        glFinish();
-        const double l = seconds_since(start);
-        prt_seconds += p;
-        lambert_seconds += l;
-        state.SetIterationTime(p);
-      }
-      const double n = static_cast<double>(state.iterations());
+      const bench::FramePair times = bench::alternate_frames(state, renderer, prt, lambert, kFrameSize);
       FrameResult& r = results.frames[levels];
-      r.prt_ms = 1e3 * prt_seconds / n;
-      r.lambert_ms = 1e3 * lambert_seconds / n;
+      r.prt_ms = times.a_ms;
+      r.lambert_ms = times.b_ms;
       state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
       state.counters["triangles"] = static_cast<double>(mesh.triangle_count());
       state.counters["prt_ms"] = r.prt_ms;

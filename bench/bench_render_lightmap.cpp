@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "bench_frames.h"
 #include "bench_lighting.h"
 #include "mesh/mesh.h"
 #include "render/gl.h"
@@ -25,35 +26,10 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 // A floor of n x n quads over [-1, 1]^2 (y = 0), one lightmap chart: uv = ((x + 1) / 2, (z + 1) / 2).
 mesh::Mesh floor_grid(int n) {
-  mesh::Mesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      m.positions.emplace_back(-1.0f + 2.0f * i / n, 0.0f, -1.0f + 2.0f * j / n);
-      m.normals.emplace_back(0.0f, 1.0f, 0.0f);
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const auto at = [n](int a, int b) { return static_cast<std::uint32_t>(b * (n + 1) + a); };
-      for (std::uint32_t v : {at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i + 1, j)}) {
-        m.indices.push_back(v);
-        m.lightmap_uv.emplace_back((m.positions[v].x + 1.0f) / 2.0f, (m.positions[v].z + 1.0f) / 2.0f);
-      }
-    }
+  std::vector<glm::vec2> uv;
+  mesh::Mesh m = bench::floor_grid(n, &uv);
+  m.lightmap_uv = uv;
   return m;
-}
-
-// Values do not change the cost; a fixed pattern. texels = 0: per vertex.
-transfer::TransferData synthetic(const mesh::Mesh& mesh, int texels) {
-  transfer::TransferData d;
-  d.header.kind = transfer::Kind::shadowed;
-  d.header.bands = 5;
-  d.header.channels = 3;
-  d.header.vertex_count = mesh.vertex_count();
-  d.header.triangle_count = mesh.triangle_count();
-  d.header.texel_width = d.header.texel_height = static_cast<std::uint32_t>(texels);
-  d.values.resize(d.header.block_count() * d.header.values_per_vertex());
-  for (std::size_t i = 0; i < d.values.size(); ++i) d.values[i] = 0.01f * static_cast<float>((i * 7919) % 97);
-  return d;
 }
 
 struct Result {
@@ -74,40 +50,20 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(name.c_str(), [&renderer, &results, texels](benchmark::State& state) {
       const mesh::Mesh mesh = floor_grid(64);
       renderer.set_mesh(mesh);
-      const transfer::TransferData lightmap_data = synthetic(mesh, texels);
+      const transfer::TransferData lightmap_data = bench::synthetic_diffuse(mesh, texels);
       Result& r = results[texels];
       auto start = Clock::now();
       const int lightmap = renderer.add_lightmap(lightmap_data, "synthetic");
       glFinish();
       r.upload_ms = 1e3 * seconds_since(start);
       r.megabytes = static_cast<double>(texels) * texels * 19 * 16 * 1e-6;
-      const int vertex = renderer.add_transfer(synthetic(mesh, 0), "synthetic");
+      const int vertex = renderer.add_transfer(bench::synthetic_diffuse(mesh), "synthetic");
       renderer.set_lighting(bench::synthetic_lighting(5), nullptr);
-      render::FrameSettings a;
-      a.transfer = lightmap;
-      a.background = render::Background::black;
-      a.camera = render::Camera{30.0, 40.0, 0.0};
-      render::FrameSettings b = a;
-      b.transfer = vertex;
-      for (const auto* s : {&a, &b}) {  // warm-up: shader compilation, first-use allocation
-        renderer.render(*s, kFrameSize, kFrameSize);
-        glFinish();
-      }
-      double la = 0.0, ve = 0.0;
-      for (auto _ : state) {
-        start = Clock::now();
-        renderer.render(a, kFrameSize, kFrameSize);
-        glFinish();
-        const double t = seconds_since(start);
-        start = Clock::now();
-        renderer.render(b, kFrameSize, kFrameSize);
-        glFinish();
-        ve += seconds_since(start);
-        la += t;
-        state.SetIterationTime(t);
-      }
-      r.lightmap_ms = 1e3 * la / static_cast<double>(state.iterations());
-      r.vertex_ms = 1e3 * ve / static_cast<double>(state.iterations());
+      const render::Camera camera{30.0, 40.0, 0.0};
+      const render::FrameSettings a = bench::black_frame(lightmap, camera), b = bench::black_frame(vertex, camera);
+      const bench::FramePair times = bench::alternate_frames(state, renderer, a, b, kFrameSize);
+      r.lightmap_ms = times.a_ms;
+      r.vertex_ms = times.b_ms;
       state.counters["lightmap_ms"] = r.lightmap_ms;
       state.counters["vertex_ms"] = r.vertex_ms;
       state.counters["lightmap/vertex"] = r.lightmap_ms / r.vertex_ms;

@@ -1,7 +1,13 @@
 // pass: prt_cpca, vertex stage: the radiance prt_cpca.comp wrote for this vertex; mirrors prt_diffuse.vert's output.
 #version 450 core
 
+#ifdef TEXTURED
+// A textured mesh (TEXTURE_SLOTS): drawn per triangle corner, albedo-free (textured_vertex.glsl).
+#include "base_material.glsl"
+#include "textured_vertex.glsl"
+#else
 layout(location = 0) in vec3 position;
+#endif
 layout(std430, binding = 9) readonly buffer Radiance { vec4 vertex_radiance[]; };
 
 uniform mat4 model_view_projection;
@@ -16,7 +22,14 @@ out vec3 object_normal;
 #endif
 
 void main() {
+#ifdef TEXTURED
+  uint vertex = indices[gl_VertexID];
+  vec3 position = vertex_position(vertex);
+  radiance = albedo_free(vertex_radiance[vertex].rgb, vertex);
+  emit_corner(gl_VertexID, vertex);
+#else
   radiance = vertex_radiance[gl_VertexID].rgb;
+#endif
 #ifdef SUN
   object_position = position;
   object_normal = normal;

@@ -9,11 +9,18 @@
 //   CHUNKS             1..8 buffer-texture views the transfer is split into (see TransferBuffer)
 //   SUN                (defined only with discs) add the discs' bounce light (per-vertex, computed when the
 //                      lighting changes); their direct light is prt_sun.frag's deferred pass
+//   TEXTURED           (a textured mesh, with TEXTURE_SLOTS) drawn per triangle corner, the radiance divided
+//                      by the vertex's albedo, the base colour multiplied per pixel (textured_vertex.glsl)
 const int channels = CHANNELS;
 const int coefficient_count = COEFFICIENT_COUNT;
 const int used_count = USED_COUNT;
 
+#ifdef TEXTURED
+#include "base_material.glsl"
+#include "textured_vertex.glsl"
+#else
 layout(location = 0) in vec3 position;
+#endif
 
 // The transfer file's values, vertex-major (vertex v's block of channels * coefficient_count floats,
 // channel-major inside), one float per texel (GL_R32F views of one buffer). View k holds vertices
@@ -65,8 +72,14 @@ layout(std430, binding = 7) readonly buffer SunBounce { float sun_bounce[]; };
   }
 
 void main() {
-  int chunk = CHUNKS > 1 ? gl_VertexID / vertices_per_chunk : 0;
-  int base = (gl_VertexID - chunk * vertices_per_chunk) * channels * coefficient_count;
+#ifdef TEXTURED
+  int vertex = int(indices[gl_VertexID]);
+  vec3 position = vertex_position(uint(vertex));
+#else
+  int vertex = gl_VertexID;
+#endif
+  int chunk = CHUNKS > 1 ? vertex / vertices_per_chunk : 0;
+  int base = (vertex - chunk * vertices_per_chunk) * channels * coefficient_count;
   vec3 sum = vec3(0.0);
   if (chunk == 0) {
     ACCUMULATE(transfer0)
@@ -107,8 +120,12 @@ void main() {
   }
 #endif
 #ifdef SUN
-  int i3 = 3 * gl_VertexID;
+  int i3 = 3 * vertex;
   sum += vec3(sun_bounce[i3], sun_bounce[i3 + 1], sun_bounce[i3 + 2]);
+#endif
+#ifdef TEXTURED
+  sum = albedo_free(sum, uint(vertex));
+  emit_corner(gl_VertexID, uint(vertex));
 #endif
   radiance = sum;
   gl_Position = model_view_projection * vec4(position, 1.0);

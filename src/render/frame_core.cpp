@@ -18,6 +18,8 @@ namespace {
 constexpr GLsizeiptr kLightingBytes = kMaxCoefficients * static_cast<GLsizeiptr>(sizeof(glm::vec4));
 constexpr GLuint kEnvironmentLightingBinding = 1;  // background.frag: uniform EnvironmentLighting
 constexpr float kDefaultAlbedo = 0.8f;
+constexpr GLuint kFrameRadianceUnit = 11;  // prt_sun.frag: frame_radiance
+constexpr GLuint kFrameTriangleUnit = 12;  // prt_sun.frag: frame_triangles
 
 glm::mat3 to_float(const glm::dmat3& m) { return glm::mat3(m); }
 
@@ -88,6 +90,7 @@ void FrameCore::set_mesh(const mesh::Mesh& mesh) {
   glVertexArrayElementBuffer(mesh_vao, indices);
   check_gl("uploading mesh");
 
+  base_colour.set_mesh(mesh);
   index_count = static_cast<GLsizei>(mesh.indices.size());
   vertex_count = mesh.vertex_count();
   bounds = mesh::bounds(mesh);
@@ -142,6 +145,38 @@ glm::vec3 FrameCore::eye_object(const FrameSettings& settings) const {
 }
 
 void FrameCore::draw_mesh_elements() const { glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr); }
+
+void FrameCore::begin_deferred(const Program& program, const FrameSettings& settings) const {
+  glTextureBarrier();
+  const GLenum radiance_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+  glNamedFramebufferDrawBuffers(framebuffer, 2, radiance_only);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glUseProgram(program.id());
+  glBindTextureUnit(kFrameRadianceUnit, radiance_texture);
+  glBindTextureUnit(kFrameTriangleUnit, triangle_texture);
+  // Mesh coordinates: p = c + R^T (world - c) (renderer.h); ray direction R^T C (ndc.x tan_x, ndc.y tan_y, -1).
+  const glm::dmat3 to_object = glm::transpose(settings.object_rotation);
+  const glm::dvec3 eye = view.centre + to_object * (view.eye - view.centre);
+  glm::dmat3 basis = to_object * view.camera_to_world;
+  basis[0] *= view.tan_half_fov_x;
+  basis[1] *= view.tan_half_fov_y;
+  basis[2] *= -1.0;
+  const glm::mat3 ray_basis(basis);
+  glUniform2f(program.uniform("frame_size"), static_cast<float>(width), static_cast<float>(height));
+  glUniform3f(program.uniform("eye_object"), static_cast<float>(eye.x), static_cast<float>(eye.y), static_cast<float>(eye.z));
+  glUniformMatrix3fv(program.uniform("ray_basis"), 1, GL_FALSE, glm::value_ptr(ray_basis));
+}
+
+void FrameCore::end_deferred() const {
+  glBindVertexArray(empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer, 2, both);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+}
 
 void FrameCore::resize(int new_width, int new_height) {
   if (new_width == width && new_height == height && framebuffer != 0) return;

@@ -13,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "render/base_colour.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
 #include "render/sun_light.h"
@@ -56,6 +57,13 @@ struct FrameCore {
   /// The eye of the frame in mesh coordinates: p = c + R_object^T (eye - c).
   glm::vec3 eye_object(const FrameSettings& settings) const;
   void draw_mesh_elements() const;  ///< glDrawElements of the whole mesh (mesh_vao bound by the caller)
+  /// A deferred pass over the pixels the mesh draw covered (prt_sun.frag): writes to
+  /// the radiance attachment only, with the depth test passing only where the mesh is; uses `program`,
+  /// binds the frame's radiance (unit 11) and triangle index (unit 12) and sets pixel_surface.glsl's
+  /// uniforms for `settings`. The caller then binds its own inputs and calls end_deferred, which draws
+  /// and restores the frame's state.
+  void begin_deferred(const Program& program, const FrameSettings& settings) const;
+  void end_deferred() const;
 
   // The mesh.
   GLuint empty_vao = 0, mesh_vao = 0;
@@ -83,6 +91,7 @@ struct FrameCore {
   glm::mat4 model_view_projection{1.0f};
 
   std::unique_ptr<SunLight> sun;
+  BaseColour base_colour;  ///< a textured mesh's base colour (empty otherwise)
   Program tonemap;
 
  private:

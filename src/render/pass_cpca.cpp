@@ -62,8 +62,9 @@ void CpcaPass::draw(FrameCore& core, const Frame& frame) {
   // deferred pass adds their direct light per pixel as for uncompressed transfer; glossy:
   // prt_cpca_sun.frag evaluates the BRDF toward the eye in the draw itself.
   const bool forward_sun = frame.sun && glossy;
+  const bool textured = textured_ && !glossy;  // the albedo split holds for diffuse transfer only
   const Program& draw = forward_sun ? core.program({"prt_cpca.vert", "prt_cpca_sun.frag"}, "#define SUN 1\n")
-                                    : core.program({"prt_cpca.vert", "surface.frag"});
+                                    : core.program({"prt_cpca.vert", "surface.frag"}, textured ? core.base_colour.defines() : "");
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(core.mesh_vao);
@@ -73,8 +74,11 @@ void CpcaPass::draw(FrameCore& core, const Frame& frame) {
     core.sun->bind(core, draw, sun_surface_, true);
     glUniform3f(draw.uniform("eye_object"), eye_object.x, eye_object.y, eye_object.z);
   }
-  core.draw_mesh_elements();
-  if (frame.sun && !glossy) core.sun->draw_deferred(core, frame.settings, sun_surface_);
+  if (textured)
+    core.base_colour.draw_corners(core, draw);  // prt_cpca.vert reads the radiance prepare() bound
+  else
+    core.draw_mesh_elements();
+  if (frame.sun && !glossy) core.sun->draw_deferred(core, frame.settings, sun_surface_, textured ? &core.base_colour : nullptr);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The diffuse per-vertex pass (renderer.h, PASSES: prt_diffuse): transfer . lighting per vertex,
 // interpolated; with discs, their bounce light per vertex (on the CPU) and their direct light per pixel
-// (SunLight::draw_deferred).
+// (SunLight::draw_deferred); on a textured mesh, albedo-free per vertex and the base colour per pixel.
 #include <cstdio>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -60,7 +60,8 @@ class DiffusePass final : public TransferPass {
     glBindVertexArray(core.mesh_vao);
     const transfer::Header& h = transfer_.header();
     const Program& program = diffuse_program(core, static_cast<int>(h.channels), static_cast<int>(h.bands * h.bands),
-                                             frame.bands * frame.bands, transfer_.chunks(), frame.sun);
+                                             frame.bands * frame.bands, transfer_.chunks(), frame.sun,
+                                             textured_ ? core.base_colour.defines() : "");
     glUseProgram(program.id());
     glUniformMatrix4fv(program.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(core.model_view_projection));
     transfer_.bind();
@@ -70,8 +71,11 @@ class DiffusePass final : public TransferPass {
       core.sun->bind(core, program, sun_surface_, false);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSunBounceBinding, bounce_buffer_);
     }
-    core.draw_mesh_elements();
-    if (frame.sun) core.sun->draw_deferred(core, frame.settings, sun_surface_);
+    if (textured_)
+      core.base_colour.draw_corners(core, program);
+    else
+      core.draw_mesh_elements();
+    if (frame.sun) core.sun->draw_deferred(core, frame.settings, sun_surface_, textured_ ? &core.base_colour : nullptr);
   }
 
  private:
@@ -85,11 +89,12 @@ class DiffusePass final : public TransferPass {
 
 }  // namespace
 
-const Program& diffuse_program(FrameCore& core, int channels, int coefficient_count, int used_count, int chunks, bool sun) {
+const Program& diffuse_program(FrameCore& core, int channels, int coefficient_count, int used_count, int chunks, bool sun,
+                               const std::string& textured_defines) {
   return core.program({"prt_diffuse.vert", "surface.frag"},
                       "#define CHANNELS " + std::to_string(channels) + "\n#define COEFFICIENT_COUNT " +
                           std::to_string(coefficient_count) + "\n#define USED_COUNT " + std::to_string(used_count) +
-                          "\n#define CHUNKS " + std::to_string(chunks) + "\n" + (sun ? "#define SUN 1\n" : ""));
+                          "\n#define CHUNKS " + std::to_string(chunks) + "\n" + (sun ? "#define SUN 1\n" : "") + textured_defines);
 }
 
 std::unique_ptr<TransferPass> make_diffuse_pass(FrameCore& core, const PassInput& input) {

@@ -195,6 +195,12 @@ void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& al
   p.sun_surface().set_albedo(albedo);
 }
 
+void Renderer::set_textured(int transfer, bool textured) {
+  TransferPass& p = pass(transfer);
+  if (textured && !core_->base_colour.present()) fail("renderer: set_textured: the mesh has no texture");
+  p.set_textured(textured);
+}
+
 void Renderer::set_lighting(const sh::RgbCoefficients& lighting, const image::Image* equirect) { core_->set_lighting(lighting, equirect); }
 bool Renderer::has_environment_image() const { return core_->environment_texture != 0; }
 void Renderer::set_discs(const std::vector<light::Disc>& discs) { core_->sun->set_discs(discs); }

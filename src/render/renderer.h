@@ -58,6 +58,13 @@
 //               pixel once from its triangle id); glossy, in prt_glossy.frag (SUN, the BRDF evaluated
 //               exactly) after a depth-only prepass (shadow.vert). Without discs (or
 //               FrameSettings::sun false) the passes are exactly those above.
+//   texture     for a textured mesh (set_textured), prt_diffuse and prt_cpca of diffuse transfer with
+//               TEXTURED (base_colour.h): the mesh drawn unindexed, the vertex stage once per triangle
+//               corner, each vertex's radiance divided by its albedo (textured_vertex.glsl) and the
+//               corner's transformed base-colour UV, texture slot and factor x COLOR_0 passed on;
+//               surface.frag multiplies the interpolated radiance by the base colour at the pixel
+//               (base_texture.glsl); with discs, prt_sun.frag with TEXTURED takes the base colour at the
+//               pixel as the direct light's albedo.
 //   tonemap     fullscreen.vert + tonemap.frag: exposure, tone map and sRGB for the window, exactly
 //               prt::image::to_display.
 // The frame is drawn into a float framebuffer: attachment 0 RGBA32F linear radiance (alpha 1 on the
@@ -211,6 +218,13 @@ class Renderer {
   /// (shade::surface_albedo: the albedo it was baked with). Until set: the mesh's albedo (0.8 grey
   /// where it has none). Throws prt::Error for a wrong size or index.
   void set_surface_albedo(int transfer, const std::vector<glm::vec3>& albedo);
+  /// Shows the mesh's base colour per pixel for transfer `transfer` (PASSES: texture; the albedo split,
+  /// docs/conventions.md "Albedo and textures"): for a transfer baked with the mesh's albedo
+  /// (Mesh::albedo) on a textured mesh. The per-vertex diffuse passes (prt_diffuse, prt_cpca of diffuse
+  /// transfer) then divide each vertex's radiance by its albedo and multiply the interpolated value by
+  /// the base colour at the pixel (with discs, their direct light too); glossy and lightmap transfer are
+  /// drawn as before. Throws prt::Error for a wrong index, or `textured` on an untextured mesh.
+  void set_textured(int transfer, bool textured);
   /// Uploads a CPCA-compressed transfer (renderer_cpca.h) for the current mesh; returns its index in the
   /// same list as add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs.
   int add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin);

@@ -10,6 +10,7 @@
 #include "compress/cprt_file.h"
 #include "core/error.h"
 #include "render/renderer.h"
+#include "shade/surface_albedo.h"
 
 namespace prt::render {
 
@@ -143,7 +144,9 @@ std::size_t CpcaTransfer::gpu_bytes() const {
 
 int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i) {
   const compress::CompressedTransfer* model = i < scene.compressed.size() ? scene.compressed[i].get() : nullptr;
-  return renderer.add(scene.transfers[i], model, scene.transfer_paths[i]);
+  const int index = renderer.add(scene.transfers[i], model, scene.transfer_paths[i]);
+  renderer.set_textured(index, scene.mesh.textured() && shade::baked_with_mesh_albedo(scene.mesh, scene.transfers[i].header));
+  return index;
 }
 
 namespace {

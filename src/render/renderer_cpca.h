@@ -66,7 +66,8 @@ class CpcaTransfer {
 
 class Renderer;
 
-/// Adds scene transfer i to the renderer (Renderer::add, with its model for a per-vertex .cprt file).
+/// Adds scene transfer i to the renderer (Renderer::add, with its model for a per-vertex .cprt file),
+/// textured (Renderer::set_textured) when the mesh is and the transfer was baked with its albedo.
 int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t i);
 
 /// For the viewer's transfer list: ", 25.0 MB" for a .prt transfer (float32 on the GPU), or

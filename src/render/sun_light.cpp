@@ -23,8 +23,6 @@ constexpr GLuint kSunAlbedoBinding = 6;       // prt_diffuse.vert, prt_lightmap.
 constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr int kMaxTerms = kMaxBrdfTerms;
 constexpr GLuint kTileUnit = 9;               // sun_light.glsl: shadow_tiles
-constexpr GLuint kFrameRadianceUnit = 11;     // prt_sun.frag: frame_radiance
-constexpr GLuint kFrameTriangleUnit = 12;     // prt_sun.frag: frame_triangles
 constexpr GLuint kTriangleCornersUnit = 13;   // prt_sun.frag: triangle_corners
 constexpr GLuint kSurfaceUnit = 14;           // prt_sun.frag: surface
 constexpr int kShadowTile = 32;               // texels per tile side; > 2 x sun_light.glsl's max_filter
@@ -262,37 +260,19 @@ void SunLight::bind_surface(const FrameCore& core, SunSurface& t) {
 // triangle, and writes the clamped sum. Attachment 1 is not written in it; each pixel of attachment 0
 // is read and written by its own fragment only (the texture barrier makes the mesh draw's writes
 // visible to it).
-void SunLight::draw_deferred(const FrameCore& core, const FrameSettings& settings, SunSurface& surface) {
-  const Program& program = deferred_program_;
-  glTextureBarrier();
-  const GLenum radiance_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
-  glNamedFramebufferDrawBuffers(core.framebuffer, 2, radiance_only);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  glDepthMask(GL_FALSE);
-  glUseProgram(program.id());
+void SunLight::draw_deferred(FrameCore& core, const FrameSettings& settings, SunSurface& surface,
+                             const BaseColour* base_colour) {
+  const Program& program = base_colour != nullptr
+                               ? core.program({"sun_fullscreen.vert", "prt_sun.frag"}, lookup_defines() + base_colour->defines())
+                               : deferred_program_;
+  core.begin_deferred(program, settings);
   bind(core, program, surface, false);
-  glBindTextureUnit(kFrameRadianceUnit, core.radiance_texture);
-  glBindTextureUnit(kFrameTriangleUnit, core.triangle_texture);
   bind_surface(core, surface);
-  // Mesh coordinates: p = c + R^T (world - c) (renderer.h); ray direction R^T C (ndc.x tan_x, ndc.y tan_y, -1).
-  const ViewMatrices& view = core.view;
-  const glm::dmat3 to_object = glm::transpose(settings.object_rotation);
-  const glm::dvec3 eye = view.centre + to_object * (view.eye - view.centre);
-  glm::dmat3 basis = to_object * view.camera_to_world;
-  basis[0] *= view.tan_half_fov_x;
-  basis[1] *= view.tan_half_fov_y;
-  basis[2] *= -1.0;
-  const glm::mat3 ray_basis(basis);
-  glUniform2f(program.uniform("frame_size"), static_cast<float>(core.width), static_cast<float>(core.height));
-  glUniform3f(program.uniform("eye_object"), static_cast<float>(eye.x), static_cast<float>(eye.y), static_cast<float>(eye.z));
-  glUniformMatrix3fv(program.uniform("ray_basis"), 1, GL_FALSE, glm::value_ptr(ray_basis));
-  glBindVertexArray(core.empty_vao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(core.framebuffer, 2, both);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_LESS);
+  if (base_colour != nullptr) {
+    base_colour->bind(program);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, core.indices);
+  }
+  core.end_deferred();
 }
 
 void SunLight::bind(const FrameCore& core, const Program& program, const SunSurface& t, bool glossy) const {

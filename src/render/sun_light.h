@@ -19,6 +19,7 @@
 namespace prt::render {
 
 struct FrameCore;
+class BaseColour;
 
 /// Most BRDF terms (brdf::terms) the discs' glossy direct light evaluates (sun_light.glsl: max_terms).
 inline constexpr int kMaxBrdfTerms = 8;
@@ -69,8 +70,11 @@ class SunLight {
   void bind_background(const Program& program) const;
   /// Depth-only draw of the mesh before a SUN draw (each pixel then runs the lookups once).
   void draw_prepass(const FrameCore& core) const;
-  /// The discs' direct light over the pixels the diffuse mesh draw covered.
-  void draw_deferred(const FrameCore& core, const FrameSettings& settings, SunSurface& surface);
+  /// The discs' direct light over the pixels the diffuse mesh draw covered; with `base_colour` (not
+  /// null: the draw was albedo-free, a textured mesh), the draw's radiance and the direct light both
+  /// times the base colour at the pixel instead of the interpolated albedo.
+  void draw_deferred(FrameCore& core, const FrameSettings& settings, SunSurface& surface,
+                     const BaseColour* base_colour = nullptr);
   /// Visibility of disc `disc` at every vertex as the passes evaluate it (Renderer::shadow_visibility).
   std::vector<float> visibility(const FrameCore& core, int disc) const;
 

@@ -59,11 +59,16 @@ class TransferPass {
 
   /// How the discs light this transfer.
   SunSurface& sun_surface() { return sun_surface_; }
+  /// Renderer::set_textured: draw albedo-free radiance per vertex and multiply it by the base colour per
+  /// pixel (BaseColour::draw_corners). Only the per-vertex diffuse passes (diffuse, cpca of diffuse
+  /// transfer) do; the others ignore it.
+  void set_textured(bool textured) { textured_ = textured; }
 
  protected:
   /// Sets the sun surface's origin and shadows flag (false for unshadowed transfer).
   TransferPass(const std::string& origin, transfer::Kind kind);
   SunSurface sun_surface_;
+  bool textured_ = false;
   /// Prints, once per pass, that an interreflected transfer has no bounce-only section (`what`: the
   /// rest of the line).
   void warn_no_bounce(const char* what);
@@ -73,8 +78,10 @@ class TransferPass {
 /// prt::Error("<origin>: ...") if none does.
 std::unique_ptr<TransferPass> make_pass(FrameCore& core, const PassInput& input);
 
-/// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks, discs).
-const Program& diffuse_program(FrameCore& core, int channels, int coefficient_count, int used_count, int chunks, bool sun);
+/// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks, discs,
+/// and for a textured draw BaseColour::defines()).
+const Program& diffuse_program(FrameCore& core, int channels, int coefficient_count, int used_count, int chunks, bool sun,
+                               const std::string& textured_defines = "");
 
 /// Fails with "<origin>: transfer has N vertices, the mesh M" unless the counts match (every pass's
 /// first check).

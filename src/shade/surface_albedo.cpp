@@ -8,11 +8,16 @@
 
 namespace prt::shade {
 
+bool baked_with_mesh_albedo(const mesh::Mesh& mesh, const transfer::Header& header) {
+  const nlohmann::json params = nlohmann::json::parse(header.parameters_json, nullptr, false);
+  if (!params.is_object() || !params.contains("albedo")) return !mesh.albedo.empty();
+  return params["albedo"].is_string() && params["albedo"] == "mesh";
+}
+
 std::vector<glm::vec3> surface_albedo(const mesh::Mesh& mesh, const transfer::Header& header, const std::string& what) {
   const nlohmann::json params = nlohmann::json::parse(header.parameters_json, nullptr, false);
   const bool has_entry = params.is_object() && params.contains("albedo");
-  const bool from_mesh = has_entry ? params["albedo"].is_string() && params["albedo"] == "mesh" : !mesh.albedo.empty();
-  if (from_mesh) {
+  if (baked_with_mesh_albedo(mesh, header)) {
     if (mesh.albedo.size() != mesh.positions.size()) fail_file(what, "transfer was baked with the mesh's albedo, but the mesh has none");
     return mesh.albedo;
   }

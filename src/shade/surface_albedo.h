@@ -12,6 +12,11 @@
 
 namespace prt::shade {
 
+/// Whether a transfer was baked with the mesh's own albedo: its bake parameters say "albedo": "mesh", or
+/// name no albedo and the mesh carries one. (A bake with --albedo says [r, g, b]: the renderer then
+/// shows no texture, docs/conventions.md "Albedo and textures".)
+bool baked_with_mesh_albedo(const mesh::Mesh& mesh, const transfer::Header& header);
+
 /// Per-vertex linear albedo in [0,1]: the mesh's own when its bake parameters say "albedo": "mesh" (or
 /// the mesh carries albedo and the parameters name none), else the bake's fallback albedo, the
 /// parameters' "albedo": [r, g, b]. Transfers without either (hand-made files) get 0.8 grey, the bake's

@@ -27,16 +27,6 @@ const char* const kCamera = "215,50,auto";  // from the shadow side (-X, -Z)
 // The sky's lobe comes from +X, +Y, +Z (toward the light): the box's shadow falls toward -X, -Z.
 const glm::dvec3 kLight = glm::normalize(glm::dvec3(0.6, 0.55, 0.45));
 
-double rel_rms(const std::string& image, const std::string& reference) {
-  const test::RunResult r = test::run_prt("compare " + image + " " + reference);
-  INFO(r.output);
-  REQUIRE(r.exit_code == 0);
-  const std::size_t at = r.output.find("rel_rms=");
-  REQUIRE(at != std::string::npos);
-  return std::stod(r.output.substr(at + 8));
-}
-
-// Mean luminance of the 5 x 5 pixels about the floor point p (the camera of docs/conventions.md).
 double luminance_at(const image::Image& image, const mesh::Mesh& mesh, const glm::dvec3& p) {
   camera::Camera cam = camera::parse_camera(kCamera);
   const camera::ViewMatrices view = camera::orbit_view(cam, mesh::bounds(mesh), kWidth, kHeight);
@@ -77,8 +67,8 @@ TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle flo
   run("reference " + scene + " --image --env " + sky + " --band-limit 5 --bounces 0 --spp 256 --background black --camera " +
       kCamera + " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " -q -o " + dir + "/reference.exr");
 
-  const double lightmap_error = rel_rms(dir + "/lightmap.exr", dir + "/reference.exr");
-  const double vertex_error = rel_rms(dir + "/vertex.exr", dir + "/reference.exr");
+  const double lightmap_error = test::compare_rel_rms(dir + "/lightmap.exr", dir + "/reference.exr");
+  const double vertex_error = test::compare_rel_rms(dir + "/vertex.exr", dir + "/reference.exr");
   std::printf("box on a two-triangle floor, 160x120, 5 bands, shadowed: rel_rms against prt reference --image: lightmap %.4f, "
               "per-vertex %.4f\n", lightmap_error, vertex_error);
 

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include <unistd.h>
 
@@ -13,6 +14,13 @@ namespace prt::test {
 std::string prt_binary() { return std::string(PRT_BINARY_DIR) + "/src/cli/prt"; }
 
 RunResult run_prt(const std::string& arguments) { return run_shell(prt_binary() + " " + arguments); }
+
+double compare_rel_rms(const std::string& image, const std::string& reference) {
+  const RunResult r = run_prt("compare " + image + " " + reference);
+  const std::size_t at = r.output.find("rel_rms=");
+  if (r.exit_code != 0 || at == std::string::npos) throw std::runtime_error("prt compare " + image + " " + reference + ": " + r.output);
+  return std::stod(r.output.substr(at + 8));
+}
 
 RunResult run_shell(const std::string& command) {
   RunResult result;

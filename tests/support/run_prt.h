@@ -19,6 +19,10 @@ RunResult run_shell(const std::string& command);
 /// project's rule for bad input).
 bool fails_in_one_line(const RunResult& result, const std::string& expected);
 
+/// rel_rms of image `image` against `reference` as `prt compare` prints it. Throws std::runtime_error
+/// with prt's output if the comparison fails.
+double compare_rel_rms(const std::string& image, const std::string& reference);
+
 /// Path of the prt binary in the build tree.
 std::string prt_binary();
 

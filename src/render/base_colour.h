@@ -1,0 +1,58 @@
+#pragma once
+// Internal to the renderer: a textured mesh's base colour on the GPU, per pixel (renderer.h, PASSES:
+// texture; docs/conventions.md "Albedo and textures", the albedo split). Each image is one GL_RGB32F
+// texture (linear, as the loader decoded it: exact); each distinct (image, wrap s, wrap t, filter) of the
+// materials is a texture slot, the image on texture unit 16 + slot with a sampler object of the glTF
+// sampler's wrap modes and filter (bilinear, or nearest; no mipmaps). The materials (factor,
+// KHR_texture_transform as an affine map, slot), the per-corner base-colour UVs, the per-triangle
+// material and the vertex colours are storage buffers (shaders/base_material.glsl). A textured draw
+// runs the vertex stage per triangle corner (draw_corners), so UVs follow the corners across seams and
+// the rasteriser interpolates them; the fragment stage picks its slot from a loop over the slots
+// (shaders/base_texture.glsl: a sampler array may only be indexed uniformly).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.h"
+#include "render/gl.h"
+#include "render/shader_program.h"
+
+namespace prt::render {
+
+struct FrameCore;
+
+/// Most texture slots of one mesh (texture units 16 .. 16 + kMaxTextureSlots - 1).
+inline constexpr int kMaxTextureSlots = 16;
+
+class BaseColour {
+ public:
+  BaseColour() = default;
+  ~BaseColour();
+  BaseColour(const BaseColour&) = delete;
+  BaseColour& operator=(const BaseColour&) = delete;
+
+  /// Uploads the base colour of `mesh` if it is textured (mesh::Mesh::textured()), else drops the
+  /// previous mesh's. Throws prt::Error if its materials need more than kMaxTextureSlots slots.
+  void set_mesh(const mesh::Mesh& mesh);
+  /// The mesh has a texture (set_mesh uploaded its base colour).
+  bool present() const { return !textures_.empty(); }
+  /// "#define TEXTURED 1" and "#define TEXTURE_SLOTS n" for the textured variants of the shaders.
+  std::string defines() const;
+  /// Binds what base_material.glsl and base_texture.glsl read (storage buffers 12-15, texture units and
+  /// samplers 16 + slot) and sets `program`'s has_vertex_colour (the program in use). The triangle
+  /// indices (binding 3) are the caller's.
+  void bind(const Program& program) const;
+  /// A textured per-vertex draw with `program` (in use): binds the above and the mesh's indices (3),
+  /// positions (4) and albedo (11), and draws every triangle corner unindexed (textured_vertex.glsl).
+  void draw_corners(const FrameCore& core, const Program& program) const;
+
+ private:
+  GLuint materials_ = 0, uv_ = 0, triangle_material_ = 0, vertex_colour_ = 0;
+  std::vector<GLuint> textures_;  // per image
+  std::vector<GLuint> samplers_;  // per slot
+  std::vector<int> slot_image_;   // per slot: its image
+  bool has_vertex_colour_ = false;
+  void release();
+};
+
+}  // namespace prt::render
