@@ -37,6 +37,10 @@ bool all_grey(const std::vector<glm::vec3>& albedo) {
   return true;
 }
 
+int transfer_channels(const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo) {
+  return all_grey(albedo) && !albedo_at_hits(mesh) ? 1 : 3;
+}
+
 double pass_energy(const std::vector<float>& values, std::size_t point_stride, std::size_t channel_stride, int channels) {
   double sum = 0.0;
   for (std::size_t base = 0; base < values.size(); base += point_stride)
@@ -164,7 +168,7 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   rep = BakeReport{};
 
   const std::vector<glm::vec3> albedo = effective_albedo(mesh, options.albedo);
-  const int channels = all_grey(albedo) ? 1 : 3;
+  const int channels = transfer_channels(mesh, albedo);
   const std::size_t n = static_cast<std::size_t>(options.bands) * options.bands;
   const std::size_t vertices = mesh.positions.size();
   const std::size_t stride = n * static_cast<std::size_t>(channels);

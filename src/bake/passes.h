@@ -95,8 +95,13 @@ std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& 
                           const std::vector<float>& prev, std::vector<float>& next, const char* label);
 
 /// Shared by the vertex and the texel (src/lightmap) bakes.
-/// True if every albedo is grey (r = g = b): the transfer then has one channel.
+/// True if every albedo is grey (r = g = b).
 bool all_grey(const std::vector<glm::vec3>& albedo);
+
+/// The transfer's channel count: 1 when every albedo in `albedo` (the bake's per-vertex albedo) is grey
+/// and the mesh has no base-colour texture, else 3. A textured mesh always has 3: its texels and the
+/// points its rays hit take the texture's colour, whatever the vertices' averages.
+int transfer_channels(const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo);
 
 /// Channel transfer from albedo-free transfer: `channels` (1: albedo.r folded in; 3: one block per
 /// channel) blocks of n floats per point. `geometric` is consumed.

@@ -107,7 +107,7 @@ void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, co
   if (lightmap.width < 1 || lightmap.height < 1 || lightmap.width > side_max || lightmap.height > side_max)
     fail_option("lightmap", " " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
-  check_memory(lightmap, options, bake::all_grey(bake::effective_albedo(mesh, options.albedo)) ? 1 : 3);
+  check_memory(lightmap, options, bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo)));
 }
 
 namespace {
@@ -166,7 +166,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   LightmapReport local;
   LightmapReport& rep = report ? *report : local;
   rep = LightmapReport{};
-  const int channels = bake::all_grey(bake::effective_albedo(mesh, options.albedo)) ? 1 : 3;
+  const int channels = bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo));
   auto start = std::chrono::steady_clock::now();
   const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
   rep.bake.seconds_build = seconds_since(start);
