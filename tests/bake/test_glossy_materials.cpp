@@ -125,7 +125,7 @@ bool same_brdf(const brdf::Brdf& a, const brdf::Brdf& b, double tolerance) {
   return true;
 }
 
-TEST_CASE("--brdf mesh: a two-material glTF shades each vertex as the bake with its material's BRDF alone", "[glossy][cli][materials]") {
+TEST_CASE("prt bake --brdf mesh: a two-material glTF shades each vertex as the bake with its material's BRDF alone", "[glossy][cli][materials]") {
   // glossy-shadowed: the transfer is geometry only, so a vertex's shading depends on its own BRDF alone
   // (interreflection, where the other material's BRDF colours the bounce, is the next test's).
   const std::string dir = test::fresh_temp_dir("glossy_materials");
@@ -239,7 +239,7 @@ mesh::Mesh two_bowls(int rings, int segments) {
 
 }  // namespace
 
-TEST_CASE("--brdf mesh interreflected: each vertex as the bake with its own BRDF, and the reference agrees",
+TEST_CASE("prt bake --brdf mesh interreflected: each vertex as the bake with its own BRDF, and the reference agrees",
           "[glossy][materials][reference][slow]") {
   const int bands = 5;
   const mesh::Mesh mesh = two_bowls(10, 20);
