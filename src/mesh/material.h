@@ -54,10 +54,14 @@ struct Material {
 
 /// A decoded image: linear RGB (sRGB-encoded files decoded; alpha dropped), rows from the top, so texel
 /// (x, y) covers u in [x / width, (x + 1) / width) and v in [y / height, (y + 1) / height) (v down).
+/// Held in one of two forms (the other vector empty): linear floats, or, for images whose every value is
+/// the decode of an 8-bit sRGB code (8-bit sRGB files), those codes (a quarter of the memory: the
+/// bakers' random texel reads stay in cache). mesh/texture.h reads either (texture_rgb, sample_texture).
 struct Texture {
   int width = 0, height = 0;
-  std::vector<float> rgb;  ///< width * height * 3 floats, rgb[3 (y width + x) + c]
-  std::string source;      ///< the file, or "image <i>" for an embedded one, for messages
+  std::vector<float> rgb;            ///< width * height * 3 linear floats, rgb[3 (y width + x) + c], or empty
+  std::vector<std::uint8_t> codes;   ///< else width * height * 3 codes, linear value srgb8_decode()[code]
+  std::string source;                ///< the file, or "image <i>" for an embedded one, for messages
 };
 
 }  // namespace prt::mesh

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/parallel.h"
+#include "core/srgb.h"
 #include "mesh/vertex_footprint.h"
 
 namespace prt::mesh {
@@ -16,10 +17,46 @@ namespace {
 // Texel coordinates beyond this are clamped before the integer conversion (far beyond any image).
 constexpr double kMaxTexelCoordinate = 1e15;
 
-glm::vec3 texel(const Texture& texture, const TextureRef& ref, std::int64_t x, std::int64_t y) {
-  const std::size_t i = (std::size_t(wrap_texel(y, texture.height, ref.wrap_t)) * std::size_t(texture.width) +
-                         std::size_t(wrap_texel(x, texture.width, ref.wrap_s))) * 3;
-  return glm::vec3(texture.rgb[i], texture.rgb[i + 1], texture.rgb[i + 2]);
+// The linear RGB at value index i (3 per texel) of a texture held as floats, or as 8-bit sRGB codes.
+struct FloatTexels {
+  const float* rgb;
+  [[gnu::always_inline]] glm::vec3 operator()(std::size_t i) const { return glm::vec3(rgb[i], rgb[i + 1], rgb[i + 2]); }
+};
+struct CodeTexels {
+  const std::uint8_t* codes;
+  const float* decode;
+  [[gnu::always_inline]] glm::vec3 operator()(std::size_t i) const {
+    return glm::vec3(decode[codes[i]], decode[codes[i + 1]], decode[codes[i + 2]]);
+  }
+};
+
+// The bilinear blend of the texels a (top-left), b (top-right), c (bottom-left), d at fractions fx, fy.
+// One out-of-line copy for both forms of Texture: the compiler may fuse multiply-adds differently where
+// it inlines, and both forms must give the same floats.
+[[gnu::noinline]] glm::vec3 bilinear(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, float fx, float fy) {
+  const glm::vec3 top = (1.0f - fx) * a + fx * b, bottom = (1.0f - fx) * c + fx * d;
+  return (1.0f - fy) * top + fy * bottom;
+}
+
+template <class Texels>
+[[gnu::always_inline]] inline glm::vec3 texel(const Texture& texture, const TextureRef& ref, Texels texels, std::int64_t x,
+                                              std::int64_t y) {
+  return texels((std::size_t(wrap_texel(y, texture.height, ref.wrap_t)) * std::size_t(texture.width) +
+                 std::size_t(wrap_texel(x, texture.width, ref.wrap_s))) * 3);
+}
+
+// sample_texture on texels read by `texels`.
+template <class Texels>
+glm::vec3 sample(const Texture& texture, const TextureRef& ref, Texels texels, glm::vec2 uv) {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+  const double x = std::clamp(double(uv.x) * texture.width, -kMaxTexelCoordinate, kMaxTexelCoordinate);
+  const double y = std::clamp(double(uv.y) * texture.height, -kMaxTexelCoordinate, kMaxTexelCoordinate);
+  if (ref.filter == Filter::nearest) return texel(texture, ref, texels, std::int64_t(std::floor(x)), std::int64_t(std::floor(y)));
+  const double fx0 = std::floor(x - 0.5), fy0 = std::floor(y - 0.5);
+  const float fx = float(x - 0.5 - fx0), fy = float(y - 0.5 - fy0);
+  const std::int64_t x0 = std::int64_t(fx0), y0 = std::int64_t(fy0);
+  return bilinear(texel(texture, ref, texels, x0, y0), texel(texture, ref, texels, x0 + 1, y0),
+                  texel(texture, ref, texels, x0, y0 + 1), texel(texture, ref, texels, x0 + 1, y0 + 1), fx, fy);
 }
 
 // The material of a textured triangle, else null.
@@ -77,7 +114,10 @@ std::array<glm::dvec3, 3> hat_moments(const Mesh& mesh, std::uint32_t triangle) 
 
 glm::vec2 transform_uv(const TextureTransform& transform, glm::vec2 uv) {
   const float x = transform.scale.x * uv.x, y = transform.scale.y * uv.y;
-  const float c = std::cos(transform.rotation), s = std::sin(transform.rotation);
+  // No rotation (the usual case, looked up per hit by the bakers): cos(+-0) = 1 and sin(+-0) = +-0
+  // exactly (C Annex F), so skipping the calls changes no result.
+  const float r = transform.rotation;
+  const float c = r == 0.0f ? 1.0f : std::cos(r), s = r == 0.0f ? r : std::sin(r);
   return glm::vec2(transform.offset.x + x * c + y * s, transform.offset.y - x * s + y * c);
 }
 
@@ -95,17 +135,42 @@ int wrap_texel(std::int64_t i, int n, Wrap mode) {
   }
 }
 
+const std::array<float, 256>& srgb8_decode() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int code = 0; code < 256; ++code) t[std::size_t(code)] = float(srgb_to_linear(float(code) * (1.0f / 255)));
+    return t;
+  }();
+  return table;
+}
+
+void pack_srgb8(Texture* texture) {
+  const std::array<float, 256>& decode = srgb8_decode();
+  std::vector<std::uint8_t> codes(texture->rgb.size());
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    const float v = texture->rgb[i];
+    // The last code whose value is <= v, by a branch-free binary search (the table is increasing).
+    std::size_t code = 0;
+    for (std::size_t step = 128; step > 0; step /= 2) code += decode[code + step] <= v ? step : 0;
+    // == alone would take -0 for +0 (a float file's); the sign bit keeps the packing bit-exact.
+    if (!(decode[code] == v) || std::signbit(v)) return;
+    codes[i] = std::uint8_t(code);
+  }
+  texture->codes = std::move(codes);
+  texture->rgb = std::vector<float>();
+}
+
+std::vector<float> texture_rgb(const Texture& texture) {
+  if (texture.codes.empty()) return texture.rgb;
+  const std::array<float, 256>& decode = srgb8_decode();
+  std::vector<float> rgb(texture.codes.size());
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = decode[texture.codes[i]];
+  return rgb;
+}
+
 glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
-  const double x = std::clamp(double(uv.x) * texture.width, -kMaxTexelCoordinate, kMaxTexelCoordinate);
-  const double y = std::clamp(double(uv.y) * texture.height, -kMaxTexelCoordinate, kMaxTexelCoordinate);
-  if (ref.filter == Filter::nearest) return texel(texture, ref, std::int64_t(std::floor(x)), std::int64_t(std::floor(y)));
-  const double fx0 = std::floor(x - 0.5), fy0 = std::floor(y - 0.5);
-  const float fx = float(x - 0.5 - fx0), fy = float(y - 0.5 - fy0);
-  const std::int64_t x0 = std::int64_t(fx0), y0 = std::int64_t(fy0);
-  const glm::vec3 top = (1.0f - fx) * texel(texture, ref, x0, y0) + fx * texel(texture, ref, x0 + 1, y0);
-  const glm::vec3 bottom = (1.0f - fx) * texel(texture, ref, x0, y0 + 1) + fx * texel(texture, ref, x0 + 1, y0 + 1);
-  return (1.0f - fy) * top + fy * bottom;
+  if (texture.codes.empty()) return sample(texture, ref, FloatTexels{texture.rgb.data()}, uv);
+  return sample(texture, ref, CodeTexels{texture.codes.data(), srgb8_decode().data()}, uv);
 }
 
 TriangleColour::TriangleColour(const Mesh& mesh, std::uint32_t triangle) {

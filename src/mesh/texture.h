@@ -3,6 +3,7 @@
 // colour, mesh.h "MATERIALS AND BASE COLOUR"), the texture filter with the glTF wrap modes, averages
 // over regions of a triangle, and the per-vertex albedo of textured meshes. Shared by the loaders
 // (Mesh::albedo), the bakers' and the reference's hit lookups, and the renderer's texture upload.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +14,18 @@
 #include "mesh/mesh.h"
 
 namespace prt::mesh {
+
+/// The linear values of the 256 8-bit sRGB codes, exactly as prt's image decoder makes them from an
+/// 8-bit sRGB file: float(srgb_to_linear(float(code) * (1.0f / 255))) (core/srgb.h); strictly increasing.
+const std::array<float, 256>& srgb8_decode();
+
+/// Replaces texture->rgb by texture->codes when every value is, bit for bit, an entry of
+/// srgb8_decode() (lookups then return the same floats); otherwise leaves the texture as it is.
+/// Precondition: texture->codes empty.
+void pack_srgb8(Texture* texture);
+
+/// The texture's linear RGB, width * height * 3 floats as Texture::rgb lays them out, from either form.
+std::vector<float> texture_rgb(const Texture& texture);
 
 /// `uv` through the KHR_texture_transform `transform` (material.h).
 glm::vec2 transform_uv(const TextureTransform& transform, glm::vec2 uv);
@@ -25,8 +38,9 @@ int wrap_texel(std::int64_t i, int n, Wrap mode);
 /// The texture at `uv` (already transformed; u right, v down, (0, 0) the image's top-left corner).
 /// linear: bilinear between the 4 texel centres around uv (texel (x, y)'s centre is at ((x + 1/2) /
 /// width, (y + 1/2) / height)), each index wrapped with the ref's wrap modes; nearest: texel
-/// (floor(u width), floor(v height)), wrapped. A non-finite uv reads texel (0, 0). Precondition: the
-/// texture has width, height >= 1 and width * height * 3 values.
+/// (floor(u width), floor(v height)), wrapped. A non-finite uv reads texel (0, 0). Both forms of Texture
+/// give the same result bit for bit. Precondition: width, height >= 1 and width * height * 3 values in
+/// rgb or codes.
 glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec2 uv);
 
 /// The base colour over one triangle, set up once for many lookups on it (the quadratures below, a

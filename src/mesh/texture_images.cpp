@@ -5,6 +5,7 @@
 #include "core/memory_check.h"
 #include "image/image.h"
 #include "mesh/loaders.h"
+#include "mesh/texture.h"
 
 namespace prt::mesh::detail {
 
@@ -53,11 +54,12 @@ bool decode_texture(const std::string& bytes, const std::string& hint, const std
     *problem = e.what();
     return false;
   }
-  *held_bytes += std::uint64_t(decoded.pixels.size()) * sizeof(float);
   texture->width = decoded.width;
   texture->height = decoded.height;
   texture->rgb = std::move(decoded.pixels);
   texture->source = name;
+  pack_srgb8(texture);  // 8-bit sRGB files: their codes, a quarter of the floats' memory
+  *held_bytes += texture->codes.empty() ? std::uint64_t(texture->rgb.size()) * sizeof(float) : texture->codes.size();
   return true;
 }
 

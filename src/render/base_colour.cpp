@@ -2,6 +2,7 @@
 #include "render/base_colour.h"
 
 #include <tuple>
+#include <vector>
 
 #include <glm/vec4.hpp>
 
@@ -49,7 +50,9 @@ GLuint rgb_texture(const mesh::Texture& texture) {
   glTextureStorage2D(id, 1, GL_RGB32F, texture.width, texture.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   // Row 0 (the image's top, v = 0) goes to texture row t = 0: the shaders sample at t = v.
-  glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGB, GL_FLOAT, texture.rgb.data());
+  // Linear floats from either form of the texture (8-bit codes through their decode table): exact.
+  const std::vector<float> rgb = mesh::texture_rgb(texture);
+  glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGB, GL_FLOAT, rgb.data());
   return id;
 }
 

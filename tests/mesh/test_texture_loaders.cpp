@@ -4,6 +4,7 @@
 // (BoxTextured, tests/data/README.md). PNGs are written with prt_image's encoder; the expected values
 // come from the colours written, sRGB-decoded here by the IEC 61966-2-1 formula.
 #include <cmath>
+#include <cstring>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -230,5 +231,53 @@ TEST_CASE("BoxTextured (glTF sample model, tests/data/BoxTextured) shows its tex
     for (const glm::vec3& a : mesh.albedo) lo = std::min(lo, a.g), hi = std::max(hi, a.g);
     CHECK(hi < 0.95f);
     CHECK(hi - lo > 0.05f);
+  }
+}
+
+TEST_CASE("8-bit sRGB images are held as their codes and read back bit for bit as decoded", "[mesh][texture][obj]") {
+  // A 16 x 16 PNG holding every code in each channel, in three different orders.
+  auto code = [](int i, int c) { return c == 0 ? i : c == 1 ? 255 - i : (7 * i + 3) % 256; };
+  prt::image::Image image(16, 16, 3);
+  for (int i = 0; i < 256; ++i)
+    for (int c = 0; c < 3; ++c) image.at(i % 16, i / 16, c) = float(code(i, c)) / 255.0f;
+  const std::string png = temp_path("codes.png");
+  prt::image::write(png, image);
+  write_temp("codes.mtl", "newmtl m\nKd 1 1 1\nmap_Kd codes.png\n");
+  const Mesh mesh = load_mesh(write_temp("codes.obj", "mtllib codes.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                                                      "vt 0 1\nvn 0 0 1\nusemtl m\nf 1/1/1 2/2/1 3/3/1\n"),
+                              nullptr, true);
+  REQUIRE(mesh.textures.size() == 1);
+  const Texture& packed = mesh.textures[0];
+  CHECK(packed.rgb.empty());
+  REQUIRE(packed.codes.size() == 768);
+  for (int i = 0; i < 256; ++i)
+    for (int c = 0; c < 3; ++c) CHECK(int(packed.codes[std::size_t(3 * i + c)]) == code(i, c));
+  // The truth: the same file decoded to floats by prt_image, and the float-held texture's lookups.
+  const prt::image::Image decoded = prt::image::read_rgb(png);
+  const std::vector<float> rgb = texture_rgb(packed);
+  REQUIRE(rgb.size() == decoded.pixels.size());
+  CHECK(std::memcmp(rgb.data(), decoded.pixels.data(), rgb.size() * sizeof(float)) == 0);
+  Texture floats;
+  floats.width = floats.height = 16;
+  floats.rgb = decoded.pixels;
+  for (const Filter filter : {Filter::linear, Filter::nearest})
+    for (const Wrap wrap : {Wrap::repeat, Wrap::clamp_to_edge, Wrap::mirrored_repeat}) {
+      TextureRef ref;
+      ref.filter = filter;
+      ref.wrap_s = ref.wrap_t = wrap;
+      for (int k = 0; k < 400; ++k) {
+        const glm::vec2 uv(-1.3f + 0.0113f * float(k), 2.1f - 0.0097f * float(k));
+        const glm::vec3 want = sample_texture(floats, ref, uv), got = sample_texture(packed, ref, uv);
+        INFO("filter " << int(filter) << " wrap " << int(wrap) << " uv " << uv.x << ", " << uv.y);
+        CHECK(std::memcmp(&got, &want, sizeof(got)) == 0);
+      }
+    }
+  // Values that are no code's decode (another float, -0) keep a texture in floats.
+  for (const float odd : {0.5f, -0.0f}) {
+    Texture t = floats;
+    t.rgb[5] = odd;
+    pack_srgb8(&t);
+    CHECK(t.codes.empty());
+    CHECK(t.rgb.size() == 768);
   }
 }
