@@ -194,6 +194,7 @@ void run_bake(const BakeCommandOptions& o) {
   out.threads = o.threads;
   if (!o.compress.empty() && !parse_compress_setting(o.compress, out.clusters, out.pca))
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
+  if (o.lightmap.empty() && o.uv != "file") fail("--uv applies to texel bakes only (--lightmap SIZE)");
   if (o.lightmap.empty())
     bake_vertices(o, options, out);
   else

@@ -151,6 +151,8 @@ TEST_CASE("tolerant UVs: a hair outside [0,1] is clamped; tiling UVs are refused
   CHECK(bytes_of(dir + "/f.prt") == bytes_of(dir + "/g.prt"));
   CHECK(test::fails_in_one_line(test::run_prt("bake " + dir + "/good.obj --lightmap 32 -q --uv maybe -o " + dir + "/x.prt"),
                                 "--uv maybe: expected file, auto or generate"));
+  CHECK(test::fails_in_one_line(test::run_prt("bake " + dir + "/good.obj -q --uv auto -o " + dir + "/x.prt"), "--uv applies to texel bakes only"));
+  CHECK(!std::ifstream(dir + "/x.prt").good());
 }
 
 TEST_CASE("glTF triangle sources: node, mesh, primitive and triangle of every triangle of 2CylinderEngine", "[lightmap][mesh]") {
