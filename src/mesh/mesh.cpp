@@ -240,6 +240,7 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
   mesh.indices = drop_degenerate(path, &raw, &result);
   mesh.lightmap_uv = std::move(raw.corner_uv);
   mesh.lightmap_uv_set = raw.uv_set;
+  mesh.source_primitives = std::move(raw.source_primitives);
   mesh.parts = std::move(raw.parts);
   mesh.triangle_source = std::move(raw.triangle_source);
   result.missing_uv_reason = mesh.lightmap_uv.empty()
