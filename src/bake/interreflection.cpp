@@ -68,7 +68,11 @@ void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, flo
                        WeightMap& weights) {
   const glm::vec2* c = grid.corner_uv->data() + 3 * triangle;
   const glm::vec2 uv = (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
-  const float x = uv.x * static_cast<float>(grid.width) - 0.5f, y = uv.y * static_cast<float>(grid.height) - 0.5f;
+  // UVs far outside [0, 1] (a triangle the texel bake skipped, lightmap/uv_validation.h) are brought
+  // to [-1, 2] and NaN to 0 before the integer conversion; the texels read are clamped to the edge
+  // below, and UVs within [-1, 2] are used exactly as they are.
+  auto tame = [](float s) { return s >= -1.0f ? (s <= 2.0f ? s : 2.0f) : (s < -1.0f ? -1.0f : 0.0f); };
+  const float x = tame(uv.x) * static_cast<float>(grid.width) - 0.5f, y = tame(uv.y) * static_cast<float>(grid.height) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
   const float ax = x - fx, ay = y - fy;
   std::uint32_t texel[4];
