@@ -225,3 +225,30 @@ export function fromLightFile(json) {
   }
   return { bands, coefficients: Float64Array.from(json.coefficients.flat()), discs: json.discs || [] };
 }
+
+/// SH radiance coefficients (Float64Array(3 n^2), coefficient-major RGB) of a disc (light/disc.h,
+/// docs/conventions.md "Sun and sky"): a cap of uniform radiance L = E / (pi sin^2 a) about the unit
+/// direction d (toward the light), E the irradiance at normal incidence per channel, a the angular radius
+/// in radians (0 < a <= pi/4). Exact: c_lm = 2 pi L (integral_{cos a}^1 P_l) Y_lm(d), the integral taken as
+/// sin^2 a P_l'(cos a) / (l (l+1)) (l >= 1) without the cancellation of (P_{l-1} - P_{l+1}) / (2l+1).
+export function discCoefficients(bands, direction, irradiance, angularRadius) {
+  checkBands(bands);
+  const [x, y, z] = direction, norm = Math.hypot(x, y, z);
+  const basis = shEval(bands, x / norm, y / norm, z / norm);
+  const c = Math.cos(angularRadius), s2 = Math.sin(angularRadius) ** 2;
+  const integral = [1 - c];  // l = 0
+  let p0 = 1, p1 = c, dPrevious = 0, dCurrent = 1;  // P_{l-1}, P_l; P'_{l-1}, P'_l at l = 1
+  for (let l = 1; l < bands; l++) {
+    integral.push(s2 * dCurrent / (l * (l + 1)));
+    // P'_{l+1} = P'_{l-1} + (2l+1) P_l; P_{l+1} = ((2l+1) c P_l - l P_{l-1}) / (l+1)
+    [dPrevious, dCurrent] = [dCurrent, dPrevious + (2 * l + 1) * p1];
+    [p0, p1] = [p1, ((2 * l + 1) * c * p1 - l * p0) / (l + 1)];
+  }
+  const out = new Float64Array(3 * bands * bands);
+  for (let l = 0; l < bands; l++) {
+    for (let i = l * l; i < (l + 1) * (l + 1); i++) {
+      for (let ch = 0; ch < 3; ch++) out[3 * i + ch] = 2 * Math.PI * irradiance[ch] / (Math.PI * s2) * integral[l] * basis[i];
+    }
+  }
+  return out;
+}
