@@ -154,9 +154,11 @@ export class PrtSun {
     if (!this.discs.length) return;
     const bounds = new Box3();
     for (const mesh of this.meshes) { mesh.updateWorldMatrix(true, false); bounds.expandByObject(mesh, true); }
-    const previous = { target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background };
-    this.scene.overrideMaterial = this.depthMaterial;
-    this.scene.background = null;
+    // The depth pass draws the baked meshes alone (the shadow camera's layer) with a depth-only material
+    // (both sides; it samples no map, so no map is read while it is drawn into).
+    const previous = renderer.getRenderTarget();
+    const materials = this.meshes.map((mesh) => mesh.material);
+    for (const mesh of this.meshes) mesh.material = this.depthMaterial;
     this.discs.forEach((disc, k) => {
       const fit = fitMap(bounds, new Vector3().fromArray(disc.direction).normalize());
       this.camera.projectionMatrix.copy(fit.projection);
@@ -169,9 +171,8 @@ export class PrtSun {
       renderer.render(this.scene, this.camera);
       this.uniforms[`prt_shadow_map${k}`].value = this.target(k).depthTexture;
     });
-    renderer.setRenderTarget(previous.target);
-    this.scene.overrideMaterial = previous.override;
-    this.scene.background = previous.background;
+    this.meshes.forEach((mesh, i) => { mesh.material = materials[i]; });
+    renderer.setRenderTarget(previous);
   }
 }
 

@@ -17,7 +17,7 @@
 // it is 0) and the pixel multiplies by its base colour (factor x texture x COLOR_0); the discs add
 // (albedo / pi) E max(n.d, 0) V per pixel, V from an orthographic depth map per disc filtered
 // PCSS-style for the disc's size (web/prt_sun.js); with discs every channel is clamped at 0.
-import { DataTexture, FloatType, Matrix3, NearestFilter, RGBAFormat } from 'three';
+import { DataTexture, FloatType, NearestFilter, RGBAFormat } from 'three';
 import { discCoefficients, rotateRgb, shRotation } from './sh.js';
 import { createPrtMaterial } from './prt_material.js';
 import { PrtSun } from './prt_sun.js';
@@ -144,12 +144,14 @@ export class PrtRelighting {
 
   /// The environment's active rotation (row-major 3x3 acting on column vectors, prt's --rotate).
   setRotation(R) {
+    if (R.every((v, i) => v === this.rotation[i])) return;
     this.rotation = Array.from(R);
     this.dirty = true;
   }
 
   /// Turns the discs' direct and bounce light on or off.
   setSunEnabled(enabled) {
+    if (this.sunEnabled === !!enabled) return;
     this.sunEnabled = !!enabled;
     this.dirty = true;
   }
@@ -159,7 +161,7 @@ export class PrtRelighting {
     if (!this.dirty || !this.lighting) return;
     const bands = Math.max(...this.models.map((m) => m.bands));
     const blocks = shRotation(bands, this.rotation);
-    const sky = rotateRgb(this.lighting.coefficients.subarray(0, 3 * this.lighting.bands * this.lighting.bands), blocks.concat([]).slice(0, bands));
+    const sky = rotateRgb(this.lighting.coefficients, blocks);
     const discs = this.sunEnabled ? (this.lighting.discs || []).map((disc) => rotateDisc(disc, this.rotation)) : [];
     const discSh = discs.length ? discs.map((d) => discCoefficients(bands, d.direction, d.irradiance, d.radius))
       .reduce((sum, c) => sum.map((v, i) => v + c[i])) : null;
@@ -179,5 +181,3 @@ function rotateDisc(disc, R) {
   const d = [0, 1, 2].map((r) => (R[3 * r] * x + R[3 * r + 1] * y + R[3 * r + 2] * z) / n);
   return { direction: d, irradiance: disc.irradiance, radius: disc.angular_radius_degrees * Math.PI / 180 };
 }
-
-export { Matrix3 };

@@ -12,14 +12,14 @@
 //        [--break order|rotation]  (a deliberately wrong runtime: swapped SH coefficients or no rotation;
 //                                   the test must then fail)
 // Exit status 0 pass, 1 fail, 77 skipped (no Chromium).
-import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { FloatType } from 'three';
 import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
 import { argument, run } from '../../tests/engines/common.mjs';
 import { launch, openPage, requireBrowser, serve } from './browser.mjs';
-import { draftGlb } from './draft_glb.mjs';
+import { prepareBake } from './bake_fixture.mjs';
 
 requireBrowser();
 const prt = argument('prt');
@@ -31,19 +31,13 @@ mkdirSync(work, { recursive: true });
 const size = 256;
 const bands = 3;
 
-// The bake (interreflected, with the bounce-only part the sun needs) and its glb.
-run(prt, ['bake', mesh, '--transfer', 'interreflected', '--bounces', '1', '--samples', '256', '--bands', String(bands),
-          '--compress', '16,4', '-o', join(work, 'baked.cprt'), '--gltf', join(work, 'mesh.glb')]);
-writeFileSync(join(work, 'baked.glb'), draftGlb(readFileSync(join(work, 'mesh.glb')), readFileSync(join(work, 'baked.cprt')), [0.8, 0.8, 0.8]));
-run(prt, ['light', env, '--bands', String(bands), '--window', 'none', '-o', join(work, 'sun.json')]);
-run(prt, ['light', env, '--bands', String(bands), '--window', 'none', '--sun', 'none', '-o', join(work, 'sky.json')]);
-const sunJson = JSON.parse(readFileSync(join(work, 'sun.json'), 'utf8'));
-if (!sunJson.discs || !sunJson.discs.length) throw new Error(`${env}: prt light found no sun; the sun case needs one`);
+const bake = prepareBake({ prt, mesh, env, work, bands });
 
 const cases = [
   { name: 'sun off', light: 'sky.json', camera: [30, 25], rotate: [0, 0, 0], sun: false },
-  { name: 'sun on (disc, PCSS shadow, bounce)', light: 'sun.json', camera: [30, 25], rotate: [0, 0, 0], sun: true },
-  { name: 'rotated environment, sun on', light: 'sun.json', camera: [-40, 30], rotate: [70, 20, 0], sun: true },
+  { name: 'sun on (a 2-degree disc high in the sky: PCSS shadow, bounce)', light: 'disc.json', camera: [30, 25], rotate: [0, 0, 0], sun: true },
+  { name: 'sun on (the map\'s own sun, found by prt light)', light: 'sun.json', camera: [30, 25], rotate: [0, 0, 0], sun: true },
+  { name: 'rotated environment, sun on', light: 'disc.json', camera: [-40, 30], rotate: [70, 20, 0], sun: true },
 ];
 
 function readExr(path) {
@@ -87,12 +81,12 @@ try {
   const page = await openPage(browser.context, `http://127.0.0.1:${server.port}/web/test/harness.html${breakage ? `?break=${breakage}` : ''}`, 'prtHarnessReady');
   for (const c of cases) {
     const reference = join(work, `reference_${cases.indexOf(c)}.exr`);
-    run(prt, ['render', mesh, join(work, 'baked.cprt'), '--env', join(work, c.light), '--window', 'none',
+    run(prt, ['render', bake.renderMesh, bake.renderTransfer, '--env', join(work, c.light), '--window', 'none',
               '--background', 'black', '--size', `${size}x${size}`, '--camera', `${c.camera[0]},${c.camera[1]},auto`,
               '--rotate', c.rotate.join(','), '--sun', c.sun ? 'auto' : 'none', '-o', reference]);
     await page.reload();
     await page.waitForFunction(() => window.prtHarnessReady === true);
-    const info = await page.evaluate((a) => window.prtLoad(a), { glb: '/work/baked.glb', light: `/work/${c.light}` });
+    const info = await page.evaluate((a) => window.prtLoad(a), { glb: `/work/${bake.glb}`, light: `/work/${c.light}` });
     const shot = await page.evaluate((a) => window.prtRender(a), { width: size, height: size, camera: { azimuth: c.camera[0], elevation: c.camera[1] },
                                                                   rotate: c.rotate, sun: c.sun });
     const pixels = new Float32Array(Buffer.from(shot.pixels, 'base64').buffer.slice(0));
