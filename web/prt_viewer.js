@@ -97,12 +97,23 @@ export class PrtViewer {
       const rgbe = /\.hdr$/i.test(name);
       const texture = await (rgbe ? new RGBELoader() : new EXRLoader()).setDataType(FloatType).loadAsync(url);
       this.lightingSource = { texture, rgbe };
-      if (this.sky) this.scene.remove(this.sky);
-      this.sky = this.background === 'env' ? backgroundMesh(texture) : null;
-      if (this.sky) this.scene.add(this.sky);
+      this.setBackground(texture);
     }
     this.applyLighting();
     this.requestRender();
+  }
+
+  /// Shows an equirect image (.hdr/.exr) as the background (with a .json lighting: the map it came from).
+  async loadBackground(url, name = url) {
+    const texture = await (/\.hdr$/i.test(name) ? new RGBELoader() : new EXRLoader()).setDataType(FloatType).loadAsync(url);
+    this.setBackground(texture);
+    this.requestRender();
+  }
+
+  setBackground(texture) {
+    if (this.sky) this.scene.remove(this.sky);
+    this.sky = this.background === 'env' ? backgroundMesh(texture) : null;
+    if (this.sky) this.scene.add(this.sky);
   }
 
   /// Adds a sphere lit by a prt probe volume (probes/threejs) beside the bake.
