@@ -176,6 +176,7 @@ void run_bake(const BakeCommandOptions& o) {
   pipeline::TransferOutputs out;
   out.transfer_path = o.output;
   out.gltf_path = o.gltf_output;
+  out.source_path = o.mesh_path;
   out.float16 = o.float16;
   out.seed = o.seed;
   out.threads = o.threads;
@@ -214,7 +215,7 @@ void add_bake_command(CLI::App& app) {
                        "stands for: no dark vertex under a fold or where objects touch), or the vertex itself (as prt reference per vertex)");
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
-  cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");
+  cmd->add_option("--gltf", options->gltf_output, "Also write the engine glTF (.glb): the source scene as authored with the transfer (per vertex: clustered PCA, the PRT_transfer extension; per texel: KTX2 textures)");
   cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
   cmd->add_option("--compress", options->compress,
                   "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file (per vertex or, with --lightmap, per texel)");

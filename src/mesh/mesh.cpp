@@ -239,6 +239,7 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
   mesh.indices = drop_degenerate(path, &raw, &result);
   mesh.lightmap_uv = std::move(raw.corner_uv);
   mesh.lightmap_uv_set = raw.uv_set;
+  mesh.source_primitives = std::move(raw.source_primitives);
   result.missing_uv_reason = mesh.lightmap_uv.empty()
                                  ? (raw.missing_uv_reason.empty() ? "the file has no texture coordinates" : raw.missing_uv_reason)
                                  : "";

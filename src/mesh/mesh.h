@@ -103,6 +103,14 @@ const char* albedo_source_name(AlbedoSource source);
 /// Material index of a triangle of a mesh without materials.
 inline constexpr std::uint32_t kNoMaterial = 0xffffffffu;
 
+/// A glTF triangle primitive as the loader visited it (VERTEX ORDER): the loaded vertices
+/// [first_vertex, first_vertex + vertex_count) are, in order, the POSITION elements of primitive
+/// `primitive` of glTF mesh `mesh`, instanced by node `node` (indices into the file's arrays).
+struct SourcePrimitive {
+  int node = 0, mesh = 0, primitive = 0;
+  std::uint32_t first_vertex = 0, vertex_count = 0;
+};
+
 struct Mesh {
   std::vector<glm::vec3> positions;    ///< in the file's units and frame (glTF: node transforms applied)
   std::vector<glm::vec3> normals;      ///< unit length, one per vertex
@@ -114,6 +122,10 @@ struct Mesh {
   std::vector<glm::vec2> lightmap_uv;
   /// Which UV set lightmap_uv came from: glTF TEXCOORD_<n>; 0 for OBJ vt and PLY u,v.
   std::uint32_t lightmap_uv_set = 0;
+  /// glTF: the triangle primitives the vertices came from, in vertex order (one entry per visited
+  /// node instance and primitive with vertices; a node in two scenes loaded together appears twice);
+  /// empty for OBJ and PLY. What a writer needs to put per-vertex data back on the file's primitives.
+  std::vector<SourcePrimitive> source_primitives;
 
   /// Materials (see "MATERIALS AND BASE COLOUR"); empty when the file has none.
   std::vector<Material> materials;
