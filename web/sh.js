@@ -71,9 +71,10 @@ export function shEval(bands, x, y, z, out = new Float64Array(bands * bands)) {
 /// Reads three.js equirect data as three's loaders give it (RGBELoader, EXRLoader, a DataTexture):
 /// `texture.image = {data, width, height}`, 3 or 4 channels, Float32Array or (HalfFloatType) Uint16Array
 /// half floats. Rows run bottom first when texture.flipY is false (EXRLoader), top first when it is
-/// true (RGBELoader). Returns a function pixel(column, rowFromTop, channel) giving the linear value with
-/// NaN, +-Inf and negative values as 0 (as prt's loader sets them, docs/conventions.md).
-export function equirectPixels(texture) {
+/// true (RGBELoader). Returns {width, height, row(j, out)}: row j (from the top) as linear RGB triples
+/// in `out` (Float64Array(3 width)), NaN, +-Inf and negative values as 0 (as prt's loader sets them,
+/// docs/conventions.md).
+export function equirectRows(texture) {
   const { data, width, height } = texture.image;
   const channels = data.length / (width * height);
   if (!(channels === 3 || channels === 4) || width !== 2 * height) {
@@ -81,15 +82,21 @@ export function equirectPixels(texture) {
   }
   const half = texture.type === HalfFloatType || data instanceof Uint16Array;
   const bottomFirst = texture.flipY === false;
-  return (column, row, channel) => {
-    const fileRow = bottomFirst ? height - 1 - row : row;
-    const raw = data[(fileRow * width + column) * channels + channel];
-    const v = half ? DataUtils.fromHalfFloat(raw) : raw;
-    return Number.isFinite(v) && v > 0 ? v : 0;
+  const row = (j, out) => {
+    const start = (bottomFirst ? height - 1 - j : j) * width * channels;
+    for (let i = 0; i < width; i++) {
+      for (let c = 0; c < 3; c++) {
+        const raw = data[start + i * channels + c];
+        const v = half ? DataUtils.fromHalfFloat(raw) : raw;
+        out[3 * i + c] = Number.isFinite(v) && v > 0 ? v : 0;
+      }
+    }
+    return out;
   };
+  return { width, height, row };
 }
 
-/// Projects an equirect radiance map (see equirectPixels) to `bands` bands, texel by texel: each texel
+/// Projects an equirect radiance map (see equirectRows) to `bands` bands, texel by texel: each texel
 /// is the radiance at its centre, direction (sin t cos p, cos t, sin t sin p) with t = pi (y + 1/2) / H
 /// (y from the top) and p = 2 pi ((x + 1/2) / W - 1/2), weighted by its exact solid angle
 /// (cos t_top - cos t_bottom) 2 pi / W. Returns RGB coefficients (Float64Array(3 n^2)).
@@ -98,8 +105,8 @@ export function equirectPixels(texture) {
 /// scaled by 255/256 to give prt's values.
 export function projectEquirect(texture, bands, { rgbe = false } = {}) {
   checkBands(bands);
-  const { width, height } = texture.image;
-  const pixel = equirectPixels(texture);
+  const { width, height, row: readRow } = equirectRows(texture);
+  const pixels = new Float64Array(3 * width);
   const n2 = bands * bands;
   const sums = new Float64Array(3 * n2);
   const row = new Float64Array(3 * n2);
@@ -108,11 +115,13 @@ export function projectEquirect(texture, bands, { rgbe = false } = {}) {
     const theta = Math.PI * (j + 0.5) / height;
     const omega = (Math.cos(Math.PI * j / height) - Math.cos(Math.PI * (j + 1) / height)) * 2 * Math.PI / width;
     row.fill(0);
+    readRow(j, pixels);
+    const sinTheta = Math.sin(theta), cosTheta = Math.cos(theta);
     for (let i = 0; i < width; i++) {
-      const r = pixel(i, j, 0), g = pixel(i, j, 1), b = pixel(i, j, 2);
+      const r = pixels[3 * i], g = pixels[3 * i + 1], b = pixels[3 * i + 2];
       if (r === 0 && g === 0 && b === 0) continue;
       const phi = 2 * Math.PI * ((i + 0.5) / width - 0.5);
-      shEval(bands, Math.sin(theta) * Math.cos(phi), Math.cos(theta), Math.sin(theta) * Math.sin(phi), y);
+      shEval(bands, sinTheta * Math.cos(phi), cosTheta, sinTheta * Math.sin(phi), y);
       for (let k = 0; k < n2; k++) {
         row[3 * k] += r * y[k];
         row[3 * k + 1] += g * y[k];

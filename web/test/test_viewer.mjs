@@ -52,7 +52,8 @@ function compareDisplay(shot, reference) {
 }
 
 function prtRender(light, out) {
-  run(prt, ['render', bake.renderMesh, bake.renderTransfer, '--env', join(work, light), '--window', 'none', '--background', 'black',
+  const glb = join(work, bake.glb);
+  run(prt, ['render', glb, glb, '--env', join(work, light), '--window', 'none', '--background', 'black',
             '--size', `${size}x${size}`, '--camera', camera, '--exposure', String(exposure), '--tone-map', 'aces', '-o', join(work, out)]);
   return decodePng(readFileSync(join(work, out))).pixels;
 }
