@@ -21,8 +21,11 @@ import { DataTexture, FloatType, NearestFilter, RGBAFormat } from 'three';
 import { discCoefficients, rotateRgb, shRotation } from './sh.js';
 import { createPrtMaterial } from './prt_material.js';
 import { PrtSun } from './prt_sun.js';
+import { createLightmapMaterial, loadLightmap, updateLightmapMaterial } from './prt_lightmap.js';
 
 const EXTENSION = 'PRT_transfer';
+const LIGHTMAP_EXTENSION = 'PRT_lightmap_transfer';  // per texel, docs/formats.md "Lightmap transfer in glTF"
+
 export const MAX_VERTEX_ATTRIBUTES = 16;  // WebGL2's MAX_VERTEX_ATTRIBS minimum (and Chromium's value)
 
 /// GLTFLoader plugin: reads the root PRT_transfer models (their means and bases accessors) into
@@ -38,15 +41,19 @@ export class PrtTransferPlugin {
   async afterRoot(result) {
     const json = this.parser.json;
     const root = json.extensions && json.extensions[EXTENSION];
-    if (!root) return;
-    if (root.version !== 1 || !Array.isArray(root.models)) throw new Error(`${EXTENSION}: version ${root.version} is not 1, or no models`);
-    const models = await Promise.all(root.models.map((m, i) => this.loadModel(m, i)));
+    const used = json.extensionsUsed || [];
+    if (!root && !used.includes(LIGHTMAP_EXTENSION)) return;
+    if (root && (root.version !== 1 || !Array.isArray(root.models))) throw new Error(`${EXTENSION}: version ${root.version} is not 1, or no models`);
+    const models = root ? await Promise.all(root.models.map((m, i) => this.loadModel(m, i))) : [];
     result.userData.prtTransfer = { version: 1, models };
+    const lightmaps = [];
     result.scene.traverse((object) => {
       if (!object.isMesh) return;
       const where = this.parser.associations.get(object);
       if (!where || where.meshes === undefined || where.primitives === undefined) return;
       const primitive = json.meshes[where.meshes].primitives[where.primitives];
+      const texel = primitive.extensions && primitive.extensions[LIGHTMAP_EXTENSION];
+      if (texel) lightmaps.push(loadLightmap(this.parser, texel, `${LIGHTMAP_EXTENSION} of mesh ${where.meshes}`).then((lm) => { object.userData.prtLightmap = lm; }));
       const ext = primitive.extensions && primitive.extensions[EXTENSION];
       if (!ext) return;
       if (!(ext.model >= 0 && ext.model < models.length)) throw new Error(`${EXTENSION}: mesh ${where.meshes} names model ${ext.model} of ${models.length}`);
@@ -55,6 +62,7 @@ export class PrtTransferPlugin {
       if (count > MAX_VERTEX_ATTRIBUTES) throw new Error(`${EXTENSION}: mesh ${where.meshes} has ${count} vertex attributes (WebGL2 allows ${MAX_VERTEX_ATTRIBUTES})`);
       object.userData.prtTransfer = { model: ext.model };
     });
+    await Promise.all(lightmaps);
   }
 
   async loadModel(m, index) {
@@ -119,13 +127,18 @@ export class PrtRelighting {
     if (!info) throw new Error('PrtRelighting: the glTF has no PRT_transfer extension (load it with PrtTransferPlugin)');
     this.models = info.models.map((model) => ({ ...model, products: productsTexture(model) }));
     this.meshes = [];
-    gltf.scene.traverse((o) => { if (o.isMesh && o.userData.prtTransfer) this.meshes.push(o); });
-    const textured = options.textured ?? this.meshes.some((m) => !!m.material.map);
+    gltf.scene.traverse((o) => { if (o.isMesh && (o.userData.prtTransfer || o.userData.prtLightmap)) this.meshes.push(o); });
+    const textured = options.textured ?? this.meshes.some((m) => m.userData.prtTransfer && !!m.material.map);
     this.sun = new PrtSun(gltf.scene, this.meshes);
     for (const mesh of this.meshes) {
+      if (mesh.userData.prtLightmap) {
+        mesh.material = createLightmapMaterial(mesh, mesh.userData.prtLightmap, this.sun);
+        continue;
+      }
       const model = this.models[mesh.userData.prtTransfer.model];
       mesh.material = createPrtMaterial(mesh, model, { textured, sun: this.sun });
     }
+    this.bands = Math.max(...this.models.map((m) => m.bands), ...this.meshes.filter((m) => m.userData.prtLightmap).map((m) => m.userData.prtLightmap.bands));
     this.rotation = [1, 0, 0, 0, 1, 0, 0, 0, 1];
     this.lighting = null;
     this.sunEnabled = true;
@@ -136,7 +149,7 @@ export class PrtRelighting {
   /// least as many bands as the transfer), discs: [{direction, irradiance, angular_radius_degrees}]}
   /// (a `prt light` JSON through sh.js fromLightFile, or projectEquirect of an environment map).
   setLighting(lighting) {
-    const needed = Math.max(...this.models.map((m) => m.bands));
+    const needed = this.bands;
     if (lighting.bands < needed) throw new Error(`PrtRelighting: the lighting has ${lighting.bands} bands, the transfer ${needed}`);
     this.lighting = lighting;
     this.dirty = true;
@@ -159,7 +172,7 @@ export class PrtRelighting {
   /// Recomputes the products (and the discs' shadow maps) when the lighting, rotation or sun changed.
   update(renderer) {
     if (!this.dirty || !this.lighting) return;
-    const bands = Math.max(...this.models.map((m) => m.bands));
+    const bands = this.bands;
     const blocks = shRotation(bands, this.rotation);
     const sky = rotateRgb(this.lighting.coefficients, blocks);
     const discs = this.sunEnabled ? (this.lighting.discs || []).map((disc) => rotateDisc(disc, this.rotation)) : [];
@@ -168,6 +181,9 @@ export class PrtRelighting {
     for (const model of this.models) {
       clusterProducts(model, sky, discSh, model.products.image.data);
       model.products.needsUpdate = true;
+    }
+    for (const mesh of this.meshes) {
+      if (mesh.userData.prtLightmap) updateLightmapMaterial(mesh.material, mesh.userData.prtLightmap, sky, discSh);
     }
     this.sun.setDiscs(discs);
     this.sun.update(renderer);

@@ -132,7 +132,7 @@ export class PrtViewer {
   // Projects an image to the bands the bake needs (and re-projects if a later bake needs more).
   applyLighting() {
     if (!this.lightingSource) return;
-    const needed = this.relighting ? Math.max(...this.relighting.models.map((m) => m.bands)) : 3;
+    const needed = this.relighting ? this.relighting.bands : 3;
     if (this.lightingSource.file) {
       this.lighting = this.lightingSource.file;
     } else if (!this.lighting || this.lighting.bands < needed || this.lighting.fromImage !== this.lightingSource.texture) {

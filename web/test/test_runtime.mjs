@@ -9,7 +9,8 @@
 // per-vertex interreflected transfer of a sphere on a floor with the sun off, a 2-degree disc, the map's
 // own sun and a rotated environment; a textured glTF (BoxTextured: base colour texture per pixel, the
 // albedo split); a glTF of many nodes with their transforms and instanced meshes (2CylinderEngine, when
-// Debian's assimp-testmodels is installed). Every export has at most 16 vertex attributes.
+// Debian's assimp-testmodels is installed); a lightmap (per-texel transfer, PRT_lightmap_transfer). Every
+// export has at most 16 vertex attributes.
 //
 // Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
 //        [--nodes <glTF>] [--work DIR]
@@ -24,6 +25,7 @@ import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
 import { argument, run } from '../../tests/engines/common.mjs';
 import { launch, openPage, requireBrowser, serve } from './browser.mjs';
 import { bakeGlb, prepareBake } from './bake_fixture.mjs';
+import { writeLightmapScene } from './lightmap_scene.mjs';
 
 requireBrowser();
 const prt = argument('prt');
@@ -40,6 +42,9 @@ const bake = prepareBake({ prt, mesh, env, work, bands });
 const textured = bakeGlb({ prt, mesh: resolve(argument('textured')), work, name: 'textured', samples: 64 });
 const nodes = bakeGlb({ prt, mesh: resolve(argument('nodes', '/nonexistent')), work, name: 'nodes', samples: 16 });
 if (!textured) throw new Error('the textured glTF is missing');
+// Per texel: a 64 x 64 lightmap of a floor and a box (web/test/lightmap_scene.mjs), `prt bake --lightmap --gltf`.
+const lightmapObj = writeLightmapScene(work);
+const lightmap = bakeGlb({ prt, mesh: lightmapObj, work, name: 'lightmap', samples: 64, extra: ['--lightmap', '64x64'] });
 
 const cases = [
   { name: 'sun off', light: 'sky.json', camera: [30, 25], rotate: [0, 0, 0], sun: false },
@@ -47,6 +52,7 @@ const cases = [
   { name: 'sun on (the map\'s own sun, found by prt light)', light: 'sun.json', camera: [30, 25], rotate: [0, 0, 0], sun: true },
   { name: 'rotated environment, sun on', light: 'disc.json', camera: [-40, 30], rotate: [70, 20, 0], sun: true },
   { name: 'textured glTF (BoxTextured), sun on', glb: textured, light: 'disc.json', camera: [35, 30], rotate: [20, 0, 0], sun: true },
+  { name: 'lightmap (per texel), sun off', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'sky.json', camera: [30, 35], rotate: [40, 0, 0], sun: false },
   ...(nodes ? [{ name: 'glTF with many nodes (2CylinderEngine), sun on', glb: nodes, light: 'disc.json', camera: [10, 30], rotate: [0, 0, 0], sun: true }] : []),
 ];
 
@@ -111,7 +117,7 @@ try {
   for (const c of cases) {
     const reference = join(work, `reference_${cases.indexOf(c)}.exr`);
     const glb = join(work, c.glb || bake.glb);
-    run(prt, ['render', glb, glb, '--env', join(work, c.light), '--window', 'none',
+    run(prt, ['render', ...(c.render || [glb, glb]), '--env', join(work, c.light), '--window', 'none',
               '--background', 'black', '--size', `${size}x${size}`, '--camera', `${c.camera[0]},${c.camera[1]},${c.camera[2] || 'auto'}`,
               '--rotate', c.rotate.join(','), '--sun', c.sun ? 'auto' : 'none', '-o', reference]);
     await page.reload();
