@@ -7,7 +7,7 @@
 // coverage-aware mips would not), dotted with the rotated sky (and the bounce layers with the discs'
 // SH), plus the discs' direct light with the material's base colour as albedo.
 import { ClampToEdgeWrapping, Color, DataArrayTexture, HalfFloatType, LinearFilter, RGBAFormat, ShaderMaterial, UniformsUtils, Vector4 } from 'three';
-import { SUN_GLSL } from './prt_sun.js';
+import { SUN_GLSL, SURFACE_VERTEX_GLSL } from './prt_sun.js';
 
 const VK_FORMAT_R16G16B16A16_SFLOAT = 97;
 
@@ -73,14 +73,10 @@ const VERTEX = /* glsl */ `
 in vec2 uv1;
 #endif
 out vec2 prt_lightmap_uv;
-out vec3 prt_world_position;
-out vec3 prt_world_normal;
+${SURFACE_VERTEX_GLSL}
 void main() {
   prt_lightmap_uv = PRT_LIGHTMAP_UV;
-  vec4 world = modelMatrix * vec4(position, 1.0);
-  prt_world_position = world.xyz;
-  prt_world_normal = transpose(inverse(mat3(modelMatrix))) * normal;
-  gl_Position = projectionMatrix * viewMatrix * world;
+  gl_Position = prt_surface();
 }`;
 
 const FRAGMENT = /* glsl */ `

@@ -4,7 +4,7 @@
 // direct light (prt_sun.js) and three's tone mapping and output encoding (set them with
 // probes/threejs/prt_tone_map.js for prt's display transform).
 import { Color, Matrix3, ShaderMaterial, UniformsUtils } from 'three';
-import { SUN_GLSL } from './prt_sun.js';
+import { SUN_GLSL, SURFACE_VERTEX_GLSL } from './prt_sun.js';
 
 function vertexShader(terms, attributes, uvName) {
   const weights = [];
@@ -23,9 +23,8 @@ out vec3 prt_radiance;
 out vec3 prt_albedo;
 out vec3 prt_tint;
 out vec2 prt_uv;
-out vec3 prt_world_position;
-out vec3 prt_world_normal;
 uniform mat3 prt_map_transform;
+${SURFACE_VERTEX_GLSL}
 
 vec3 prt_product(int t) {
   int width = textureSize(prt_products, 0).x;
@@ -48,10 +47,7 @@ ${blend.join('\n')}
   prt_tint = vec3(1.0);
 #endif
   prt_uv = (prt_map_transform * vec3(${uvName}, 1.0)).xy;
-  vec4 world = modelMatrix * vec4(position, 1.0);
-  prt_world_position = world.xyz;
-  prt_world_normal = transpose(inverse(mat3(modelMatrix))) * normal;
-  gl_Position = projectionMatrix * viewMatrix * world;
+  gl_Position = prt_surface();
 }`;
 }
 

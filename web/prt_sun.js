@@ -89,6 +89,19 @@ vec3 prt_disc_light(vec3 p, vec3 n) {
 }
 `;
 
+/// Vertex-stage GLSL shared by the PRT materials: prt_world_position and prt_world_normal (the normal
+/// by the inverse transpose of the model matrix) for the discs' direct light, and the clip position.
+export const SURFACE_VERTEX_GLSL = /* glsl */ `
+out vec3 prt_world_position;
+out vec3 prt_world_normal;
+vec4 prt_surface() {
+  vec4 world = modelMatrix * vec4(position, 1.0);
+  prt_world_position = world.xyz;
+  prt_world_normal = transpose(inverse(mat3(modelMatrix))) * normal;
+  return projectionMatrix * viewMatrix * world;
+}
+`;
+
 // A unit vector perpendicular to unit n (Duff et al. 2017's first axis, as sun_light.cpp).
 function perpendicular(n) {
   const sign = n.z >= 0 ? 1 : -1;  // copysign(1, z)

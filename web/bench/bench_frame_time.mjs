@@ -7,7 +7,7 @@ import { mkdirSync, mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { argument } from '../../tests/engines/common.mjs';
-import { launch, openPage, requireBrowser, serve } from '../test/browser.mjs';
+import { openPage, requireBrowser, runInBrowser } from '../test/browser.mjs';
 import { prepareBake } from '../test/bake_fixture.mjs';
 
 requireBrowser();
@@ -16,10 +16,8 @@ const frames = Number(argument('frames', '30')), size = Number(argument('size', 
 const work = resolve(argument('work', mkdtempSync(join(tmpdir(), 'prt-web-bench-'))));
 mkdirSync(work, { recursive: true });
 const bake = prepareBake({ prt, mesh, env, work, bands: 5 });
-const server = await serve(work);
-const browser = await launch(size, size);
-try {
-  const page = await openPage(browser.context, `http://127.0.0.1:${server.port}/web/bench/frame_time.html?glb=/work/${bake.glb}` +
+await runInBrowser(work, size, size, async ({ port, context }) => {
+  const page = await openPage(context, `http://127.0.0.1:${port}/web/bench/frame_time.html?glb=/work/${bake.glb}` +
                                                `&light=/work/sun.json&env=${encodeURI(env.replace(/.*\/assets\//, '/assets/'))}&size=${size}`, 'prtBenchReady');
   const r = await page.evaluate((n) => window.prtBench(n), frames);
   const stats = (t) => { const s = [...t].sort((a, b) => a - b); return { median: s[Math.floor(s.length / 2)], best: s[0], worst: s[s.length - 1] }; };
@@ -29,7 +27,5 @@ try {
   console.log(`  ratio PRT / standard: ${(m.prt.median / m.standard.median).toFixed(2)} (best frames ${(m.prt.best / m.standard.best).toFixed(2)}); ` +
               `with the sun: ${(m.prt_sun.median / m.standard_sun.median).toFixed(2)} (best ${(m.prt_sun.best / m.standard_sun.best).toFixed(2)})`);
   if (page.errors.length) console.log(`page errors: ${page.errors.join('; ')}`);
-} finally {
-  await browser.close();
-  server.close();
-}
+  return page.errors.length > 0;
+});

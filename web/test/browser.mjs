@@ -63,3 +63,22 @@ export async function openPage(context, url, readyFlag) {
   if (!(await page.evaluate((flag) => window[flag] === true, readyFlag))) throw new Error(`${url} did not load: ${page.errors.join('; ') || 'timeout'}`);
   return page;
 }
+
+/// Serves `work`, starts Chromium at width x height, runs `body({port, context})` (which returns true when
+/// a check failed), then closes both, prints PASS or FAIL and exits with 0 or 1 (an exception fails).
+export async function runInBrowser(work, width, height, body) {
+  const server = await serve(work);
+  const browser = await launch(width, height);
+  let failed = false;
+  try {
+    failed = await body({ port: server.port, context: browser.context });
+  } catch (e) {
+    failed = true;
+    console.error(`FAIL: ${e.stack || e.message}`);
+  } finally {
+    await browser.close();
+    server.close();
+  }
+  console.log(failed ? 'FAIL' : 'PASS');
+  process.exit(failed ? 1 : 0);
+}

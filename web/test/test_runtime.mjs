@@ -23,7 +23,7 @@ import { join, resolve } from 'node:path';
 import { FloatType } from 'three';
 import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
 import { argument, run } from '../../tests/engines/common.mjs';
-import { launch, openPage, requireBrowser, serve } from './browser.mjs';
+import { openPage, requireBrowser, runInBrowser } from './browser.mjs';
 import { bakeGlb, prepareBake } from './bake_fixture.mjs';
 import { writeLightmapScene } from './lightmap_scene.mjs';
 
@@ -109,11 +109,9 @@ function dumpImages(prefix, page, reference) {
   writeFileSync(`${prefix}.ppm`, Buffer.concat([Buffer.from(`P6 ${3 * size} ${size} 255\n`), out]));
 }
 
-const server = await serve(work);
-const browser = await launch(size, size);
-let failed = false;
-try {
-  const page = await openPage(browser.context, `http://127.0.0.1:${server.port}/web/test/harness.html${breakage ? `?break=${breakage}` : ''}`, 'prtHarnessReady');
+await runInBrowser(work, size, size, async ({ port, context }) => {
+  let failed = false;
+  const page = await openPage(context, `http://127.0.0.1:${port}/web/test/harness.html${breakage ? `?break=${breakage}` : ''}`, 'prtHarnessReady');
   for (const c of cases) {
     const reference = join(work, `reference_${cases.indexOf(c)}.exr`);
     const glb = join(work, c.glb || bake.glb);
@@ -137,12 +135,5 @@ try {
     if (page.errors.length) console.log(`  page errors: ${page.errors.join('; ')}`);
     if (!ok) failed = true;
   }
-} catch (e) {
-  failed = true;
-  console.error(`FAIL: ${e.stack || e.message}`);
-} finally {
-  await browser.close();
-  server.close();
-}
-console.log(failed ? 'FAIL' : 'PASS');
-process.exit(failed ? 1 : 0);
+  return failed;
+});

@@ -11,7 +11,7 @@ import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { argument, decodePng, run } from '../../tests/engines/common.mjs';
-import { launch, openPage, requireBrowser, serve } from './browser.mjs';
+import { openPage, requireBrowser, runInBrowser } from './browser.mjs';
 import { prepareBake } from './bake_fixture.mjs';
 
 requireBrowser();
@@ -60,12 +60,10 @@ function prtRender(light, out) {
 
 let failed = false;
 const check = (ok, text) => { console.log(`${ok ? 'ok  ' : 'FAIL'} ${text}`); if (!ok) failed = true; };
-const server = await serve(work);
-const browser = await launch(size, size);
-try {
-  const url = `http://127.0.0.1:${server.port}/web/viewer.html?glb=/work/${bake.glb}&env=/work/disc.json&camera=${camera}` +
+await runInBrowser(work, size, size, async ({ port, context }) => {
+  const url = `http://127.0.0.1:${port}/web/viewer.html?glb=/work/${bake.glb}&env=/work/disc.json&camera=${camera}` +
               `&size=${size}x${size}&background=black&exposure=${exposure}&tonemap=aces`;
-  const page = await openPage(browser.context, url, 'prtViewerReady');
+  const page = await openPage(context, url, 'prtViewerReady');
   const screenshot = async () => {
     // The canvas itself (preserveDrawingBuffer), without the control panel drawn over it.
     const data = await page.evaluate(() => { window.prtViewer.renderNow(); return document.querySelector('canvas').toDataURL('image/png'); });
@@ -96,16 +94,9 @@ try {
   check(page.errors.length === 0, `no console errors (${page.errors.length}${page.errors.length ? ': ' + page.errors.join('; ') : ''})`);
 
   run(prt, ['probes', mesh, '--env', env, '--grid', '2,2,2', '--rays', '256', '--format', 'threejs', '-o', join(work, 'probes.json')]);
-  const withProbes = await openPage(browser.context, `${url}&probes=/work/probes.json`, 'prtViewerReady');
+  const withProbes = await openPage(context, `${url}&probes=/work/probes.json`, 'prtViewerReady');
   const probe = await withProbes.evaluate(() => { window.prtViewer.renderNow(); const v = window.prtViewer; return { sh: v.volume.sample(v.probeSphere.position).coefficients[0].toArray(), meshes: v.relighting.meshes.length }; });
   check(probe.sh[0] > 0 && probe.meshes > 0 && withProbes.errors.length === 0,
         `probe volume and PRT material in one scene: the sphere's blended c0 ${probe.sh.map((v) => v.toFixed(3)).join(',')}, ${withProbes.errors.length} console errors`);
-} catch (e) {
-  failed = true;
-  console.error(`FAIL: ${e.stack || e.message}`);
-} finally {
-  await browser.close();
-  server.close();
-}
-console.log(failed ? 'FAIL' : 'PASS');
-process.exit(failed ? 1 : 0);
+  return failed;
+});
