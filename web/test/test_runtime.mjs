@@ -14,6 +14,7 @@
 //
 // Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
 //        [--nodes <glTF>] [--work DIR]
+//        [--dump DIR] (PPM images of each case); PRT_ONLY=<text> runs the cases whose name contains it
 //        [--break order|rotation]  (a deliberately wrong runtime: swapped SH coefficients or no rotation;
 //                                   the test must then fail)
 // Exit status 0 pass, 1 fail, 77 skipped (no Chromium).
@@ -58,6 +59,7 @@ const cases = [
 
 // A deliberately broken page needs only the cases it must fail: the plain one (coefficient order), the
 // rotated one (missing rotation).
+if (process.env.PRT_ONLY) cases.splice(0, cases.length, ...cases.filter((c) => c.name.includes(process.env.PRT_ONLY)));
 if (breakage) cases.splice(0, cases.length, ...cases.filter((c) => (breakage === 'order' ? c === cases[0] : c.rotate.some((v) => v !== 0))));
 
 function readExr(path) {
