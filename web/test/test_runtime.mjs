@@ -54,6 +54,8 @@ const cases = [
   { name: 'rotated environment, sun on', light: 'disc.json', camera: [-40, 30], rotate: [70, 20, 0], sun: true },
   { name: 'textured glTF (BoxTextured), sun on', glb: textured, light: 'disc.json', camera: [35, 30], rotate: [20, 0, 0], sun: true },
   { name: 'lightmap (per texel), sun off', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'sky.json', camera: [30, 35], rotate: [40, 0, 0], sun: false },
+  { name: 'lightmap (per texel), sun on', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'disc.json', camera: [30, 35], rotate: [40, 0, 0], sun: true,
+    albedo: [0.8, 0.8, 0.8] },
   ...(nodes ? [{ name: 'glTF with many nodes (2CylinderEngine), sun on', glb: nodes, light: 'disc.json', camera: [10, 30], rotate: [0, 0, 0], sun: true }] : []),
 ];
 
@@ -122,7 +124,7 @@ await runInBrowser(work, size, size, async ({ port, context }) => {
               '--rotate', c.rotate.join(','), '--sun', c.sun ? 'auto' : 'none', '-o', reference]);
     await page.reload();
     await page.waitForFunction(() => window.prtHarnessReady === true);
-    const info = await page.evaluate((a) => window.prtLoad(a), { glb: `/work/${c.glb || bake.glb}`, light: `/work/${c.light}` });
+    const info = await page.evaluate((a) => window.prtLoad(a), { glb: `/work/${c.glb || bake.glb}`, light: `/work/${c.light}`, albedo: c.albedo });
     const shot = await page.evaluate((a) => window.prtRender(a), { width: size, height: size, camera: { azimuth: c.camera[0], elevation: c.camera[1], distance: c.camera[2] || 'auto' },
                                                                   rotate: c.rotate, sun: c.sun });
     const pixels = new Float32Array(Buffer.from(shot.pixels, 'base64').buffer.slice(0));
