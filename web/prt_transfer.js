@@ -60,6 +60,12 @@ export class PrtTransferPlugin {
       if (ext.width !== undefined) throw new Error(`${EXTENSION}: per-texel transfer is not supported by this runtime yet (mesh ${where.meshes})`);
       const count = Object.keys(object.geometry.attributes).length;
       if (count > MAX_VERTEX_ATTRIBUTES) throw new Error(`${EXTENSION}: mesh ${where.meshes} has ${count} vertex attributes (WebGL2 allows ${MAX_VERTEX_ATTRIBUTES})`);
+      const clusters = object.geometry.attributes._prt_cluster;
+      const k = models[ext.model].clusters;
+      for (let i = 0; clusters && i < clusters.count; i++) {
+        const c = clusters.getX(i);
+        if (!(Number.isInteger(c) && c >= 0 && c < k)) throw new Error(`${EXTENSION}: mesh ${where.meshes} vertex ${i} has cluster ${c}, outside 0..${k - 1}`);
+      }
       object.userData.prtTransfer = { model: ext.model };
     });
     await Promise.all(lightmaps);
