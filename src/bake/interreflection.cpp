@@ -102,6 +102,12 @@ class BounceWorker {
 
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t) {
     const mesh::Mesh& mesh = *ctx_.mesh;
+    if (at_hits_)  // the hits' texels, all requested before the first is read
+      for (std::size_t i = 0; i < batch.size(); ++i)
+        if (batch.is_hit(i)) {
+          const trace::HitResult hit = batch.hit(i);
+          mesh::TriangleColour(mesh, hit.prim_id).prefetch(hit.u, hit.v);
+        }
     for (std::size_t i = 0; i < batch.size(); ++i) {
       if (!batch.is_hit(i)) continue;
       const trace::HitResult hit = batch.hit(i);
