@@ -104,8 +104,13 @@ class BounceWorker {
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
 
+  // The batch's front-face hits first, each textured one's lookup set up and its texels requested (the
+  // hits fall on the texture at random: requested together, their loads overlap); then their weights,
+  // in ray order.
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t) {
     const mesh::Mesh& mesh = *ctx_.mesh;
+    front_.clear();
+    colours_.clear();
     for (std::size_t i = 0; i < batch.size(); ++i) {
       if (!batch.is_hit(i)) continue;
       const trace::HitResult hit = batch.hit(i);
@@ -113,11 +118,19 @@ class BounceWorker {
       const glm::vec3& p0 = mesh.positions[tri[0]];
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
-      const glm::vec3 albedo = at_hits_ ? mesh::TriangleColour(mesh, hit.prim_id).at(hit.u, hit.v) : glm::vec3(1.0f);
+      front_.push_back(hit);
+      if (!at_hits_) continue;
+      colours_.emplace_back(mesh, hit.prim_id);
+      colours_.back().prefetch(hit.u, hit.v);
+    }
+    for (std::size_t k = 0; k < front_.size(); ++k) {
+      const trace::HitResult& hit = front_[k];
+      const glm::vec3 albedo = at_hits_ ? colours_[k].at(hit.u, hit.v) : glm::vec3(1.0f);
       if (ctx_.grid) {
         add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, albedo, weights_);
         continue;
       }
+      const std::uint32_t* tri = mesh.indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
       weights_.add(tri[0], (1.0f - hit.u - hit.v) * albedo);
       weights_.add(tri[1], hit.u * albedo);
       weights_.add(tri[2], hit.v * albedo);
@@ -150,6 +163,8 @@ class BounceWorker {
   bool at_hits_;
   WeightMap weights_;
   std::vector<float> gathered_;
+  std::vector<trace::HitResult> front_;       // this batch's front-face hits
+  std::vector<mesh::TriangleColour> colours_;  // their base colour lookups (at_hits_ only)
 };
 
 }  // namespace
