@@ -47,12 +47,15 @@ GLint gl_wrap(mesh::Wrap wrap) {
 GLuint rgb_texture(const mesh::Texture& texture) {
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &id);
-  glTextureStorage2D(id, 1, GL_RGB32F, texture.width, texture.height);
+  glTextureStorage2D(id, 1, GL_RGBA32F, texture.width, texture.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   // Row 0 (the image's top, v = 0) goes to texture row t = 0: the shaders sample at t = v.
   // Linear floats from either form of the texture (8-bit codes through their decode table): exact.
   const std::vector<float> rgb = mesh::texture_rgb(texture);
-  glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGB, GL_FLOAT, rgb.data());
+  std::vector<float> rgba(rgb.size() / 3 * 4, 1.0f);
+  for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = rgb[3 * i + c];
+  glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGBA, GL_FLOAT, rgba.data());
   return id;
 }
 
