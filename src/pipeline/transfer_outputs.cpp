@@ -29,6 +29,7 @@ void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData trans
     compress::CompressionRequest request;
     request.options = {o.clusters, o.pca, 20, o.seed, o.threads};
     request.scalar = transfer.header.scalar;
+    request.metric_sky = o.metric_sky;
     compress::write_cprt(path, compress::compress_for_shading(transfer, o.transfer_path, request));
   });
   std::unique_ptr<AtomicFile> gltf_file;
