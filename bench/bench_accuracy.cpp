@@ -26,6 +26,7 @@
 
 #include <unistd.h>
 
+#include "bench_frames.h"
 #include "compress/open_transfer.h"
 #include "image/compare.h"
 #include "mesh/mesh.h"
@@ -88,18 +89,12 @@ double median_frame_ms(const mesh::Mesh& mesh, const compress::TransferFile& fil
   settings.background = render::Background::black;
   settings.transfer = file.compressed() ? renderer.add_compressed(std::get<compress::CompressedTransfer>(file.contents), file.path)
                                         : renderer.add_transfer(std::get<transfer::TransferData>(file.contents), file.path);
-  std::vector<double> ms;
-  for (int frame = 0; frame < 9; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    renderer.render(settings, 1024, 1024);
-    glFinish();
-    if (frame >= 2) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
+  return bench::median_frame_ms(renderer, settings);
 }
 
-void table(const std::string& mesh_path, const std::string& dir) {
+void table(const std::string& mesh_path, const std::string& parent) {
+  const std::string dir = parent + "/" + std::filesystem::path(mesh_path).stem().string();
+  std::filesystem::create_directories(dir);
   const mesh::Mesh mesh = mesh::load_mesh(mesh_path, {mesh::kDefaultScene, true});
   const double vertices = static_cast<double>(mesh.positions.size());
   std::map<std::string, std::string> truth;

@@ -75,7 +75,7 @@ TEST_CASE("shade --bands N truncates the lighting to N whole bands (closed-form 
   const double half_angle = 40.0 * M_PI / 180.0;
   const glm::dvec3 radiance(2.0, 1.0, 0.5);
   const double albedo = 0.8;
-  for (int bands : {1, 2, 3, 5, 8}) {
+  for (int bands : {1, 2, 3, 5, 7, 8}) {
     CAPTURE(bands);
     const std::string out = dir + "/s" + std::to_string(bands) + ".ply";
     const auto run = run_prt("shade " + mesh + " " + dir + "/t.prt --light " + dir + "/cone.json --sun none --window none --bands " +
@@ -92,8 +92,9 @@ TEST_CASE("shade --bands N truncates the lighting to N whole bands (closed-form 
       }
     }
     CHECK(worst < 2e-5);
-    // The wrong rule (the top kept band's lighting dropped) is far outside that tolerance.
-    CHECK(dropped_top > 1e-2);
+    // The wrong rule (the top kept band's lighting dropped) is far outside that tolerance wherever that
+    // band reaches diffuse shading (A_l = 0 for odd l > 1: dropping band 7 of 8 changes nothing).
+    if (clamped_cosine_factor(bands - 1) != 0.0) CHECK(dropped_top > 50 * 2e-5);
   }
 }
 
