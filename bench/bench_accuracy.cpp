@@ -10,9 +10,11 @@
 //   - bytes per vertex: the file's size over the vertex count;
 //   - frame time: `prt render`'s frame (1024 x 1024, headless OpenGL; median of 7 frames after 2 warm-up
 //     frames, glFinish), the transfer alone (SH lighting, no discs), and its ratio to the 5-band .prt;
-//   - bake time: wall time of `prt bake` (the compression included).
+//   - bake time: wall time of `prt bake` (the compression included);
+// and, per mesh, the frame ratio of the new default to the 5-band .prt measured A/B in one renderer.
 // Everything runs the real binaries (PRT_BINARY_DIR) except the frames, drawn in-process from the same
-// files. The machine may be shared: compare within one run.
+// files. The machine may be shared: compare within one run. PRT_BENCH_FRAMES_ONLY=1 in the environment
+// prints only the A/B frame ratios.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -92,10 +94,49 @@ double median_frame_ms(const mesh::Mesh& mesh, const compress::TransferFile& fil
   return bench::median_frame_ms(renderer, settings);
 }
 
+// The acceptance ratio measured A/B: the 5-band .prt and the compressed default in one renderer, frames
+// alternated (so both see the same machine load), median of 15 each after 2 warm-up frames of each.
+void frame_ratio(const mesh::Mesh& mesh, const std::string& old_file, const std::string& new_file) {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  renderer.set_mesh(mesh);
+  light::SunRequest none;
+  none.mode = light::SunRequest::Mode::none;
+  renderer.set_lighting(render::load_render_lighting(hdri("forest"), 16, none).coefficients, nullptr);
+  const compress::TransferFile a = compress::open_transfer(old_file), b = compress::open_transfer(new_file);
+  render::FrameSettings sa, sb;
+  sa.background = sb.background = render::Background::black;
+  sa.transfer = renderer.add_transfer(std::get<transfer::TransferData>(a.contents), old_file);
+  sb.transfer = renderer.add_compressed(std::get<compress::CompressedTransfer>(b.contents), new_file);
+  std::vector<double> ta, tb;
+  for (int frame = 0; frame < 17; ++frame)
+    for (int which = 0; which < 2; ++which) {
+      const auto start = std::chrono::steady_clock::now();
+      renderer.render(which == 0 ? sa : sb, 1024, 1024);
+      glFinish();
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      if (frame >= 2) (which == 0 ? ta : tb).push_back(ms);
+    }
+  std::sort(ta.begin(), ta.end());
+  std::sort(tb.begin(), tb.end());
+  std::printf("A/B frames, 1024x1024, median of 15 alternated (min..max): 5-band .prt %.2f ms (%.2f..%.2f), default .cprt "
+              "%.2f ms (%.2f..%.2f), ratio %.3f (target <= 1.1)\n",
+              ta[7], ta.front(), ta.back(), tb[7], tb.front(), tb.back(), tb[7] / ta[7]);
+}
+
 void table(const std::string& mesh_path, const std::string& parent) {
   const std::string dir = parent + "/" + std::filesystem::path(mesh_path).stem().string();
   std::filesystem::create_directories(dir);
   const mesh::Mesh mesh = mesh::load_mesh(mesh_path, {mesh::kDefaultScene, true});
+  const std::string old_file = dir + "/t0" + kSettings.front().extension;
+  const std::string new_file = dir + "/t" + std::to_string(kSettings.size() - 1) + kSettings.back().extension;
+  if (std::getenv("PRT_BENCH_FRAMES_ONLY")) {  // the A/B frame ratio alone (minutes less: no references)
+    seconds_of("bake " + mesh_path + " " + kSettings.front().options + " -o " + old_file);
+    seconds_of("bake " + mesh_path + " " + kSettings.back().options + " -o " + new_file);
+    std::printf("\n%s (%zu vertices): ", std::filesystem::path(mesh_path).filename().c_str(), mesh.positions.size());
+    frame_ratio(mesh, old_file, new_file);
+    return;
+  }
   const double vertices = static_cast<double>(mesh.positions.size());
   std::map<std::string, std::string> truth;
   for (const std::string& map : kMaps) {
@@ -126,6 +167,7 @@ void table(const std::string& mesh_path, const std::string& parent) {
                 ms / baseline_ms, bake_s);
     std::fflush(stdout);
   }
+  frame_ratio(mesh, old_file, new_file);
 }
 
 void BM_AccuracyTable(benchmark::State& state) {
