@@ -79,14 +79,18 @@ double rel_rms(const std::string& a, const std::string& reference) {
   return image::compare_values(&x.colours[0].x, &r.colours[0].x, 3 * x.colours.size()).rel_rms;
 }
 
-double median_frame_ms(const mesh::Mesh& mesh, const compress::TransferFile& file, const std::string& map) {
-  render::HeadlessContext context;
-  render::Renderer renderer;
+// The renderer's mesh and its lighting: `map` projected to `bands` bands, no discs (the transfer alone).
+void prepare(render::Renderer& renderer, const mesh::Mesh& mesh, const std::string& map, int bands) {
   renderer.set_mesh(mesh);
   light::SunRequest none;
   none.mode = light::SunRequest::Mode::none;
-  const render::Lighting lighting = render::load_render_lighting(map, static_cast<int>(file.header().bands), none);
-  renderer.set_lighting(lighting.coefficients, nullptr);
+  renderer.set_lighting(render::load_render_lighting(map, bands, none).coefficients, nullptr);
+}
+
+double median_frame_ms(const mesh::Mesh& mesh, const compress::TransferFile& file, const std::string& map) {
+  render::HeadlessContext context;
+  render::Renderer renderer;
+  prepare(renderer, mesh, map, static_cast<int>(file.header().bands));
   render::FrameSettings settings;
   settings.background = render::Background::black;
   settings.transfer = file.compressed() ? renderer.add_compressed(std::get<compress::CompressedTransfer>(file.contents), file.path)
@@ -99,10 +103,7 @@ double median_frame_ms(const mesh::Mesh& mesh, const compress::TransferFile& fil
 void frame_ratio(const mesh::Mesh& mesh, const std::string& old_file, const std::string& new_file) {
   render::HeadlessContext context;
   render::Renderer renderer;
-  renderer.set_mesh(mesh);
-  light::SunRequest none;
-  none.mode = light::SunRequest::Mode::none;
-  renderer.set_lighting(render::load_render_lighting(hdri("forest"), 16, none).coefficients, nullptr);
+  prepare(renderer, mesh, hdri("forest"), 16);
   const compress::TransferFile a = compress::open_transfer(old_file), b = compress::open_transfer(new_file);
   render::FrameSettings sa, sb;
   sa.background = sb.background = render::Background::black;
