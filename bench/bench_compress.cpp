@@ -19,6 +19,7 @@
 #include <sys/resource.h>
 
 #include "bake/bake.h"
+#include "bench_frames.h"
 #include "bench_meshes.h"
 #include "brdf/projection.h"
 #include "compress/cprt_file.h"
@@ -34,18 +35,6 @@ constexpr int kBands = 5;
 const char* const kBrdf = "phong:exponent=32,ks=0.5,kd=0.3";
 
 sh::RgbCoefficients test_lighting() { return bench::random_lighting(kBands); }
-
-double median_frame_ms(render::Renderer& renderer, const render::FrameSettings& settings) {
-  std::vector<double> ms;
-  for (int frame = 0; frame < 9; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    renderer.render(settings, 1024, 1024);
-    glFinish();
-    if (frame >= 2) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
 
 // CPU seconds of the process so far, all threads (the machine is shared: wall time under load is not
 // what two idle cores would take; CPU time / threads is).
@@ -120,7 +109,7 @@ void BM_CompressAndFrames(benchmark::State& state) {
     settings.camera = render::Camera{30.0, 20.0, 0.0};
     const auto frame = [&](int index) {
       settings.transfer = index;
-      return median_frame_ms(renderer, settings);
+      return bench::median_frame_ms(renderer, settings);
     };
     rows.push_back({"diffuse RGB uncompressed (baseline)", 0, 0, frame(renderer.add_transfer(diffuse, "diffuse")), 0,
                     compress::uncompressed_bytes(diffuse.header, transfer::Scalar::float32)});

@@ -3,8 +3,10 @@
 // timing of two frame settings alternated frame by frame (so that both see the same machine load).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <vector>
 
 #include "mesh/mesh.h"
 #include "render/gl.h"
@@ -55,6 +57,20 @@ inline render::FrameSettings black_frame(int transfer, const render::Camera& cam
   settings.background = render::Background::black;
   settings.camera = camera;
   return settings;
+}
+
+/// Median milliseconds of 7 frames of `settings` at size x size, after 2 warm-up frames (shader
+/// compilation, first-use allocation), each frame ended by glFinish.
+inline double median_frame_ms(render::Renderer& renderer, const render::FrameSettings& settings, int size = 1024) {
+  std::vector<double> ms;
+  for (int frame = 0; frame < 9; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    renderer.render(settings, size, size);
+    glFinish();
+    if (frame >= 2) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
 }
 
 /// Mean milliseconds per frame of settings a and b, rendered alternately at size x size (after one

@@ -36,6 +36,7 @@
 #include "shade/shade.h"
 #include "transfer/transfer_file.h"
 #ifdef PRT_WITH_GL
+#include "bench_frames.h"
 #include "render/gl.h"
 #include "render/headless_context.h"
 #include "render/renderer.h"
@@ -148,18 +149,6 @@ struct FrameTimes {
 };
 FrameTimes g_frames;
 
-double median_frame_ms(render::Renderer& renderer, const render::FrameSettings& settings, int size = 1024) {
-  std::vector<double> ms;
-  for (int frame = 0; frame < 9; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    renderer.render(settings, size, size);
-    glFinish();
-    if (frame >= 2) ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
-
 void BM_FrameTime(benchmark::State& state) {
   for (auto _ : state) {
     const mesh::Mesh sphere = bench::lat_long_sphere(200, 250);  // 50,002 vertices
@@ -184,11 +173,11 @@ void BM_FrameTime(benchmark::State& state) {
     settings.background = render::Background::black;
     settings.camera = render::Camera{30.0, 20.0, 0.0};
     settings.transfer = diffuse_index;
-    g_frames.diffuse_ms = median_frame_ms(renderer, settings);
+    g_frames.diffuse_ms = bench::median_frame_ms(renderer, settings);
     settings.transfer = glossy_index;
-    g_frames.glossy_ms = median_frame_ms(renderer, settings);
+    g_frames.glossy_ms = bench::median_frame_ms(renderer, settings);
     // At 16 x 16 pixels almost all of the glossy frame is the per-vertex compute pass.
-    g_frames.glossy_compute_only_ms = median_frame_ms(renderer, settings, 16);
+    g_frames.glossy_compute_only_ms = bench::median_frame_ms(renderer, settings, 16);
     g_frames.vertices = sphere.positions.size();
     g_frames.device = context.description();
     state.SetIterationTime(1e-3 * (g_frames.diffuse_ms + g_frames.glossy_ms));

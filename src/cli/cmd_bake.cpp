@@ -10,10 +10,12 @@
 #include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "cli/distributed.h"
+#include "compress/ship_defaults.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/memory_check.h"
 #include "core/stopwatch.h"
+#include "core/text.h"
 #include "lightmap/texel_bake.h"
 #include "lightmap/uv_source.h"
 #include "mesh/mesh.h"
@@ -32,9 +34,9 @@ struct BakeCommandOptions {
   std::string kind = "shadowed";
   std::string albedo;
   std::string brdf;
-  std::string compress;  // "K,N": write a .cprt instead of the .prt
+  std::string compress;  // "K,N": write a .cprt instead of the .prt; empty with -o *.cprt: the ship default
   std::string footprint = "area";  // docs/conventions.md "Vertex footprint": contact stays lit
-  int bands = 5;
+  int bands = 0;  // 0: the default of the output's form (compress/ship_defaults.h)
   int bands_out = 0;
   int samples = 1024;
   int bounces = -1;
@@ -81,8 +83,15 @@ void print_summary(const std::string& what, const bake::BakeReport& report, tran
   std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, output.c_str());
 }
 
+// The compressed default ("bake high, ship light", docs/conventions.md): a per-vertex diffuse bake written
+// to a .cprt without --compress: kHighBands bands (unless --bands), CPCA with compress::ship_compression,
+// float16 (K and N sized to the 5-band file). Every other bake keeps its form: kShipBands bands by default, uncompressed unless --compress.
+bool ships_compressed(const BakeCommandOptions& o, const bake::BakeOptions& options) {
+  return o.compress.empty() && o.lightmap.empty() && !transfer::is_glossy(options.kind) && lower_extension(o.output) == ".cprt";
+}
+
 // Per vertex: checks, bakes (split over the ranks of an MPI job) and writes the outputs from rank 0.
-void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options, const pipeline::TransferOutputs& out) {
+void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options, pipeline::TransferOutputs out) {
   if (transfer::is_glossy(options.kind) && !o.gltf_output.empty())
     fail("--gltf: glTF export of glossy transfer matrices is not supported; use the .prt file");
   // Check the outputs before spending minutes baking (rank 0 alone writes them).
@@ -100,8 +109,8 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
     if (notes)
       for (const std::string& note : load_report.notes) std::cerr << o.mesh_path << ": " << note << "\n";
   }
-  const int bands_out = options.bands_out ? options.bands_out : o.bands;
-  const std::string sized_by = std::to_string(o.bands) +
+  const int bands_out = options.bands_out ? options.bands_out : options.bands;
+  const std::string sized_by = std::to_string(options.bands) +
                                (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
                                " --samples " + std::to_string(o.samples) + " for " +
                                std::to_string(mesh.positions.size()) + " vertices";
@@ -114,6 +123,15 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   for (const std::string& note : report.notes) std::cerr << o.mesh_path << ": " << note << "\n";
   const double seconds = seconds_since(start);
   const transfer::Header header = data.header;
+  const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
+  if (ships_compressed(o, options)) {  // the ship default: K and N sized to the mesh (compress/ship_defaults.h)
+    const compress::ShipCompression ship =
+        compress::ship_compression(header.vertex_count, static_cast<int>(header.channels),
+                                   data.bounce_only.empty() ? 1 : 2, static_cast<int>(header.bands));
+    out.clusters = ship.clusters;
+    out.pca = ship.pca;
+    out.metric_sky = &prior;
+  }
   pipeline::write_transfer_outputs(mesh, std::move(data), out);
   if (o.quiet) return;
   std::string what = std::string(transfer::kind_name(options.kind)) + ", " + std::to_string(mesh.positions.size()) +
@@ -170,7 +188,7 @@ void run_bake(const BakeCommandOptions& o) {
   bake::BakeOptions options;
   options.kind = transfer::parse_kind(o.kind);
   options.footprint = mesh::parse_footprint(o.footprint, "--footprint");
-  options.bands = o.bands;
+  options.bands = o.bands;  // resolved below, once the kind is known
   options.samples = o.samples;
   options.bounces = o.bounces;
   options.seed = o.seed;
@@ -185,12 +203,14 @@ void run_bake(const BakeCommandOptions& o) {
   options.brdf_from_mesh = transfer::is_glossy(options.kind) && (o.brdf.empty() || o.brdf == "mesh");
   if (!o.brdf.empty() && !options.brdf_from_mesh) options.brdf = brdf::parse_brdf(o.brdf);
   options.bands_out = o.bands_out;
+  const bool ship = ships_compressed(o, options);
+  if (o.bands == 0) options.bands = ship ? compress::kHighBands : compress::kShipBands;
   bake::validate_options(options);
   pipeline::TransferOutputs out;
   out.transfer_path = o.output;
   out.gltf_path = o.gltf_output;
   out.source_path = o.mesh_path;
-  out.float16 = o.float16;
+  out.float16 = o.float16 || ship;
   out.seed = o.seed;
   out.threads = o.threads;
   if (!o.compress.empty() && !parse_compress_setting(o.compress, out.clusters, out.pca))
@@ -218,7 +238,9 @@ void add_bake_command(CLI::App& app) {
                   "or a .json material (see prt brdf)");
   cmd->add_option("--bands-out", options->bands_out,
                   "Glossy kinds: bands of the transferred radiance (matrix rows), 1..--bands; default --bands");
-  cmd->add_option("--bands", options->bands, "SH bands of the lighting (1..32; 5 = 25 coefficients)")->capture_default_str();
+  cmd->add_option("--bands", options->bands,
+                  "SH bands of the lighting (1..32; 5 = 25 coefficients). Default 5, and 16 for a diffuse per-vertex bake to a .cprt "
+                  "without --compress (bake high, ship light: CPCA-compressed to the size and run-time cost of 5 bands)");
   cmd->add_option("--samples", options->samples, "Rays per vertex (shadowed, interreflected)")->capture_default_str();
   cmd->add_option("--bounces", options->bounces,
                   "Interreflection passes; default: until a pass adds < 1e-3 of the direct pass's energy (max 16)");
@@ -232,7 +254,8 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--gltf", options->gltf_output, "Also write the engine glTF (.glb): the source scene as authored with the transfer (per vertex: clustered PCA, the PRT_transfer extension; per texel: KTX2 textures)");
   cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
   cmd->add_option("--compress", options->compress,
-                  "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file (per vertex or, with --lightmap, per texel)");
+                  "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file (per vertex or, with --lightmap, per texel). "
+                  "Default for a diffuse per-vertex -o T.cprt: 16 bands, K = vertices/256 in 1..64, N <= 24 sized to the 5-band file, float16");
   cmd->add_option("--lightmap", options->lightmap,
                   "WxH or SIZE: bake transfer per texel of the mesh's lightmap UVs (glTF TEXCOORD_1, else TEXCOORD_0; OBJ vt) "
                   "instead of per vertex (diffuse kinds)");

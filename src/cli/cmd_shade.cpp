@@ -33,6 +33,7 @@ struct ShadeCommandOptions {
   bool quiet = false;
   bool lightmap = false;  // texel transfer: write the lit lightmap (EXR)
   int threads = 0;
+  int bands = 0;  // run-time truncation: shade with the first N lighting bands (0 = all the transfer's)
 };
 
 bool has_extension(const std::string& path, const std::string& ext) {
@@ -60,7 +61,8 @@ void run_shade(const ShadeCommandOptions& o) {
   if (!glossy && (!o.eye.empty() || !o.brdf.empty()))
     fail_file(o.transfer_path, std::string("--eye and --brdf apply to glossy transfer; this one is ") +
                                    transfer::kind_name(transfer.header.kind));
-  const light::SceneLighting lighting = load_scene_lighting(o.env.empty() ? o.light : o.env, static_cast<int>(transfer.header.bands),
+  // Projected (and windowed) at the bands it is shaded with: the run-time truncation (shade::shading_bands).
+  const light::SceneLighting lighting = load_scene_lighting(o.env.empty() ? o.light : o.env, shade::shading_bands(transfer.header, o.bands),
                                                             angles, o.lighting, o.threads, glossy);
   shade::DiscShadingOptions disc_options = o.discs;
   disc_options.threads = o.threads;
@@ -105,6 +107,9 @@ void add_shade_command(CLI::App& app) {
   cmd->add_option("--brdf", options->brdf,
                   "Glossy transfer: BRDF SPEC to shade with (default: the one recorded in the transfer at bake time)");
   cmd->add_option("-o,--output", options->output, "Output .ply (float x,y,z,red,green,blue) or .glb (COLOR_0)")->required();
+  cmd->add_option("--bands", options->bands,
+                  "Shade with only the first N bands of the lighting (1..the transfer's bands; 0 = all): a cheaper tier of a high-band bake")
+      ->capture_default_str();
   add_lighting_options(cmd, options->lighting);
   cmd->add_option("--sun-samples", options->discs.samples, "Stratified shadow rays per vertex and disc (rounded up to a square)")
       ->capture_default_str();

@@ -12,7 +12,7 @@ CompressedTransfer compress_for_shading(const transfer::TransferData& transfer, 
                         request.options, what);
   const light::SceneLighting* lighting = request.lighting;
   sh::RgbCoefficients discs;
-  MetricLighting metric_lighting;  // identity lighting unless one is given
+  MetricLighting metric_lighting{request.metric_sky, nullptr};  // flat spectrum unless one is given
   if (lighting) {
     discs = light::discs_coefficients(static_cast<int>(h.bands), lighting->discs);
     metric_lighting = {&lighting->sky, lighting->discs.empty() ? nullptr : &discs};

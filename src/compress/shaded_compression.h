@@ -15,6 +15,9 @@ struct CompressionRequest {
   /// meets the transfer, its discs' SH the bounce-only part; docs/conventions.md, "Sun and sky"), with
   /// as many bands as the transfer; null: no lighting (the shaded metric then averages over all skies).
   const light::SceneLighting* lighting = nullptr;
+  /// Without `lighting`: the SH whose rotation-averaged spectrum the shaded metric is fitted to (e.g.
+  /// the ship default's prior, ship_defaults.h); null: a flat spectrum. No error is reported under it.
+  const sh::RgbCoefficients* metric_sky = nullptr;
   /// Fit in the shaded-radiance metric (compress/metric.h; glossy through the baked BRDF); false: the
   /// plain L2 of the transfer values.
   bool shaded_metric = true;

@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "core/error.h"
-#include "sh/zonal.h"
 
 namespace prt::light {
 
@@ -22,23 +21,9 @@ WindowRequest parse_window_request(const std::string& name, double param) {
   return request;
 }
 
-double auto_window_lambda(const sh::RgbCoefficients& lighting, bool radiance) {
-  sh::RgbCoefficients irradiance = lighting;
-  for (int l = 0; l < lighting.bands; ++l)
-    for (int m = -l; m <= l; ++m) irradiance.values[static_cast<std::size_t>(l * (l + 1) + m)] *= sh::clamped_cosine_factor(l);
-  const double lambda = sh::nonnegative_laplacian_lambda(irradiance);
-  return radiance ? std::max(lambda, sh::nonnegative_laplacian_lambda(lighting)) : lambda;
-}
-
 WindowChoice apply_window_request(const WindowRequest& request, sh::RgbCoefficients& lighting) {
   WindowChoice choice;
-  if (request.automatic) {
-    const double lambda = auto_window_lambda(lighting, request.radiance);
-    if (lambda > 0.0) {
-      choice.window = sh::Window::laplacian;
-      choice.param = lambda;
-    }
-  } else {
+  if (!request.automatic) {  // automatic: no window (the shading clamps; see the header)
     choice.window = request.window;
     choice.param = request.window == sh::Window::none ? 0.0
                    : request.param > 0.0                ? request.param

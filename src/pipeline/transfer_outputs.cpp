@@ -32,6 +32,7 @@ compress::CompressedTransfer compressed_model(const transfer::TransferData& tran
   const int pca = o.clusters > 0 ? o.pca : int(std::min<std::size_t>(kExportPca, dimension));
   request.options = {clusters, pca, 20, o.seed, o.threads};
   request.scalar = transfer.header.scalar;
+  request.metric_sky = o.metric_sky;
   return compress::compress_for_shading(transfer, o.clusters > 0 ? o.transfer_path : o.gltf_path, request);
 }
 

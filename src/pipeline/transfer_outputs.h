@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mesh/mesh.h"
+#include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::pipeline {
@@ -17,6 +18,7 @@ struct TransferOutputs {
   bool float16 = false;       ///< store the transfer (or the compressed model) as IEEE float16
   int clusters = 0, pca = 0;  ///< > 0: compress with CPCA, `clusters` clusters of `pca` vectors each
   unsigned seed = 1;          ///< of the compression's initial clusters
+  const sh::RgbCoefficients* metric_sky = nullptr;  ///< compression: the metric's spectrum (null: flat; shaded_compression.h)
   int threads = 0;            ///< for the compression (0 = all cores); the output does not depend on it
 };
 

@@ -36,10 +36,11 @@ void render_to_file(const RenderOptions& options) {
   check_output_extension(options.output);
   const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path}, options.scene);
   const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
-  used_bands(scene.transfers[0].header, options.bands);  // before any GL work
+  // The lighting is projected (and windowed) at the bands the frame shades: the run-time truncation.
+  const int shaded_bands = used_bands(scene.transfers[0].header, options.bands);  // before any GL work
   light::WindowRequest window = options.window;
   window.radiance = transfer::is_glossy(scene.transfers[0].header.kind);  // the glossy criterion (light/deringing.h)
-  const Lighting lighting = load_render_lighting(options.environment, transfer_bands, options.sun, window);
+  const Lighting lighting = load_render_lighting(options.environment, shaded_bands, options.sun, window);
   const Background background =
       options.background.value_or(lighting.has_image ? Background::environment : Background::sh);
   if (background == Background::environment && !lighting.has_image)

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "render/frame_core.h"
 #include "render/transfer_pass.h"
+#include "shade/shade.h"
 
 namespace prt::render {
 
@@ -43,12 +44,7 @@ const char* background_name(Background background) {
   return "?";
 }
 
-int used_bands(const transfer::Header& header, int requested) {
-  const int transfer_bands = static_cast<int>(header.bands);
-  if (requested < 0 || requested > transfer_bands)
-    fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " + std::to_string(requested));
-  return requested == 0 ? transfer_bands : requested;
-}
+int used_bands(const transfer::Header& header, int requested) { return shade::shading_bands(header, requested); }
 
 void lambert_light(const sh::RgbCoefficients& lighting, glm::dvec3& direction, glm::dvec3& radiance) {
   const glm::dvec3 luminance_weights(0.2126, 0.7152, 0.0722);

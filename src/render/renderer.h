@@ -182,8 +182,8 @@ struct FrameSettings {
 /// E = pi * mean radiance at normal incidence, as for a uniform environment.
 void lambert_light(const sh::RgbCoefficients& lighting, glm::dvec3& direction, glm::dvec3& radiance);
 
-/// The bands a frame of a transfer with `header` uses: `requested`, or all the transfer has for 0.
-/// Throws prt::OptionError("bands", ": ...") unless 0 <= requested <= header.bands.
+/// The bands a frame of a transfer with `header` uses: shade::shading_bands (the run-time truncation
+/// rule, docs/conventions.md): `requested`, or all the transfer has for 0.
 int used_bands(const transfer::Header& header, int requested);
 
 class Renderer {

@@ -60,7 +60,7 @@ std::vector<glm::vec3> shade_diffuse_split(const mesh::Mesh& mesh, const transfe
   std::vector<glm::vec3> out = shade_diffuse(transfer, lighting.sky);
   if (lighting.discs.empty()) return clamped(std::move(out), lighting);
   if (const auto bounce = bounce_part(transfer, origin, report))
-    add_into(out, shade_diffuse(*bounce, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs)));
+    add_into(out, shade_diffuse(*bounce, light::discs_coefficients(lighting.sky.bands, lighting.discs)));
   const auto scene = shadow_scene_given ? nullptr : shadow_scene(mesh, transfer.header, options.threads);
   const trace::Scene* shadows = transfer.header.kind == transfer::Kind::unshadowed ? nullptr
                                 : shadow_scene_given                               ? shadow_scene_given
@@ -80,7 +80,7 @@ std::vector<glm::vec3> shade_glossy_split(const mesh::Mesh& mesh, const transfer
   std::vector<glm::vec3> out = shade_glossy_eye(transfer, matrix, lighting.sky, mesh.positions, mesh.normals, eye);
   if (lighting.discs.empty()) return clamped(std::move(out), lighting);
   if (const auto bounce = bounce_part(transfer, origin, report))
-    add_into(out, shade_glossy_eye(*bounce, matrix, light::discs_coefficients(static_cast<int>(transfer.header.bands), lighting.discs),
+    add_into(out, shade_glossy_eye(*bounce, matrix, light::discs_coefficients(lighting.sky.bands, lighting.discs),
                                    mesh.positions, mesh.normals, eye));
   std::vector<glm::vec3> view(mesh.positions.size());
   for (std::size_t v = 0; v < view.size(); ++v) {

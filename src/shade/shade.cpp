@@ -27,4 +27,12 @@ std::vector<glm::vec3> shade_diffuse(const transfer::TransferData& transfer, con
   return out;
 }
 
+int shading_bands(const transfer::Header& header, int requested) {
+  const int transfer_bands = static_cast<int>(header.bands);
+  if (requested < 0 || requested > transfer_bands)
+    fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(transfer_bands) + " bands, got " +
+                             std::to_string(requested));
+  return requested == 0 ? transfer_bands : requested;
+}
+
 }  // namespace prt::shade

@@ -16,4 +16,11 @@ namespace prt::shade {
 /// Precondition: a diffuse kind (unshadowed, shadowed, interreflected). Accumulates in double.
 std::vector<glm::vec3> shade_diffuse(const transfer::TransferData& transfer, const sh::RgbCoefficients& lighting);
 
+/// The run-time band choice (`--bands N` of shade, render and view; docs/conventions.md, "Run-time
+/// band truncation"): the number of lighting bands a transfer of header.bands bands is shaded with.
+/// `requested` 0 means all of the transfer's bands; 1..header.bands truncates the lighting to that many
+/// whole bands (every coefficient of band l >= N is dropped, the transfer's own values are kept; glossy:
+/// the input side only, the output bands stay). Throws prt::OptionError (field "bands") otherwise.
+int shading_bands(const transfer::Header& header, int requested);
+
 }  // namespace prt::shade
