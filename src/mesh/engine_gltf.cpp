@@ -107,4 +107,12 @@ std::vector<float> GltfExtras::vertex_attribute(const Mesh& mesh, const std::str
   return out;
 }
 
+std::string GltfExtras::image(int index, const std::string& what) const {
+  std::string bytes;
+  if (index < 0 || std::size_t(index) >= model_->model.images.size() ||
+      !detail::gltf_image_bytes(model_->model, model_->images, index, &bytes))
+    fail_file(path_, what + ": image " + std::to_string(index) + " does not exist or has no data");
+  return bytes;
+}
+
 }  // namespace prt::mesh

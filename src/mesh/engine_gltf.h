@@ -84,6 +84,8 @@ class GltfExtras {
   /// concatenated in vertex order: components x mesh.vertex_count() floats. Throws naming the
   /// primitive if one lacks it or it has the wrong width or count.
   std::vector<float> vertex_attribute(const Mesh& mesh, const std::string& name, int components) const;
+  /// The file bytes of image `index`; throws naming `what` if it does not exist or has none.
+  std::string image(int index, const std::string& what) const;
 
  private:
   struct Model;

@@ -81,14 +81,14 @@ class SourceWriter {
     out["asset"]["generator"] = "prt";
     for (const char* key : {"scene", "scenes", "cameras", "materials", "textures", "samplers", "extras"})
       if (doc_.contains(key)) out[key] = doc_[key];
-    out["nodes"] = nodes();
-    out["meshes"] = meshes();
-    json images = source_images();
+    json images = source_images();  // before the primitives, whose extension names the added images
     for (const GlbImage& image : extras_.images) {
       added_.images.push_back(int(images.size()));
       images.push_back({{"bufferView", glb_.add_view(image.bytes)}, {"mimeType", image.mime_type}});
     }
     if (!images.empty()) out["images"] = images;
+    out["nodes"] = nodes();
+    out["meshes"] = meshes();
     finish_extensions(&out);
     out["bufferViews"] = glb_.buffer_views;
     out["accessors"] = glb_.accessors;

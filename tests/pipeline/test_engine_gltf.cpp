@@ -327,3 +327,48 @@ TEST_CASE("Bad engine glTF input is one line naming the file", "[pipeline][gltf]
   mesh::write_engine_glb(dir + "/sixteen.glb", kBox, box, extras);
   CHECK(parse_glb(dir + "/sixteen.glb").doc["meshes"][0]["primitives"][0]["attributes"].size() == 16);
 }
+
+TEST_CASE("Per-texel engine glTF: KTX2 cluster and weights textures, read back as the .cprt's model", "[pipeline][gltf][cli][lightmap]") {
+  const std::string dir = test::fresh_temp_dir("engine_gltf_texel");
+  // An OBJ floor and wall with one UV chart each (vt in [0, 1], no overlaps), and, when installed,
+  // Khronos's BoxTexcoords (TEXCOORD_1 as the lightmap set).
+  write_file_atomically(dir + "/lm.obj",
+                        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 0 -1\nv 1 0 -1\nv 1 1 -1\nv -1 1 -1\n"
+                        "vt 0.05 0.05\nvt 0.45 0.05\nvt 0.45 0.45\nvt 0.05 0.45\nvt 0.55 0.55\nvt 0.95 0.55\nvt 0.95 0.95\nvt 0.55 0.95\n"
+                        "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nf 5/5 6/6 7/7\nf 5/5 7/7 8/8\n");
+  std::vector<std::string> sources{dir + "/lm.obj"};
+  const std::string texcoords = "/usr/share/assimp/models/glTF2/BoxTexcoords-glTF/boxTexcoords.gltf";
+  if (std::filesystem::exists(texcoords)) sources.push_back(texcoords);
+  for (const std::string& source : sources) {
+    INFO(source);
+    const std::string out = dir + "/" + std::filesystem::path(source).stem().string();
+    const test::RunResult r = test::run_prt("bake " + source + " --lightmap 16 --transfer interreflected --bands 3 --samples 32 "
+                                            "--bounces 1 --compress 6,4 -q -o " + out + ".cprt --gltf " + out + ".glb");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    const Glb g = parse_glb(out + ".glb");
+    for (const json& mesh : g.doc["meshes"])
+      for (const json& p : mesh["primitives"]) {
+        const json& ext = p["extensions"]["PRT_transfer"];
+        CHECK(ext["width"] == 16);
+        CHECK(p["attributes"].contains("TEXCOORD_" + std::to_string(ext["texCoord"].get<int>())));
+        CHECK(p["attributes"].size() <= 16);
+        CHECK(g.doc["images"][ext["cluster"].get<int>()]["mimeType"] == "image/ktx2");
+      }
+    // prt's reader against the .cprt: the same points, clusters and means; weights to float16 rounding.
+    const compress::CompressedTransfer cprt = compress::read_cprt(out + ".cprt");
+    compress::TransferFile file = compress::open_transfer(out + ".glb");
+    const auto& back = std::get<compress::CompressedTransfer>(file.contents);
+    CHECK(back.coverage == cprt.coverage);
+    CHECK(back.cluster == cprt.cluster);
+    CHECK(back.means == cprt.means);
+    CHECK(back.bases == cprt.bases);
+    REQUIRE(back.weights.size() == cprt.weights.size());
+    for (std::size_t i = 0; i < cprt.weights.size(); ++i)
+      CHECK(std::fabs(back.weights[i] - cprt.weights[i]) <= std::ldexp(std::fabs(cprt.weights[i]), -11) + 1e-7f);
+    const std::string env = std::string(PRT_SOURCE_DIR) + "/assets/env/sunrise.exr";
+    REQUIRE(test::run_prt("shade " + out + ".glb " + out + ".glb --lightmap --env " + env + " -o " + out + "_a.exr").exit_code == 0);
+    REQUIRE(test::run_prt("shade " + source + " " + out + ".cprt --lightmap --env " + env + " -o " + out + "_b.exr").exit_code == 0);
+    CHECK(test::compare_rel_rms(out + "_a.exr", out + "_b.exr") < 1e-3);
+  }
+}
