@@ -37,6 +37,8 @@ namespace {
 
 const std::string kBox = std::string(PRT_SOURCE_DIR) + "/tests/data/BoxTextured/BoxTextured.glb";
 const std::string kDraco = std::string(PRT_SOURCE_DIR) + "/tests/data/gltf/box_textured_draco.glb";
+// SH lighting (prt light of sunrise.exr, 5 bands).
+const std::string kLight = std::string(PRT_SOURCE_DIR) + "/tests/data/golden_light_sunrise_b5.json";
 const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
 // A GLB as formats.md and the glTF spec lay it out: JSON chunk, BIN chunk.
@@ -251,9 +253,8 @@ TEST_CASE("Engine glTF of 2CylinderEngine: instanced meshes get a copy per baked
 TEST_CASE("prt shade reads the engine glTF as mesh and transfer: the same bytes as from the .cprt", "[pipeline][gltf][cli]") {
   const std::string dir = test::fresh_temp_dir("engine_gltf_shade");
   const Export e = bake(kBox, dir, "box");
-  const std::string env = std::string(PRT_SOURCE_DIR) + "/assets/env/sunrise.exr";
-  const test::RunResult a = test::run_prt("shade " + e.glb + " " + e.glb + " --env " + env + " -o " + dir + "/a.ply");
-  const test::RunResult b = test::run_prt("shade " + kBox + " " + e.cprt + " --env " + env + " -o " + dir + "/b.ply");
+  const test::RunResult a = test::run_prt("shade " + e.glb + " " + e.glb + " --light " + kLight + " -o " + dir + "/a.ply");
+  const test::RunResult b = test::run_prt("shade " + kBox + " " + e.cprt + " --light " + kLight + " -o " + dir + "/b.ply");
   INFO(a.output << b.output);
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
@@ -310,8 +311,7 @@ TEST_CASE("Bad engine glTF input is one line naming the file", "[pipeline][gltf]
   const float bad = 1e6f;
   std::memcpy(&bytes[28 + json_length + view.value("byteOffset", 0)], &bad, 4);
   write_file_atomically(dir + "/bad.glb", bytes);
-  const test::RunResult r = test::run_prt("shade " + dir + "/bad.glb " + dir + "/bad.glb --env " + std::string(PRT_SOURCE_DIR) +
-                                          "/assets/env/sunrise.exr -o " + dir + "/bad.ply");
+  const test::RunResult r = test::run_prt("shade " + dir + "/bad.glb " + dir + "/bad.glb --light " + kLight + " -o " + dir + "/bad.ply");
   CHECK(test::fails_in_one_line(r, dir + "/bad.glb: _PRT_CLUSTER: a value is not a cluster index"));
   CHECK(!std::filesystem::exists(dir + "/bad.ply"));
   // More than 16 attributes per primitive: refused, no file.
@@ -366,9 +366,23 @@ TEST_CASE("Per-texel engine glTF: KTX2 cluster and weights textures, read back a
     REQUIRE(back.weights.size() == cprt.weights.size());
     for (std::size_t i = 0; i < cprt.weights.size(); ++i)
       CHECK(std::fabs(back.weights[i] - cprt.weights[i]) <= std::ldexp(std::fabs(cprt.weights[i]), -11) + 1e-7f);
-    const std::string env = std::string(PRT_SOURCE_DIR) + "/assets/env/sunrise.exr";
-    REQUIRE(test::run_prt("shade " + out + ".glb " + out + ".glb --lightmap --env " + env + " -o " + out + "_a.exr").exit_code == 0);
-    REQUIRE(test::run_prt("shade " + source + " " + out + ".cprt --lightmap --env " + env + " -o " + out + "_b.exr").exit_code == 0);
+    REQUIRE(test::run_prt("shade " + out + ".glb " + out + ".glb --lightmap --light " + kLight + " -o " + out + "_a.exr").exit_code == 0);
+    REQUIRE(test::run_prt("shade " + source + " " + out + ".cprt --lightmap --light " + kLight + " -o " + out + "_b.exr").exit_code == 0);
     CHECK(test::compare_rel_rms(out + "_a.exr", out + "_b.exr") < 1e-3);
   }
+}
+
+TEST_CASE("The engine glTF is byte-identical for any thread count", "[pipeline][gltf][cli]") {
+  const std::string dir = test::fresh_temp_dir("engine_gltf_threads");
+  std::string bytes[2];
+  for (int threads : {1, 3}) {
+    const std::string out = dir + "/t" + std::to_string(threads);
+    const test::RunResult r = test::run_prt("bake " + kBox + " --transfer interreflected --bands 3 --samples 32 --bounces 1 -q --threads " +
+                                            std::to_string(threads) + " -o " + out + ".prt --gltf " + out + ".glb");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    bytes[threads == 1 ? 0 : 1] = read_file(out + ".glb");
+  }
+  CHECK(bytes[0].size() > 1000);
+  CHECK(bytes[0] == bytes[1]);
 }
