@@ -45,17 +45,10 @@ void put_component(std::string& out, double v, int component_type) {
   }
 }
 
-// An image's MIME type: the document's, else from the bytes' signature (PNG, JPEG, KTX2, WebP), else
-// from the file name's extension.
+// An image's MIME type: the document's, else image_mime_type's.
 std::string mime_type(const json& image, const GltfImageBytes& bytes) {
   if (image.contains("mimeType") && image["mimeType"].is_string()) return image["mimeType"];
-  const std::string& b = bytes.bytes;
-  if (b.rfind("\x89PNG", 0) == 0) return "image/png";
-  if (b.rfind("\xFF\xD8", 0) == 0) return "image/jpeg";
-  if (b.rfind("\xABKTX 20", 0) == 0) return "image/ktx2";
-  if (b.size() > 12 && b.compare(8, 4, "WEBP") == 0) return "image/webp";
-  const std::string ext = lower_extension(bytes.hint);
-  return ext == ".jpg" || ext == ".jpeg" ? "image/jpeg" : "image/png";
+  return image_mime_type(bytes.bytes, bytes.hint);
 }
 
 json without_extensions(json object, const std::set<std::string>& names) {

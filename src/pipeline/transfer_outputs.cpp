@@ -52,7 +52,7 @@ void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData trans
   if (!o.gltf_path.empty()) {
     gltf_file = std::make_unique<AtomicFile>(o.gltf_path);
     write_staged(*gltf_file, [&](const std::string& path) {
-      write_engine_gltf(path, o.source_path, mesh, *model);
+      write_engine_gltf(path, o.source_path, mesh, *model, o.uv_generated);
     });
   }
   transfer_file.commit();

@@ -14,6 +14,7 @@ struct TransferOutputs {
   std::string transfer_path;  ///< .prt, or .cprt when clusters > 0; required
   std::string gltf_path;      ///< .glb of the mesh with its transfer; empty: none
   std::string source_path;    ///< the mesh file the mesh was loaded from (the glTF keeps its scene)
+  bool uv_generated = false;  ///< the lightmap UVs are not the source's (prt bake --uv): the glTF is the mesh as loaded
   bool float16 = false;       ///< store the transfer (or the compressed model) as IEEE float16
   int clusters = 0, pca = 0;  ///< > 0: compress with CPCA, `clusters` clusters of `pca` vectors each
   unsigned seed = 1;          ///< of the compression's initial clusters

@@ -386,3 +386,27 @@ TEST_CASE("The engine glTF is byte-identical for any thread count", "[pipeline][
   CHECK(bytes[0].size() > 1000);
   CHECK(bytes[0] == bytes[1]);
 }
+
+TEST_CASE("Per-texel engine glTF with generated lightmap UVs carries them as TEXCOORD_1", "[pipeline][gltf][cli][lightmap]") {
+  // BoxTextured's UVs leave [0, 1]: prt bake --uv auto generates lightmap UVs, which the export must carry
+  // (as the mesh loaded: one node, TEXCOORD_0 the base colour UVs with the embedded PNG, TEXCOORD_1 the
+  // generated ones), so that prt shade reads the .glb alone as mesh and transfer.
+  const std::string dir = test::fresh_temp_dir("engine_gltf_uv");
+  const std::string out = dir + "/box";
+  const test::RunResult r = test::run_prt("bake " + kBox + " --lightmap 32 --uv auto --transfer shadowed --bands 3 --samples 16 "
+                                          "--compress 4,2 -q -o " + out + ".cprt --gltf " + out + ".glb");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const Glb g = parse_glb(out + ".glb");
+  const json& p = g.doc["meshes"][0]["primitives"][0];
+  CHECK(p["extensions"]["PRT_transfer"]["texCoord"] == 1);
+  CHECK(p["attributes"].contains("TEXCOORD_1"));
+  CHECK(g.doc["images"][g.doc["textures"][0]["source"].get<int>()]["mimeType"] == "image/png");
+  const test::RunResult a = test::run_prt("shade " + out + ".glb " + out + ".glb --lightmap --light " + kLight + " -o " + out + "_a.exr");
+  INFO(a.output);
+  REQUIRE(a.exit_code == 0);
+  const compress::CompressedTransfer cprt = compress::read_cprt(out + ".cprt");
+  compress::TransferFile file = compress::open_transfer(out + ".glb");
+  CHECK(std::get<compress::CompressedTransfer>(file.contents).coverage == cprt.coverage);
+  CHECK(std::get<compress::CompressedTransfer>(file.contents).cluster == cprt.cluster);
+}
