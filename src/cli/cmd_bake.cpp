@@ -173,7 +173,9 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   if (!o.quiet)
     for (const std::string& line : report.uv_summary) std::fprintf(stderr, "%s: %s\n", o.mesh_path.c_str(), line.c_str());
   const transfer::Header header = data.header;
-  pipeline::write_transfer_outputs(mesh, std::move(data), out);
+  pipeline::TransferOutputs outputs = out;
+  outputs.uv_generated = uv_source.generated;  // the glTF then carries the generated UVs
+  pipeline::write_transfer_outputs(mesh, std::move(data), outputs);
   if (o.quiet) return;
   char what[256];
   std::snprintf(what, sizeof what,

@@ -42,6 +42,15 @@ int add_attribute_slice(glb::Builder& glb, const EngineAttribute& attribute, std
                         glb::accessor_type(attribute.components));
 }
 
+std::string image_mime_type(const std::string& b, const std::string& hint) {
+  if (b.rfind("\x89PNG", 0) == 0) return "image/png";
+  if (b.rfind("\xFF\xD8", 0) == 0) return "image/jpeg";
+  if (b.rfind("\xABKTX 20", 0) == 0) return "image/ktx2";
+  if (b.size() > 12 && b.compare(8, 4, "WEBP") == 0) return "image/webp";
+  const std::string ext = lower_extension(hint);
+  return ext == ".jpg" || ext == ".jpeg" ? "image/jpeg" : "image/png";
+}
+
 void check_attribute_count(const std::string& path, std::size_t count, const std::string& what) {
   if (count > std::size_t(kMaxVertexAttributes))
     fail_file(path, "cannot write glTF: " + what + " would have " + std::to_string(count) + " vertex attributes, more than " +
@@ -62,10 +71,10 @@ void write_engine_glb(const std::string& path, const std::string& source_path, c
   }
   if (extras.extension.empty() || !extras.root || !extras.primitive) fail_file(path, "cannot write glTF: no extension given");
   const std::string ext = lower_extension(source_path);
-  const bool gltf = ext == ".gltf" || ext == ".glb";
+  const bool gltf = (ext == ".gltf" || ext == ".glb") && !extras.as_loaded;
   if (gltf && mesh.source_primitives.empty()) fail_file(path, "cannot write glTF: the mesh does not say which glTF primitives it came from");
   write_file_atomically(path, gltf ? detail::engine_glb_from_gltf(path, source_path, mesh, extras)
-                                   : detail::engine_glb_from_mesh(path, mesh, extras));
+                                   : detail::engine_glb_from_mesh(path, source_path, mesh, extras));
 }
 
 struct GltfExtras::Model {
@@ -105,6 +114,14 @@ std::vector<float> GltfExtras::vertex_attribute(const Mesh& mesh, const std::str
     out.insert(out.end(), values.begin(), values.end());
   }
   return out;
+}
+
+std::string GltfExtras::image(int index, const std::string& what) const {
+  std::string bytes;
+  if (index < 0 || std::size_t(index) >= model_->model.images.size() ||
+      !detail::gltf_image_bytes(model_->model, model_->images, index, &bytes))
+    fail_file(path_, what + ": image " + std::to_string(index) + " does not exist or has no data");
+  return bytes;
 }
 
 }  // namespace prt::mesh

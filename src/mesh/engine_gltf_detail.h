@@ -18,6 +18,10 @@ int add_attribute_slice(glb::Builder& glb, const EngineAttribute& attribute, std
 /// The values of the loaded vertices `vertices` (in that order) of `attribute` as an ARRAY_BUFFER accessor.
 int add_attribute_gather(glb::Builder& glb, const EngineAttribute& attribute, const std::vector<std::uint32_t>& vertices);
 
+/// An image file's MIME type from its bytes' signature (PNG, JPEG, KTX2, WebP), else from the extension
+/// of `hint` (a file name or uri): image/jpeg for .jpg/.jpeg, else image/png.
+std::string image_mime_type(const std::string& bytes, const std::string& hint);
+
 /// Throws prt::Error("<path>: cannot write glTF: <what> would have N vertex attributes, more than 16").
 void check_attribute_count(const std::string& path, std::size_t count, const std::string& what);
 
@@ -25,7 +29,7 @@ void check_attribute_count(const std::string& path, std::size_t count, const std
 std::string engine_glb_from_gltf(const std::string& path, const std::string& source, const Mesh& mesh,
                                  const EngineExtras& extras);
 
-/// The GLB bytes of write_engine_glb for an OBJ or PLY source (engine_plain_writer.cpp).
-std::string engine_glb_from_mesh(const std::string& path, const Mesh& mesh, const EngineExtras& extras);
+/// The GLB bytes of write_engine_glb for a mesh as loaded from `source` (engine_plain_writer.cpp).
+std::string engine_glb_from_mesh(const std::string& path, const std::string& source, const Mesh& mesh, const EngineExtras& extras);
 
 }  // namespace prt::mesh::detail

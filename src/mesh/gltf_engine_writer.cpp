@@ -45,17 +45,10 @@ void put_component(std::string& out, double v, int component_type) {
   }
 }
 
-// An image's MIME type: the document's, else from the bytes' signature (PNG, JPEG, KTX2, WebP), else
-// from the file name's extension.
+// An image's MIME type: the document's, else image_mime_type's.
 std::string mime_type(const json& image, const GltfImageBytes& bytes) {
   if (image.contains("mimeType") && image["mimeType"].is_string()) return image["mimeType"];
-  const std::string& b = bytes.bytes;
-  if (b.rfind("\x89PNG", 0) == 0) return "image/png";
-  if (b.rfind("\xFF\xD8", 0) == 0) return "image/jpeg";
-  if (b.rfind("\xABKTX 20", 0) == 0) return "image/ktx2";
-  if (b.size() > 12 && b.compare(8, 4, "WEBP") == 0) return "image/webp";
-  const std::string ext = lower_extension(bytes.hint);
-  return ext == ".jpg" || ext == ".jpeg" ? "image/jpeg" : "image/png";
+  return image_mime_type(bytes.bytes, bytes.hint);
 }
 
 json without_extensions(json object, const std::set<std::string>& names) {
@@ -81,14 +74,14 @@ class SourceWriter {
     out["asset"]["generator"] = "prt";
     for (const char* key : {"scene", "scenes", "cameras", "materials", "textures", "samplers", "extras"})
       if (doc_.contains(key)) out[key] = doc_[key];
-    out["nodes"] = nodes();
-    out["meshes"] = meshes();
-    json images = source_images();
+    json images = source_images();  // before the primitives, whose extension names the added images
     for (const GlbImage& image : extras_.images) {
       added_.images.push_back(int(images.size()));
       images.push_back({{"bufferView", glb_.add_view(image.bytes)}, {"mimeType", image.mime_type}});
     }
     if (!images.empty()) out["images"] = images;
+    out["nodes"] = nodes();
+    out["meshes"] = meshes();
     finish_extensions(&out);
     out["bufferViews"] = glb_.buffer_views;
     out["accessors"] = glb_.accessors;

@@ -42,9 +42,8 @@ void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData trans
   if (transfer::is_glossy(transfer.header.kind) && !o.gltf_path.empty())
     fail_file(o.gltf_path, "glTF export of glossy transfer matrices is not supported; use the .prt file");
   if (o.float16) transfer.header.scalar = transfer::Scalar::float16;
-  const bool vertex_gltf = !o.gltf_path.empty() && !transfer.header.is_texel();
   std::unique_ptr<compress::CompressedTransfer> model;
-  if (o.clusters > 0 || vertex_gltf) model = std::make_unique<compress::CompressedTransfer>(compressed_model(transfer, o));
+  if (o.clusters > 0 || !o.gltf_path.empty()) model = std::make_unique<compress::CompressedTransfer>(compressed_model(transfer, o));
   AtomicFile transfer_file(o.transfer_path);
   write_staged(transfer_file, [&](const std::string& path) {
     if (o.clusters == 0) return transfer::write_transfer(path, transfer);
@@ -54,8 +53,7 @@ void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData trans
   if (!o.gltf_path.empty()) {
     gltf_file = std::make_unique<AtomicFile>(o.gltf_path);
     write_staged(*gltf_file, [&](const std::string& path) {
-      if (transfer.header.is_texel()) return write_lightmap_glb(path, mesh, transfer);
-      write_engine_gltf(path, o.source_path, mesh, *model);
+      write_engine_gltf(path, o.source_path, mesh, *model, o.uv_generated);
     });
   }
   transfer_file.commit();

@@ -1,7 +1,7 @@
 #pragma once
 // The files a bake writes (docs/formats.md): its transfer as a .prt file, or clustered-PCA compressed as
-// a .cprt file, and optionally the mesh with the transfer as a glTF binary (per vertex: vertex
-// attributes; per texel: KTX2 float16 textures). What `prt bake` runs after bake::bake or
+// a .cprt file, and optionally the engine glTF (the source scene with the transfer's CPCA model: per
+// vertex in vertex attributes, per texel in KTX2 float16 textures). What `prt bake` runs after bake::bake or
 // lightmap::bake_lightmap.
 #include <string>
 
@@ -15,6 +15,7 @@ struct TransferOutputs {
   std::string transfer_path;  ///< .prt, or .cprt when clusters > 0; required
   std::string gltf_path;      ///< .glb of the mesh with its transfer; empty: none
   std::string source_path;    ///< the mesh file the mesh was loaded from (the glTF keeps its scene)
+  bool uv_generated = false;  ///< the lightmap UVs are not the source's (prt bake --uv): the glTF is the mesh as loaded
   bool float16 = false;       ///< store the transfer (or the compressed model) as IEEE float16
   int clusters = 0, pca = 0;  ///< > 0: compress with CPCA, `clusters` clusters of `pca` vectors each
   unsigned seed = 1;          ///< of the compression's initial clusters
@@ -24,9 +25,9 @@ struct TransferOutputs {
 
 /// Writes `transfer` (baked for `mesh`) to the outputs, each through its temporary, and commits them
 /// together: a failing second output leaves no first one. The compression runs in the shaded metric
-/// with no lighting, as `prt compress` without --env does. Glossy transfer has no glTF form. A per-vertex
-/// glTF is the engine glTF (engine_export.h) of `source_path` with the .cprt's model, or without
-/// --compress a model of the export's default settings.
+/// with no lighting, as `prt compress` without --env does. Glossy transfer has no glTF form. The glTF is
+/// the engine glTF (engine_export.h, per vertex or per texel) of `source_path` with the .cprt's model,
+/// or without --compress a model of the export's default settings.
 /// Throws prt::Error naming the file, or OptionError for clusters or pca out of range.
 void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData transfer, const TransferOutputs& outputs);
 

@@ -4,9 +4,15 @@
 // with the same node, material and texture counts, the same meshes at the same world matrices, and every
 // primitive of the export with at most 16 vertex attributes (WebGL2's MAX_VERTEX_ATTRIBS), its
 // _PRT_CLUSTER values integers in [0, K) and its weights attributes as many as the model's terms need.
+// A per-texel export (prt bake --lightmap --gltf) carries no vertex attributes but KTX2 textures, read
+// here with ktx-parse: RGBA16F of the stated size, the cluster texture's R an integer in [0, K) and G a
+// coverage code (0, 1, 2), the weights texture an array of ceil(N / 4) layers; the validator's only
+// warnings are about the KTX2 images it does not know (it predates KHR_texture_basisu).
 // Usage: node test_engine_gltf.mjs --pairs OUT.glb=SOURCE.glb[,OUT2.glb=SOURCE2.glb...]
 import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
+import { dirname, join } from 'node:path';
+import { read as readKtx } from 'ktx-parse';
 import { Checker, argument } from './common.mjs';
 
 const require = createRequire(import.meta.url);
@@ -14,12 +20,20 @@ const validator = require('gltf-validator');
 // GLTFLoader decodes images with createImageBitmap; node has none, and this test does not need pixels.
 globalThis.self = globalThis;
 globalThis.createImageBitmap = async () => ({ width: 1, height: 1, close() {} });
+globalThis.ProgressEvent ??= class extends Event { constructor(type, init = {}) { super(type); Object.assign(this, init); } };
 const { GLTFLoader } = await import('three/examples/jsm/loaders/GLTFLoader.js');
 const check = new Checker('engines_engine_gltf');
 
+// A .glb, or a .gltf with its external buffers and images inlined as data: URIs (node has no file URLs for three).
 async function load(path) {
   const b = readFileSync(path);
-  return new GLTFLoader().parseAsync(b.buffer.slice(b.byteOffset, b.byteOffset + b.length), '');
+  if (!path.endsWith('.gltf')) return new GLTFLoader().parseAsync(b.buffer.slice(b.byteOffset, b.byteOffset + b.length), '');
+  const doc = JSON.parse(b.toString('utf8'));
+  for (const list of ['buffers', 'images'])
+    for (const item of doc[list] || [])
+      if (item.uri && !item.uri.startsWith('data:'))
+        item.uri = `data:application/octet-stream;base64,${readFileSync(join(dirname(path), decodeURIComponent(item.uri))).toString('base64')}`;
+  return new GLTFLoader().parseAsync(JSON.stringify(doc), '');
 }
 
 async function summary(gltf) {
@@ -34,11 +48,51 @@ async function summary(gltf) {
   };
 }
 
+// IEEE binary16 to a number.
+function half(bits) {
+  const sign = bits & 0x8000 ? -1 : 1, exponent = (bits >> 10) & 0x1f, fraction = bits & 0x3ff;
+  if (exponent === 0) return sign * fraction * 2 ** -24;
+  if (exponent === 31) return fraction ? NaN : sign * Infinity;
+  return sign * (1 + fraction / 1024) * 2 ** (exponent - 15);
+}
+
+// The texel textures of a per-texel export, by the GLB layout and formats.md.
+function checkTexels(out, bytes, model) {
+  const jsonLength = bytes.readUInt32LE(12);
+  const doc = JSON.parse(bytes.toString('utf8', 20, 20 + jsonLength));
+  const bin = bytes.subarray(20 + jsonLength + 8);
+  const ktx = (image) => {
+    const view = doc.bufferViews[doc.images[image].bufferView];
+    return readKtx(new Uint8Array(bin.buffer, bin.byteOffset + (view.byteOffset || 0), view.byteLength));
+  };
+  for (const mesh of doc.meshes)
+    for (const p of mesh.primitives) {
+      const ext = p.extensions.PRT_transfer;
+      check.check(`${out}: TEXCOORD_${ext.texCoord} present`, `TEXCOORD_${ext.texCoord}` in p.attributes);
+      const cluster = ktx(ext.cluster);
+      check.check(`${out}: cluster texture RGBA16F ${ext.width}x${ext.height}`, cluster.vkFormat === 97 && cluster.pixelWidth === ext.width &&
+                  cluster.pixelHeight === ext.height && cluster.layerCount === 0);
+      const data = new DataView(cluster.levels[0].levelData.buffer, cluster.levels[0].levelData.byteOffset);
+      let ok = true, covered = 0;
+      for (let t = 0; t < ext.width * ext.height; t++) {
+        const k = half(data.getUint16(8 * t, true)), code = half(data.getUint16(8 * t + 2, true));
+        ok &&= Number.isInteger(k) && k >= 0 && k < model.clusters && [0, 1, 2].includes(code) && (code > 0 || k === 0);
+        if (code > 0) covered++;
+      }
+      check.check(`${out}: cluster texels are cluster indices and coverage codes`, ok && covered > 0, `${covered} covered`);
+      const weights = ktx(ext.weights);
+      check.check(`${out}: weights texture a 2D array of ceil(N / 4) layers`, weights.vkFormat === 97 && weights.pixelWidth === ext.width &&
+                  weights.layerCount === Math.ceil(model.terms / 4));
+    }
+}
+
 async function checkPair(out, source) {
   const bytes = readFileSync(out);
   const report = await validator.validateBytes(new Uint8Array(bytes), { uri: out, maxIssues: 200 });
   check.check(`${out}: 0 validator errors`, report.issues.numErrors === 0,
               report.issues.messages.filter((m) => m.severity === 0).slice(0, 5).map((m) => `${m.code} ${m.pointer || ''} ${m.message}`).join('; '));
+  const known = (m) => /^\/images\/\d+(\/mimeType)?$/.test(m.pointer || '') && ['VALUE_NOT_IN_LIST', 'IMAGE_UNRECOGNIZED_FORMAT'].includes(m.code);
+  check.check(`${out}: warnings only about KTX2 images`, report.issues.messages.filter((m) => m.severity === 1).every(known));
   console.log(`${out}: ${report.issues.numErrors} errors, ${report.issues.numWarnings} warnings, ${report.issues.numInfos} infos`);
 
   const [a, b] = [await load(out), await load(source)];
@@ -47,6 +101,8 @@ async function checkPair(out, source) {
     check.check(`${out}: ${key} as in the source`, s[key] === t[key], `${s[key]} vs ${t[key]}`);
   check.check(`${out}: as many meshes drawn as in the source`, s.meshes.length === t.meshes.length, `${s.meshes.length} vs ${t.meshes.length}`);
   const model = a.parser.json.extensions.PRT_transfer.models[0];
+  const texel = a.parser.json.meshes.some((m) => m.primitives.some((p) => 'cluster' in ((p.extensions || {}).PRT_transfer || {})));
+  if (texel) checkTexels(out, bytes, model);
   s.meshes.forEach((mesh, i) => {
     const other = t.meshes[i];
     if (!other) return;
@@ -56,6 +112,7 @@ async function checkPair(out, source) {
                 mesh.geometry.attributes.position.count === other.geometry.attributes.position.count);
     const names = Object.keys(mesh.geometry.attributes);
     check.check(`${out}: mesh ${i} has at most 16 attributes`, names.length <= 16, names.join(' '));
+    if (texel) return;
     const cluster = mesh.geometry.attributes._prt_cluster;
     check.check(`${out}: mesh ${i} has _PRT_CLUSTER`, !!cluster);
     if (cluster)

@@ -37,6 +37,8 @@ namespace {
 
 const std::string kBox = std::string(PRT_SOURCE_DIR) + "/tests/data/BoxTextured/BoxTextured.glb";
 const std::string kDraco = std::string(PRT_SOURCE_DIR) + "/tests/data/gltf/box_textured_draco.glb";
+// SH lighting (prt light of sunrise.exr, 5 bands).
+const std::string kLight = std::string(PRT_SOURCE_DIR) + "/tests/data/golden_light_sunrise_b5.json";
 const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
 // A GLB as formats.md and the glTF spec lay it out: JSON chunk, BIN chunk.
@@ -251,9 +253,8 @@ TEST_CASE("Engine glTF of 2CylinderEngine: instanced meshes get a copy per baked
 TEST_CASE("prt shade reads the engine glTF as mesh and transfer: the same bytes as from the .cprt", "[pipeline][gltf][cli]") {
   const std::string dir = test::fresh_temp_dir("engine_gltf_shade");
   const Export e = bake(kBox, dir, "box");
-  const std::string env = std::string(PRT_SOURCE_DIR) + "/assets/env/sunrise.exr";
-  const test::RunResult a = test::run_prt("shade " + e.glb + " " + e.glb + " --env " + env + " -o " + dir + "/a.ply");
-  const test::RunResult b = test::run_prt("shade " + kBox + " " + e.cprt + " --env " + env + " -o " + dir + "/b.ply");
+  const test::RunResult a = test::run_prt("shade " + e.glb + " " + e.glb + " --light " + kLight + " -o " + dir + "/a.ply");
+  const test::RunResult b = test::run_prt("shade " + kBox + " " + e.cprt + " --light " + kLight + " -o " + dir + "/b.ply");
   INFO(a.output << b.output);
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
@@ -310,8 +311,7 @@ TEST_CASE("Bad engine glTF input is one line naming the file", "[pipeline][gltf]
   const float bad = 1e6f;
   std::memcpy(&bytes[28 + json_length + view.value("byteOffset", 0)], &bad, 4);
   write_file_atomically(dir + "/bad.glb", bytes);
-  const test::RunResult r = test::run_prt("shade " + dir + "/bad.glb " + dir + "/bad.glb --env " + std::string(PRT_SOURCE_DIR) +
-                                          "/assets/env/sunrise.exr -o " + dir + "/bad.ply");
+  const test::RunResult r = test::run_prt("shade " + dir + "/bad.glb " + dir + "/bad.glb --light " + kLight + " -o " + dir + "/bad.ply");
   CHECK(test::fails_in_one_line(r, dir + "/bad.glb: _PRT_CLUSTER: a value is not a cluster index"));
   CHECK(!std::filesystem::exists(dir + "/bad.ply"));
   // More than 16 attributes per primitive: refused, no file.
@@ -326,4 +326,87 @@ TEST_CASE("Bad engine glTF input is one line naming the file", "[pipeline][gltf]
   extras.attributes.pop_back();  // 16 (POSITION, NORMAL, TEXCOORD_0 and 13) is allowed
   mesh::write_engine_glb(dir + "/sixteen.glb", kBox, box, extras);
   CHECK(parse_glb(dir + "/sixteen.glb").doc["meshes"][0]["primitives"][0]["attributes"].size() == 16);
+}
+
+TEST_CASE("Per-texel engine glTF: KTX2 cluster and weights textures, read back as the .cprt's model", "[pipeline][gltf][cli][lightmap]") {
+  const std::string dir = test::fresh_temp_dir("engine_gltf_texel");
+  // An OBJ floor and wall with one UV chart each (vt in [0, 1], no overlaps), and, when installed,
+  // Khronos's BoxTexcoords (TEXCOORD_1 as the lightmap set).
+  write_file_atomically(dir + "/lm.obj",
+                        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 0 -1\nv 1 0 -1\nv 1 1 -1\nv -1 1 -1\n"
+                        "vt 0.05 0.05\nvt 0.45 0.05\nvt 0.45 0.45\nvt 0.05 0.45\nvt 0.55 0.55\nvt 0.95 0.55\nvt 0.95 0.95\nvt 0.55 0.95\n"
+                        "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nf 5/5 6/6 7/7\nf 5/5 7/7 8/8\n");
+  std::vector<std::string> sources{dir + "/lm.obj"};
+  const std::string texcoords = "/usr/share/assimp/models/glTF2/BoxTexcoords-glTF/boxTexcoords.gltf";
+  if (std::filesystem::exists(texcoords)) sources.push_back(texcoords);
+  for (const std::string& source : sources) {
+    INFO(source);
+    const std::string out = dir + "/" + std::filesystem::path(source).stem().string();
+    const test::RunResult r = test::run_prt("bake " + source + " --lightmap 16 --transfer interreflected --bands 3 --samples 32 "
+                                            "--bounces 1 --compress 6,4 -q -o " + out + ".cprt --gltf " + out + ".glb");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    const Glb g = parse_glb(out + ".glb");
+    for (const json& mesh : g.doc["meshes"])
+      for (const json& p : mesh["primitives"]) {
+        const json& ext = p["extensions"]["PRT_transfer"];
+        CHECK(ext["width"] == 16);
+        CHECK(p["attributes"].contains("TEXCOORD_" + std::to_string(ext["texCoord"].get<int>())));
+        CHECK(p["attributes"].size() <= 16);
+        CHECK(g.doc["images"][ext["cluster"].get<int>()]["mimeType"] == "image/ktx2");
+      }
+    // prt's reader against the .cprt: the same points, clusters and means; weights to float16 rounding.
+    const compress::CompressedTransfer cprt = compress::read_cprt(out + ".cprt");
+    compress::TransferFile file = compress::open_transfer(out + ".glb");
+    const auto& back = std::get<compress::CompressedTransfer>(file.contents);
+    CHECK(back.coverage == cprt.coverage);
+    CHECK(back.cluster == cprt.cluster);
+    CHECK(back.means == cprt.means);
+    CHECK(back.bases == cprt.bases);
+    REQUIRE(back.weights.size() == cprt.weights.size());
+    for (std::size_t i = 0; i < cprt.weights.size(); ++i)
+      CHECK(std::fabs(back.weights[i] - cprt.weights[i]) <= std::ldexp(std::fabs(cprt.weights[i]), -11) + 1e-7f);
+    REQUIRE(test::run_prt("shade " + out + ".glb " + out + ".glb --lightmap --light " + kLight + " -o " + out + "_a.exr").exit_code == 0);
+    REQUIRE(test::run_prt("shade " + source + " " + out + ".cprt --lightmap --light " + kLight + " -o " + out + "_b.exr").exit_code == 0);
+    CHECK(test::compare_rel_rms(out + "_a.exr", out + "_b.exr") < 1e-3);
+  }
+}
+
+TEST_CASE("The engine glTF is byte-identical for any thread count", "[pipeline][gltf][cli]") {
+  const std::string dir = test::fresh_temp_dir("engine_gltf_threads");
+  std::string bytes[2];
+  for (int threads : {1, 3}) {
+    const std::string out = dir + "/t" + std::to_string(threads);
+    const test::RunResult r = test::run_prt("bake " + kBox + " --transfer interreflected --bands 3 --samples 32 --bounces 1 -q --threads " +
+                                            std::to_string(threads) + " -o " + out + ".prt --gltf " + out + ".glb");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    bytes[threads == 1 ? 0 : 1] = read_file(out + ".glb");
+  }
+  CHECK(bytes[0].size() > 1000);
+  CHECK(bytes[0] == bytes[1]);
+}
+
+TEST_CASE("Per-texel engine glTF with generated lightmap UVs carries them as TEXCOORD_1", "[pipeline][gltf][cli][lightmap]") {
+  // BoxTextured's UVs leave [0, 1]: prt bake --uv auto generates lightmap UVs, which the export must carry
+  // (as the mesh loaded: one node, TEXCOORD_0 the base colour UVs with the embedded PNG, TEXCOORD_1 the
+  // generated ones), so that prt shade reads the .glb alone as mesh and transfer.
+  const std::string dir = test::fresh_temp_dir("engine_gltf_uv");
+  const std::string out = dir + "/box";
+  const test::RunResult r = test::run_prt("bake " + kBox + " --lightmap 32 --uv auto --transfer shadowed --bands 3 --samples 16 "
+                                          "--compress 4,2 -q -o " + out + ".cprt --gltf " + out + ".glb");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const Glb g = parse_glb(out + ".glb");
+  const json& p = g.doc["meshes"][0]["primitives"][0];
+  CHECK(p["extensions"]["PRT_transfer"]["texCoord"] == 1);
+  CHECK(p["attributes"].contains("TEXCOORD_1"));
+  CHECK(g.doc["images"][g.doc["textures"][0]["source"].get<int>()]["mimeType"] == "image/png");
+  const test::RunResult a = test::run_prt("shade " + out + ".glb " + out + ".glb --lightmap --light " + kLight + " -o " + out + "_a.exr");
+  INFO(a.output);
+  REQUIRE(a.exit_code == 0);
+  const compress::CompressedTransfer cprt = compress::read_cprt(out + ".cprt");
+  compress::TransferFile file = compress::open_transfer(out + ".glb");
+  CHECK(std::get<compress::CompressedTransfer>(file.contents).coverage == cprt.coverage);
+  CHECK(std::get<compress::CompressedTransfer>(file.contents).cluster == cprt.cluster);
 }
