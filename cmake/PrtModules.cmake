@@ -7,7 +7,7 @@
 # lists every module after the modules it depends on (checked below): the order in which the build adds
 # them and prtConfig.cmake loads them.
 
-set(PRT_MODULES core dist image light mesh trace camera transfer brdf shade bake lightmap compress pipeline
+set(PRT_MODULES core dist image light mesh unwrap trace camera transfer brdf shade bake lightmap compress pipeline
     reference render probes)
 
 set(PRT_MODULE_DEPS_core "")
@@ -15,15 +15,16 @@ set(PRT_MODULE_DEPS_dist core)
 set(PRT_MODULE_DEPS_image core)
 set(PRT_MODULE_DEPS_light core image)
 set(PRT_MODULE_DEPS_mesh core image)
+set(PRT_MODULE_DEPS_unwrap core mesh)
 set(PRT_MODULE_DEPS_trace core mesh)
 set(PRT_MODULE_DEPS_camera core mesh)
 set(PRT_MODULE_DEPS_transfer core)
 set(PRT_MODULE_DEPS_shade core transfer brdf light mesh trace)
 set(PRT_MODULE_DEPS_brdf core)
 set(PRT_MODULE_DEPS_bake core dist mesh transfer brdf trace)
-set(PRT_MODULE_DEPS_lightmap core mesh transfer bake trace shade light image)
-set(PRT_MODULE_DEPS_compress core transfer brdf shade light)
-set(PRT_MODULE_DEPS_pipeline core mesh transfer bake compress)
+set(PRT_MODULE_DEPS_lightmap core mesh transfer bake trace shade light image unwrap)
+set(PRT_MODULE_DEPS_compress core transfer brdf shade light mesh)
+set(PRT_MODULE_DEPS_pipeline core mesh transfer bake compress shade)
 set(PRT_MODULE_DEPS_reference core dist mesh trace light camera image brdf)
 set(PRT_MODULE_DEPS_render core camera image light mesh transfer brdf shade compress)
 set(PRT_MODULE_DEPS_probes core dist mesh light trace bake transfer image)
@@ -45,6 +46,7 @@ set(PRT_MODULE_PACKAGES_dist "")          # MPI, when PRT_WITH_MPI (prt_find_mod
 set(PRT_MODULE_PACKAGES_image "")         # OpenImageIO only in the dlopen()ed backend module
 set(PRT_MODULE_PACKAGES_light nlohmann_json)
 set(PRT_MODULE_PACKAGES_mesh tinyobjloader TinyGLTF nlohmann_json draco meshoptimizer)
+set(PRT_MODULE_PACKAGES_unwrap Eigen3)
 set(PRT_MODULE_PACKAGES_trace embree)
 set(PRT_MODULE_PACKAGES_camera "")
 set(PRT_MODULE_PACKAGES_transfer "")

@@ -15,6 +15,7 @@
 #include "core/memory_check.h"
 #include "core/stopwatch.h"
 #include "lightmap/texel_bake.h"
+#include "lightmap/uv_source.h"
 #include "mesh/mesh.h"
 #include "pipeline/transfer_outputs.h"
 #include "transfer/transfer_file.h"
@@ -46,6 +47,7 @@ struct BakeCommandOptions {
   bool no_repair = false;
   bool denoise = false;  // --lightmap: filter the texel transfer (lightmap/denoise.h)
   bool stitch = false;   // --lightmap: stitch the seams (lightmap/seams.h)
+  std::string uv = "file";  // --lightmap: file | auto | generate (lightmap/uv_source.h)
 };
 
 // Everything of the command line that changes the output (dist: every rank must bake the same job).
@@ -55,7 +57,8 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
          " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," + exact(b.albedo.b) + " seed " +
          std::to_string(b.seed) + " footprint " + mesh::footprint_name(b.footprint) + " brdf " + (b.brdf_from_mesh ? "mesh" : b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
          std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty()) +
-         " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair) + " denoise " + std::to_string(o.denoise) + " stitch " + std::to_string(o.stitch);
+         " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair) + " uv " + o.uv +
+         " denoise " + std::to_string(o.denoise) + " stitch " + std::to_string(o.stitch);
 }
 
 // Bytes a per-vertex bake of `vertices` needs at most: the sample set's basis (samples x bands^2
@@ -136,15 +139,26 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap.stitch = o.stitch;
   lightmap.mesh_path = o.mesh_path;
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path});
+  const lightmap::UvMode uv_mode = lightmap::parse_uv_mode(o.uv);
   mesh::LoadReport load_report;
-  const mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
+  mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
+  lightmap::UvSourceReport uv_source;
+  lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, options.threads, &uv_source);
+  if (uv_source.generated && !o.quiet && job().is_root())
+    std::fprintf(stderr,
+                 "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; shade and render with "
+                 "a mesh that carries them (the --gltf output, or prt unwrap's)\n",
+                 o.mesh_path.c_str(), uv_source.reason.c_str(), uv_source.unwrap.charts, 100.0 * uv_source.unwrap.fill,
+                 uv_source.unwrap.seconds);
   lightmap::check_lightmap(mesh, options, lightmap);
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   lightmap::LightmapReport report;
   transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report);
   if (!job().is_root()) return;  // only rank 0 holds the whole result
+  if (!o.quiet)
+    for (const std::string& line : report.uv_summary) std::fprintf(stderr, "%s: %s\n", o.mesh_path.c_str(), line.c_str());
   const transfer::Header header = data.header;
   pipeline::write_transfer_outputs(mesh, std::move(data), out);
   if (o.quiet) return;
@@ -190,6 +204,7 @@ void run_bake(const BakeCommandOptions& o) {
   pipeline::TransferOutputs out;
   out.transfer_path = o.output;
   out.gltf_path = o.gltf_output;
+  out.source_path = o.mesh_path;
   out.float16 = o.float16;
   out.seed = o.seed;
   out.threads = o.threads;
@@ -230,13 +245,17 @@ void add_bake_command(CLI::App& app) {
                        "stands for: no dark vertex under a fold or where objects touch), or the vertex itself (as prt reference per vertex)");
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores); output does not depend on it")
       ->capture_default_str();
-  cmd->add_option("--gltf", options->gltf_output, "Also write the mesh as .glb with the transfer as _PRT_T* vertex attributes");
+  cmd->add_option("--gltf", options->gltf_output, "Also write the engine glTF (.glb): the source scene as authored with the transfer (per vertex: clustered PCA, the PRT_transfer extension; per texel: KTX2 textures)");
   cmd->add_flag("--float16", options->float16, "Store the transfer as IEEE float16");
   cmd->add_option("--compress", options->compress,
                   "K,N: compress with clustered PCA (K clusters, N PCA vectors; see prt compress) and write -o as a .cprt file (per vertex or, with --lightmap, per texel)");
   cmd->add_option("--lightmap", options->lightmap,
                   "WxH or SIZE: bake transfer per texel of the mesh's lightmap UVs (glTF TEXCOORD_1, else TEXCOORD_0; OBJ vt) "
                   "instead of per vertex (diffuse kinds)");
+  cmd->add_option("--uv", options->uv,
+                  "--lightmap: which lightmap UVs: file (the file's, refused beyond a few defects), auto (the file's when usable, "
+                  "else generated as by prt unwrap) or generate")
+      ->capture_default_str();
   cmd->add_option("--gutter", options->gutter, "--lightmap: gutter (chart dilation) in texels, 0..64")->capture_default_str();
   cmd->add_flag("--no-sample-repair", options->no_repair,
                 "--lightmap: keep texel samples that lie inside geometry where they are (default: move them out)");

@@ -46,8 +46,10 @@ void run_shade(const ShadeCommandOptions& o) {
   if (!o.lightmap && !glb && !has_extension(o.output, ".ply")) fail_file(o.output, "output must be .ply or .glb");
   check_outputs({o.output}, {o.mesh_path, o.transfer_path, o.env, o.light, o.brdf});
   const glm::dvec3 angles = o.rotate.empty() ? glm::dvec3(0.0) : parse_angles(o.rotate, "--rotate");
-  const mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, {o.scene, true});
-  const transfer::TransferData transfer = compress::expand(compress::open_transfer(o.transfer_path));  // .prt or .cprt
+  mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, {o.scene, true});
+  compress::TransferFile file = compress::open_transfer(o.transfer_path);  // .prt, .cprt or an engine glTF
+  if (file.header().mesh_fingerprint == mesh::fingerprint(mesh)) compress::use_baked_albedo(file, &mesh);
+  const transfer::TransferData transfer = compress::expand(std::move(file));
   if (transfer.header.is_texel() != o.lightmap)
     fail_file(o.transfer_path, o.lightmap ? "--lightmap needs a lightmap (bake it with prt bake --lightmap WxH)"
                                           : "is a lightmap: shade it with --lightmap -o OUT.exr");

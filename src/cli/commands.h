@@ -14,6 +14,7 @@ void add_brdf_command(CLI::App& app);
 void add_probes_command(CLI::App& app);
 void add_probes_relight_command(CLI::App& app);
 void add_compress_command(CLI::App& app);
+void add_unwrap_command(CLI::App& app);
 // Built only with PRT_BUILD_GL (main.cpp registers them when PRT_WITH_GL is defined).
 void add_render_command(CLI::App& app);
 void add_view_command(CLI::App& app);

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   prt::cli::add_probes_command(app);
   prt::cli::add_probes_relight_command(app);
   prt::cli::add_compress_command(app);
+  prt::cli::add_unwrap_command(app);
 #ifdef PRT_WITH_GL
   prt::cli::add_render_command(app);
   prt::cli::add_view_command(app);

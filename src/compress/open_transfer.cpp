@@ -1,6 +1,7 @@
 #include "compress/open_transfer.h"
 
 #include "compress/cprt_file.h"
+#include "compress/gltf_transfer.h"
 
 namespace prt::compress {
 
@@ -16,9 +17,15 @@ TransferFile open_transfer(const std::string& path) {
   file.path = path;
   if (is_cprt_file(path))
     file.contents = read_cprt(path);
+  else if (is_glb_file(path))
+    file.contents = read_gltf_transfer(path, &file.baked_albedo);
   else
     file.contents = transfer::read_transfer(path);
   return file;
+}
+
+void use_baked_albedo(const TransferFile& file, mesh::Mesh* mesh) {
+  if (!file.baked_albedo.empty() && file.baked_albedo.size() == mesh->vertex_count()) mesh->albedo = file.baked_albedo;
 }
 
 transfer::TransferData expand(TransferFile file) {

@@ -175,7 +175,8 @@ TexelSample make_sample(const mesh::Mesh& mesh, const std::vector<glm::vec3>& al
 
 }  // namespace
 
-TexelSamples rasterize(const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo, int width, int height, int threads) {
+TexelSamples rasterize(const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo, int width, int height, int threads,
+                       const std::vector<std::uint8_t>* skip) {
   TexelSamples out;
   out.width = width;
   out.height = height;
@@ -184,6 +185,7 @@ TexelSamples rasterize(const mesh::Mesh& mesh, const std::vector<glm::vec3>& alb
   const int bands = (height + kRowsPerBand - 1) / kRowsPerBand;
   std::vector<std::vector<std::uint32_t>> band_triangles(static_cast<std::size_t>(bands));
   for (std::size_t t = 0; t < triangles; ++t) {
+    if (skip && (*skip)[t]) continue;
     if (uv_zero_area(mesh.lightmap_uv[3 * t], mesh.lightmap_uv[3 * t + 1], mesh.lightmap_uv[3 * t + 2])) continue;
     tris[t] = uv_triangle(mesh, t, width, height);
     if (tris[t].twice_area == 0.0) continue;

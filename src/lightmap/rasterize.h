@@ -50,8 +50,9 @@ struct TexelSamples {
 
 /// Rasterizes the triangles of `mesh` (which must have lightmap UVs) into a width x height grid
 /// (1..16384 each). `albedo` has one entry per vertex. Triangles whose UV triangle has zero area
-/// (uv_validation.h) are skipped; UVs outside [0, 1] are clamped to the grid. Deterministic, parallel
-/// over rows on `threads` threads (0 = all).
-TexelSamples rasterize(const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo, int width, int height, int threads = 0);
+/// (uv_validation.h) are skipped, and so are those `skip` (one per triangle, if given) marks 1; UVs
+/// outside [0, 1] are clamped to the grid. Deterministic, parallel over rows on `threads` threads (0 = all).
+TexelSamples rasterize(const mesh::Mesh& mesh, const std::vector<glm::vec3>& albedo, int width, int height, int threads = 0,
+                       const std::vector<std::uint8_t>* skip = nullptr);
 
 }  // namespace prt::lightmap

@@ -60,13 +60,14 @@ TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, co
   if (!report) report = &local;
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
   UvProblems problems = check_uvs(mesh);
+  if (problems.tiling()) fail_file(lightmap.mesh_path, problems.message(mesh));
+  const std::vector<std::uint8_t> skip = problems.skipped_triangles(mesh);
   auto start = std::chrono::steady_clock::now();
-  TexelSamples samples =
-      rasterize(mesh, albedo, lightmap.width, lightmap.height, threads);
+  TexelSamples samples = rasterize(mesh, albedo, lightmap.width, lightmap.height, threads, &skip);
   report->seconds_raster = seconds_since(start);
-  problems.overlapping_texels = samples.overlapping_texels;
-  problems.overlap_examples = samples.overlap_examples;
-  if (!problems.ok()) fail_file(lightmap.mesh_path, problems.message());
+  add_raster_checks(problems, samples);
+  if (problems.refused()) fail_file(lightmap.mesh_path, problems.message(mesh));
+  report->uv_summary = problems.summary(mesh);
   report->covered = samples.samples.size();
   if (lightmap.repair) {
     start = std::chrono::steady_clock::now();

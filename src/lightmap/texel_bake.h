@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "bake/bake.h"
 #include "lightmap/denoise.h"
@@ -44,6 +45,7 @@ struct LightmapOptions {
 struct LightmapReport {
   std::size_t covered = 0, gutter = 0;     ///< texels of each kind
   std::size_t moved = 0, unrecoverable = 0;  ///< sample repair
+  std::vector<std::string> uv_summary;       ///< UV defects tolerated (UvProblems::summary), one line each
   bake::BakeReport bake;
   StitchReport stitch;
   double seconds_raster = 0.0, seconds_repair = 0.0, seconds_denoise = 0.0, seconds_stitch = 0.0;
@@ -62,7 +64,8 @@ void check_memory(const LightmapOptions& lightmap, const bake::BakeOptions& opti
                   std::uint64_t available_bytes = 0);
 
 /// The texel sample points of `mesh` for `lightmap`: UVs checked (prt::Error "lightmap UVs: ..."
-/// listing every problem; or "has no lightmap UVs (<reason>)"), rasterized with `albedo` (one per
+/// listing every problem when uv_validation.h refuses them, else their summary in report->uv_summary;
+/// or "has no lightmap UVs (<reason>)"), rasterized with `albedo` (one per
 /// vertex) and, if lightmap.repair, repaired against `scene` (built from `mesh`) with `seed`.
 /// `report` (optional) gets covered/moved/unrecoverable counts. The same points for the same mesh,
 /// size, repair flag and seed: `prt shade --lightmap` and `prt reference --texels` recompute them.

@@ -36,6 +36,12 @@ struct Builder {
   int add_view(const std::string& bytes);
 };
 
+/// Whether `name` is an application-specific attribute semantic: '_' then A-Z, 0-9, '_'.
+bool valid_semantic(const std::string& name);
+
+/// The glTF accessor type of 1..4 components: "SCALAR", "VEC2", "VEC3", "VEC4".
+const char* accessor_type(int components);
+
 /// Throws prt::Error("<path>: cannot write glTF: ...") unless the mesh has vertices and triangles,
 /// its indices are in range, its positions finite and its normals absent or one per vertex.
 void check_mesh(const std::string& path, const Mesh& mesh);

@@ -46,35 +46,33 @@ SplitMesh split_by_uv(const Mesh& mesh) {
 
 }  // namespace
 
-void write_glb_textured(const std::string& path, const Mesh& mesh, const std::vector<GlbImage>& images,
-                        const std::string& extension_name, const std::string& extension_json) {
+namespace {
+
+void check_lightmap_uv(const std::string& path, const Mesh& mesh) {
   glb::check_mesh(path, mesh);
   if (mesh.lightmap_uv.size() != mesh.indices.size()) fail_file(path, "cannot write glTF: the mesh has no lightmap UVs");
   for (const glm::vec2& uv : mesh.lightmap_uv)
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) fail_file(path, "cannot write glTF: a lightmap UV is not finite");
-  const nlohmann::json extension = nlohmann::json::parse(extension_json, nullptr, false);
-  if (!extension.is_object()) fail_file(path, "cannot write glTF: the " + extension_name + " extension is not a JSON object");
+}
 
+// The primitive of the split mesh: POSITION, NORMAL (if any), the lightmap UVs as `uv_attribute`, indices.
+nlohmann::json split_primitive(glb::Builder& glb, const Mesh& mesh, const char* uv_attribute) {
   const SplitMesh split = split_by_uv(mesh);
   Mesh out;
   out.positions.reserve(split.source.size());
   for (std::uint32_t v : split.source) out.positions.push_back(mesh.positions[v]);
   if (!mesh.normals.empty())
     for (std::uint32_t v : split.source) out.normals.push_back(mesh.normals[v]);
-
-  glb::Builder glb;
   nlohmann::json attributes = nlohmann::json::object();
   attributes["POSITION"] = glb.add_positions(out.positions);
   if (!out.normals.empty()) attributes["NORMAL"] = glb.add_floats(&out.normals[0].x, out.normals.size(), 3, "VEC3");
-  attributes["TEXCOORD_0"] = glb.add_floats(&split.uv[0].x, split.uv.size(), 2, "VEC2");
+  attributes[uv_attribute] = glb.add_floats(&split.uv[0].x, split.uv.size(), 2, "VEC2");
   const int indices = glb.add_indices(split.indices);
-  nlohmann::json gltf_images = nlohmann::json::array();
-  for (const GlbImage& image : images)
-    gltf_images.push_back({{"bufferView", glb.add_view(image.bytes)}, {"mimeType", image.mime_type}});
+  return {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
+}
 
-  nlohmann::json primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
-  primitive["extensions"][extension_name] = extension;
-  nlohmann::json document = {
+nlohmann::json one_mesh_document(const glb::Builder& glb, const nlohmann::json& primitive) {
+  return {
       {"asset", {{"version", "2.0"}, {"generator", "prt"}}},
       {"scene", 0},
       {"scenes", {{{"nodes", {0}}}}},
@@ -82,10 +80,34 @@ void write_glb_textured(const std::string& path, const Mesh& mesh, const std::ve
       {"meshes", {{{"primitives", {primitive}}}}},
       {"bufferViews", glb.buffer_views},
       {"accessors", glb.accessors},
-      {"extensionsUsed", {extension_name}},
   };
+}
+
+}  // namespace
+
+void write_glb_textured(const std::string& path, const Mesh& mesh, const std::vector<GlbImage>& images,
+                        const std::string& extension_name, const std::string& extension_json) {
+  check_lightmap_uv(path, mesh);
+  const nlohmann::json extension = nlohmann::json::parse(extension_json, nullptr, false);
+  if (!extension.is_object()) fail_file(path, "cannot write glTF: the " + extension_name + " extension is not a JSON object");
+
+  glb::Builder glb;
+  nlohmann::json primitive = split_primitive(glb, mesh, "TEXCOORD_0");
+  nlohmann::json gltf_images = nlohmann::json::array();
+  for (const GlbImage& image : images)
+    gltf_images.push_back({{"bufferView", glb.add_view(image.bytes)}, {"mimeType", image.mime_type}});
+  primitive["extensions"][extension_name] = extension;
+  nlohmann::json document = one_mesh_document(glb, primitive);
+  document["extensionsUsed"] = {extension_name};
   if (!gltf_images.empty()) document["images"] = gltf_images;
   write_file_atomically(path, glb::container(path, document, glb.bin));
+}
+
+void write_glb_lightmap_uv(const std::string& path, const Mesh& mesh) {
+  check_lightmap_uv(path, mesh);
+  glb::Builder glb;
+  const nlohmann::json primitive = split_primitive(glb, mesh, "TEXCOORD_1");
+  write_file_atomically(path, glb::container(path, one_mesh_document(glb, primitive), glb.bin));
 }
 
 }  // namespace prt::mesh

@@ -36,6 +36,10 @@ std::vector<glm::vec3> tone_mapped(const std::vector<glm::vec3>& radiance) {
   return out;
 }
 
+}  // namespace
+
+namespace glb {
+
 bool valid_semantic(const std::string& name) {
   if (name.size() < 2 || name[0] != '_') return false;
   for (char c : name)
@@ -43,9 +47,10 @@ bool valid_semantic(const std::string& name) {
   return true;
 }
 
-}  // namespace
-
-namespace glb {
+const char* accessor_type(int components) {
+  static const char* names[] = {"SCALAR", "VEC2", "VEC3", "VEC4"};
+  return names[components - 1];
+}
 
 void check_mesh(const std::string& path, const Mesh& mesh) {
   const std::size_t n = mesh.positions.size();
@@ -135,7 +140,7 @@ void write_glb(const std::string& path, const Mesh& mesh, const std::vector<Vert
     fail_file(path, "cannot write glTF: COLOR_0 length differs from vertex count");
   std::set<std::string> names;
   for (const VertexAttribute& attribute : extra_attributes) {
-    if (!valid_semantic(attribute.name))
+    if (!glb::valid_semantic(attribute.name))
       fail_file(path, "cannot write glTF: \"" + attribute.name +
                           "\" is not an application-specific attribute name ('_' then A-Z, 0-9, '_')");
     if (!names.insert(attribute.name).second)

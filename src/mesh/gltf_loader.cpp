@@ -25,6 +25,7 @@
 #include "core/json_depth.h"
 #include "mesh/gltf_compressed.h"
 #include "mesh/gltf_materials.h"
+#include "mesh/gltf_reader.h"
 #include "mesh/loaders.h"
 
 namespace prt::mesh::detail {
@@ -32,154 +33,6 @@ namespace prt::mesh::detail {
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
-
-std::size_t component_size(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return 2;
-    case TINYGLTF_COMPONENT_TYPE_INT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
-int component_count(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return 1;
-    case TINYGLTF_TYPE_VEC2:
-      return 2;
-    case TINYGLTF_TYPE_VEC3:
-      return 3;
-    case TINYGLTF_TYPE_VEC4:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
-/// One little-endian component, as double; normalised integers mapped to [0,1] / [-1,1].
-double read_component(const unsigned char* p, int component_type, bool normalized) {
-  std::uint32_t bits = 0;
-  const std::size_t size = component_size(component_type);
-  for (std::size_t k = 0; k < size; ++k) bits |= std::uint32_t(p[k]) << (8 * k);
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      const double v = std::int8_t(std::uint8_t(bits));
-      return normalized ? std::max(v / 127.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return normalized ? bits / 255.0 : double(bits);
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      const double v = std::int16_t(std::uint16_t(bits));
-      return normalized ? std::max(v / 32767.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return normalized ? bits / 65535.0 : double(bits);
-    case TINYGLTF_COMPONENT_TYPE_INT:
-      return double(std::int32_t(bits));
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return double(bits);
-    default: {
-      float f;
-      std::memcpy(&f, &bits, 4);
-      return double(f);
-    }
-  }
-}
-
-class GltfReader {
- public:
-  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
-
-  /// Accessor `index` as count x components doubles (row per element), bounds-checked; sparse
-  /// substitutions applied. `what` names it in errors.
-  std::vector<double> read_accessor(int index, const std::string& what, int* components_out) const {
-    if (index < 0 || std::size_t(index) >= model_.accessors.size())
-      bad(what + ": accessor " + std::to_string(index) + " does not exist");
-    const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
-    const int components = component_count(a.type);
-    const std::size_t csize = component_size(a.componentType);
-    if (components == 0 || csize == 0) bad(what + ": unsupported accessor type or component type");
-    *components_out = components;
-    const std::size_t element_size = std::size_t(components) * csize;
-    std::vector<double> values;
-    if (a.bufferView >= 0) {
-      const unsigned char* data = view_data(a.bufferView, what);
-      const tinygltf::BufferView& view = model_.bufferViews[std::size_t(a.bufferView)];
-      const std::size_t stride = view.byteStride ? view.byteStride : element_size;
-      if (stride < element_size) bad(what + ": buffer view stride smaller than an element");
-      if (a.count > 0 && (a.byteOffset > view.byteLength || a.count - 1 > view.byteLength / stride ||
-                          a.byteOffset + stride * (a.count - 1) + element_size > view.byteLength))
-        bad(what + ": accessor runs past the end of its buffer view");
-      values.resize(a.count * std::size_t(components));
-      for (std::size_t i = 0; i < a.count; ++i)
-        for (int c = 0; c < components; ++c)
-          values[i * std::size_t(components) + std::size_t(c)] =
-              read_component(data + a.byteOffset + i * stride + std::size_t(c) * csize, a.componentType, a.normalized);
-    } else {
-      // No buffer view: zeros (plus sparse values). Bound the count by the data there is, so that a
-      // garbage count cannot ask for an enormous allocation.
-      std::size_t buffer_bytes = 0;
-      for (const tinygltf::Buffer& buffer : model_.buffers) buffer_bytes += buffer.data.size();
-      if (a.count > std::max<std::size_t>(std::size_t(1) << 20, buffer_bytes)) bad(what + ": accessor count too large");
-      values.assign(a.count * std::size_t(components), 0.0);
-    }
-    if (a.sparse.isSparse) apply_sparse(a, components, csize, what, &values);
-    return values;
-  }
-
-  [[noreturn]] void bad(const std::string& problem) const { fail_file(path_, problem); }
-
- private:
-  const unsigned char* view_data(int view_index, const std::string& what) const {
-    if (view_index < 0 || std::size_t(view_index) >= model_.bufferViews.size())
-      bad(what + ": buffer view " + std::to_string(view_index) + " does not exist");
-    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(view_index)];
-    if (view.buffer < 0 || std::size_t(view.buffer) >= model_.buffers.size())
-      bad(what + ": buffer " + std::to_string(view.buffer) + " does not exist");
-    const std::vector<unsigned char>& buffer = model_.buffers[std::size_t(view.buffer)].data;
-    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
-      bad(what + ": buffer view " + std::to_string(view_index) + " runs past the end of its buffer");
-    return buffer.data() + view.byteOffset;
-  }
-
-  void apply_sparse(const tinygltf::Accessor& a, int components, std::size_t csize, const std::string& what,
-                    std::vector<double>* values) const {
-    const std::size_t count = std::size_t(std::max(a.sparse.count, 0));
-    const int index_type = a.sparse.indices.componentType;
-    const std::size_t isize = component_size(index_type);
-    if (isize == 0 || index_type == TINYGLTF_COMPONENT_TYPE_FLOAT) bad(what + ": bad sparse index type");
-    auto check = [&](int view, int offset, std::size_t bytes) {
-      const unsigned char* data = view_data(view, what + " (sparse)");
-      const std::size_t length = model_.bufferViews[std::size_t(view)].byteLength;
-      if (offset < 0 || std::size_t(offset) > length || bytes > length - std::size_t(offset))
-        bad(what + ": sparse data runs past the end of its buffer view");
-      return data + offset;
-    };
-    if (count > a.count) bad(what + ": more sparse values than elements");
-    const unsigned char* indices = check(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, count * isize);
-    const std::size_t element_size = std::size_t(components) * csize;
-    const unsigned char* data = check(a.sparse.values.bufferView, a.sparse.values.byteOffset, count * element_size);
-    for (std::size_t k = 0; k < count; ++k) {
-      const double target = read_component(indices + k * isize, index_type, false);
-      if (target < 0 || target >= double(a.count)) bad(what + ": sparse index out of range");
-      for (int c = 0; c < components; ++c)
-        (*values)[std::size_t(target) * std::size_t(components) + std::size_t(c)] =
-            read_component(data + k * element_size + std::size_t(c) * csize, a.componentType, a.normalized);
-    }
-  }
-
-  const std::string& path_;
-  const tinygltf::Model& model_;
-};
 
 glm::dmat4 local_transform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glTF
@@ -222,14 +75,20 @@ struct Loader {
         reader.bad("node " + std::to_string(node_index) + ": mesh does not exist");
       const tinygltf::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
       if (node.skin >= 0) any_skin_or_morph = true;
-      for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+      const std::string node_name = "node " + std::to_string(node_index) + (node.name.empty() ? "" : " \"" + node.name + "\"");
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const std::size_t first = raw.positions.size();
         add_primitive(mesh.primitives[p], world,
-                      "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p));
+                      "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p), node_name);
+        if (raw.positions.size() > first)
+          raw.source_primitives.push_back({node_index, node.mesh, int(p), std::uint32_t(first),
+                                           std::uint32_t(raw.positions.size() - first)});
+      }
     }
     for (int child : node.children) visit(child, world, depth + 1);
   }
 
-  void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& what) {
+  void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& what, const std::string& node_name) {
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode > TINYGLTF_MODE_TRIANGLE_FAN) reader.bad(what + ": invalid mode " + std::to_string(mode));
     const auto position_it = prim.attributes.find("POSITION");
@@ -282,8 +141,12 @@ struct Loader {
     const std::vector<glm::vec2> uv = read_uv(prim, count, what);
     std::vector<glm::vec2> colour_uv;
     const std::uint32_t material = primitive_material(prim, count, what, &colour_uv);
+    const std::uint32_t part = std::uint32_t(raw.parts.size());
+    raw.parts.push_back(node_name + " " + what);
+    std::uint32_t local_triangle = 0;
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       if (mirrored) std::swap(b, c);
+      raw.triangle_source.push_back({part, local_triangle++});
       raw.indices.insert(raw.indices.end(),
                          {std::uint32_t(base + a), std::uint32_t(base + b), std::uint32_t(base + c)});
       if (!uv.empty()) raw.corner_uv.insert(raw.corner_uv.end(), {uv[a], uv[b], uv[c]});
@@ -489,11 +352,12 @@ std::string with_json(const std::string& bytes, std::string_view old_json, bool 
 /// Checks extensionsRequired before any buffer is read, then parses with tinygltf and decodes the
 /// compressed geometry (gltf_compressed.h), so that the model reads as plain glTF.
 tinygltf::Model parse_gltf(const std::string& path, const std::string& file_bytes, bool binary, std::string* warn,
-                           std::vector<GltfImageBytes>* images) {
+                           std::vector<GltfImageBytes>* images, nlohmann::json* source_document = nullptr) {
   const std::string_view text = binary ? glb_json_chunk(path, file_bytes) : std::string_view(file_bytes);
   check_json_depth(text, path);
   nlohmann::json document = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
   check_required_extensions(path, document);  // a malformed document is tinygltf's to name
+  if (source_document) *source_document = document;
   const bool stubbed = patch_for_tinygltf(&document);
   const std::string patched = stubbed ? with_json(file_bytes, text, binary, document.dump()) : std::string();
   const std::string& bytes = stubbed ? patched : file_bytes;
@@ -589,13 +453,18 @@ std::vector<std::vector<int>> scene_roots(const std::string& path, const tinyglt
   return {roots};
 }
 
-RawMesh load_gltf(const std::string& path, bool binary, int scene) {
+tinygltf::Model read_gltf_model(const std::string& path, bool binary, std::string* warn, std::vector<GltfImageBytes>* images,
+                                nlohmann::json* document) {
   const std::string bytes = read_file(path);
   if (bytes.size() >= std::numeric_limits<unsigned int>::max())
     fail_file(path, "file too large for glTF (4 GiB or more)");
+  return parse_gltf(path, bytes, binary, warn, images, document);
+}
+
+RawMesh load_gltf(const std::string& path, bool binary, int scene) {
   std::string warn;
   std::vector<GltfImageBytes> images;
-  const tinygltf::Model model = parse_gltf(path, bytes, binary, &warn, &images);
+  const tinygltf::Model model = read_gltf_model(path, binary, &warn, &images);
 
   GltfMaterials materials(path, model, images);
   Loader loader{path, model, GltfReader(path, model), materials, RawMesh{},

@@ -121,21 +121,23 @@ int GltfMaterials::texture_image(const tinygltf::TextureInfo& info, const std::s
 }
 
 // The file content of image `source`: its buffer view's bytes (bounds-checked), else what tinygltf read.
-bool GltfMaterials::image_bytes(int source, std::string* bytes) const {
-  const tinygltf::Image& image = model_.images[std::size_t(source)];
+bool gltf_image_bytes(const tinygltf::Model& model, const std::vector<GltfImageBytes>& images, int source, std::string* bytes) {
+  const tinygltf::Image& image = model.images[std::size_t(source)];
   if (image.bufferView < 0) {
-    if (std::size_t(source) >= images_.size() || !images_[std::size_t(source)].present) return false;
-    *bytes = images_[std::size_t(source)].bytes;
+    if (std::size_t(source) >= images.size() || !images[std::size_t(source)].present) return false;
+    *bytes = images[std::size_t(source)].bytes;
     return true;
   }
-  if (std::size_t(image.bufferView) >= model_.bufferViews.size()) return false;
-  const tinygltf::BufferView& view = model_.bufferViews[std::size_t(image.bufferView)];
-  if (view.buffer < 0 || std::size_t(view.buffer) >= model_.buffers.size()) return false;
-  const std::vector<unsigned char>& buffer = model_.buffers[std::size_t(view.buffer)].data;
+  if (std::size_t(image.bufferView) >= model.bufferViews.size()) return false;
+  const tinygltf::BufferView& view = model.bufferViews[std::size_t(image.bufferView)];
+  if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) return false;
+  const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
   if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) return false;
   bytes->assign(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
   return true;
 }
+
+bool GltfMaterials::image_bytes(int source, std::string* bytes) const { return gltf_image_bytes(model_, images_, source, bytes); }
 
 std::uint32_t GltfMaterials::material_of(int material, const std::string& what) {
   if (material >= 0) {

@@ -24,6 +24,10 @@ struct GltfImageBytes {
 bool keep_gltf_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int, int,
                      const unsigned char* bytes, int size, void* user);
 
+/// The file bytes of image `source` (< model.images.size()) of `model`: its buffer view's (bounds-checked)
+/// or what keep_gltf_image kept in `images`. False when there are none.
+bool gltf_image_bytes(const tinygltf::Model& model, const std::vector<GltfImageBytes>& images, int source, std::string* bytes);
+
 class GltfMaterials {
  public:
   /// Reads every material of `model` and decodes the images their base colour textures use; an

@@ -31,6 +31,7 @@ struct RawMesh {
   /// convention; empty when the file has none for some corner (missing_uv_reason then says why).
   std::vector<glm::vec2> corner_uv;
   std::uint32_t uv_set = 0;
+  std::vector<SourcePrimitive> source_primitives;  ///< glTF: Mesh::source_primitives; else empty
   std::string missing_uv_reason;
   /// Materials (mesh.h): empty, or one material index per triangle of `indices`; base colour UVs per
   /// corner when some material is textured (prt's v-down convention); the decoded images; vertex
@@ -40,6 +41,8 @@ struct RawMesh {
   std::vector<glm::vec2> base_color_uv;
   std::vector<Texture> textures;
   std::vector<glm::vec3> vertex_color;
+  std::vector<std::string> parts;              ///< Mesh::parts (glTF)
+  std::vector<TriangleSource> triangle_source; ///< empty, or one per triangle of `indices`
   std::size_t skipped_polygons = 0;    ///< faces of fewer than 3 vertices, counted as degenerate
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives
 };

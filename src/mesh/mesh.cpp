@@ -122,6 +122,7 @@ std::vector<std::uint32_t> drop_degenerate(const std::string& path, RawMesh* raw
   keep_triangles(keep, 3, &raw.corner_uv);
   keep_triangles(keep, 3, &raw.base_color_uv);
   keep_triangles(keep, 1, &raw.triangle_material);
+  keep_triangles(keep, 1, &raw.triangle_source);
   result->skipped_degenerate = degenerate + raw.skipped_polygons;
   if (indices.empty()) {
     if (result->skipped_degenerate > 0)
@@ -239,6 +240,9 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
   mesh.indices = drop_degenerate(path, &raw, &result);
   mesh.lightmap_uv = std::move(raw.corner_uv);
   mesh.lightmap_uv_set = raw.uv_set;
+  mesh.source_primitives = std::move(raw.source_primitives);
+  mesh.parts = std::move(raw.parts);
+  mesh.triangle_source = std::move(raw.triangle_source);
   result.missing_uv_reason = mesh.lightmap_uv.empty()
                                  ? (raw.missing_uv_reason.empty() ? "the file has no texture coordinates" : raw.missing_uv_reason)
                                  : "";
@@ -255,6 +259,12 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
 }
 
 }  // namespace detail
+
+std::string describe_triangle(const Mesh& mesh, std::size_t t) {
+  if (t >= mesh.triangle_source.size()) return "triangle " + std::to_string(t);
+  const TriangleSource& source = mesh.triangle_source[t];
+  return mesh.parts[source.part] + " triangle " + std::to_string(source.triangle);
+}
 
 Mesh load_mesh(const std::string& path, LoadReport* report, bool quiet) {
   LoadOptions options;

@@ -103,6 +103,20 @@ const char* albedo_source_name(AlbedoSource source);
 /// Material index of a triangle of a mesh without materials.
 inline constexpr std::uint32_t kNoMaterial = 0xffffffffu;
 
+/// A glTF triangle primitive as the loader visited it (VERTEX ORDER): the loaded vertices
+/// [first_vertex, first_vertex + vertex_count) are, in order, the POSITION elements of primitive
+/// `primitive` of glTF mesh `mesh`, instanced by node `node` (indices into the file's arrays).
+struct SourcePrimitive {
+  int node = 0, mesh = 0, primitive = 0;
+  std::uint32_t first_vertex = 0, vertex_count = 0;
+};
+
+/// A triangle's origin in a glTF file (Mesh::triangle_source).
+struct TriangleSource {
+  std::uint32_t part = 0;      ///< index into Mesh::parts
+  std::uint32_t triangle = 0;  ///< triangle index within that primitive
+};
+
 struct Mesh {
   std::vector<glm::vec3> positions;    ///< in the file's units and frame (glTF: node transforms applied)
   std::vector<glm::vec3> normals;      ///< unit length, one per vertex
@@ -114,6 +128,10 @@ struct Mesh {
   std::vector<glm::vec2> lightmap_uv;
   /// Which UV set lightmap_uv came from: glTF TEXCOORD_<n>; 0 for OBJ vt and PLY u,v.
   std::uint32_t lightmap_uv_set = 0;
+  /// glTF: the triangle primitives the vertices came from, in vertex order (one entry per visited
+  /// node instance and primitive with vertices; a node in two scenes loaded together appears twice);
+  /// empty for OBJ and PLY. What a writer needs to put per-vertex data back on the file's primitives.
+  std::vector<SourcePrimitive> source_primitives;
 
   /// Materials (see "MATERIALS AND BASE COLOUR"); empty when the file has none.
   std::vector<Material> materials;
@@ -128,12 +146,22 @@ struct Mesh {
   /// Linear RGB vertex colour per vertex (glTF COLOR_0, PLY colours); empty when the file has none (1).
   std::vector<glm::vec3> vertex_color;
   AlbedoSource albedo_source = AlbedoSource::none;
+  /// Where each triangle came from, for messages (glTF only; empty for OBJ and PLY):
+  /// triangle_source[t] = {part, triangle}, `part` indexing `parts` (one per triangle primitive visited,
+  /// in VERTEX ORDER, e.g. "node 3 \"Gear\" mesh 2 primitive 0"), `triangle` the triangle's index among
+  /// that primitive's triangles (after strip and fan conversion, before degenerate ones are dropped).
+  std::vector<std::string> parts;
+  std::vector<TriangleSource> triangle_source;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }
   bool has_lightmap_uv() const { return !lightmap_uv.empty(); }
   bool textured() const { return !base_color_uv.empty(); }
 };
+
+/// Names triangle t for messages: "node 3 \"Gear\" mesh 2 primitive 0 triangle 17" when the mesh
+/// keeps triangle sources (glTF), else "triangle 17" (the mesh's own index, as for OBJ and PLY).
+std::string describe_triangle(const Mesh& mesh, std::size_t t);
 
 /// Drops the albedo the file gave: albedo, materials, triangle_material, base_color_uv, textures and
 /// vertex_color become empty and albedo_source none (the caller's default applies, e.g. --albedo).

@@ -80,4 +80,10 @@ struct GlbImage {
 void write_glb_textured(const std::string& path, const Mesh& mesh, const std::vector<GlbImage>& images,
                         const std::string& extension_name, const std::string& extension_json);
 
+/// Writes `mesh` with its lightmap UVs as a glTF 2.0 binary for engines and for prt (`prt unwrap`):
+/// the layout of write_glb_textured (vertices split by UV, POSITION, NORMAL if any) with the UVs as
+/// TEXCOORD_1 (the set load_mesh reads as lightmap UVs first), no images, no extension, no materials.
+/// Throws prt::Error naming `path` as write_glb_textured does.
+void write_glb_lightmap_uv(const std::string& path, const Mesh& mesh);
+
 }  // namespace prt::mesh

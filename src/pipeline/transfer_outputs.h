@@ -13,6 +13,7 @@ namespace prt::pipeline {
 struct TransferOutputs {
   std::string transfer_path;  ///< .prt, or .cprt when clusters > 0; required
   std::string gltf_path;      ///< .glb of the mesh with its transfer; empty: none
+  std::string source_path;    ///< the mesh file the mesh was loaded from (the glTF keeps its scene)
   bool float16 = false;       ///< store the transfer (or the compressed model) as IEEE float16
   int clusters = 0, pca = 0;  ///< > 0: compress with CPCA, `clusters` clusters of `pca` vectors each
   unsigned seed = 1;          ///< of the compression's initial clusters
@@ -21,7 +22,9 @@ struct TransferOutputs {
 
 /// Writes `transfer` (baked for `mesh`) to the outputs, each through its temporary, and commits them
 /// together: a failing second output leaves no first one. The compression runs in the shaded metric
-/// with no lighting, as `prt compress` without --env does. Glossy transfer has no glTF form.
+/// with no lighting, as `prt compress` without --env does. Glossy transfer has no glTF form. A per-vertex
+/// glTF is the engine glTF (engine_export.h) of `source_path` with the .cprt's model, or without
+/// --compress a model of the export's default settings.
 /// Throws prt::Error naming the file, or OptionError for clusters or pca out of range.
 void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData transfer, const TransferOutputs& outputs);
 

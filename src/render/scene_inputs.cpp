@@ -43,6 +43,7 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
     const transfer::Header header = file.header();
     transfer::check_mesh_match(path, header, scene.mesh.vertex_count(), scene.mesh.triangle_count(), fingerprint);
     transfer::check_uv_match(path, header, mesh::uv_fingerprint(scene.mesh));  // texel files only
+    compress::use_baked_albedo(file, &scene.mesh);  // an engine glTF: the albedo its transfer was baked with
     // A per-vertex model is drawn as it is (the CPCA pass); a compressed lightmap is decompressed on load
     // (the lightmap pass samples texture arrays of the reconstructed texels, as for a .prt lightmap).
     if (file.compressed() && !header.is_texel()) {

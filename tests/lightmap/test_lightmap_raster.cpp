@@ -159,8 +159,8 @@ TEST_CASE("lightmap UV checks: outside [0,1], zero area and overlaps, counted wi
   CHECK(p.outside_examples == std::vector<std::uint32_t>{0});
   CHECK(p.zero_area == 1);
   CHECK(p.zero_area_examples == std::vector<std::uint32_t>{3});
-  CHECK(p.message().find("1 triangle has UVs outside [0,1] (e.g. triangle 0)") != std::string::npos);
-  CHECK(p.message().find("collapsed to zero UV area (e.g. triangle 3)") != std::string::npos);
+  CHECK(p.message(m).find("1 triangle has UVs outside [0,1] (e.g. triangle 0)") != std::string::npos);
+  CHECK(p.message(m).find("collapsed to zero UV area (e.g. triangle 3)") != std::string::npos);
   // Overlap: triangle 1's UVs copied onto triangle 2's: every centre inside either is inside both.
   mesh::Mesh o = few_triangles();
   for (int k = 0; k < 3; ++k) o.lightmap_uv[3 * 2 + k] = o.lightmap_uv[3 * 1 + k];

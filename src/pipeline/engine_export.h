@@ -1,0 +1,28 @@
+#pragma once
+// The engine glTF of a per-vertex bake (docs/formats.md, "The engine glTF: PRT_transfer"): the source
+// mesh file as authored with the transfer in clustered-PCA form: per vertex _PRT_CLUSTER (SCALAR float),
+// _PRT_WEIGHTS0.. (VEC4 float, the PCA weights zero-padded), _PRT_ALBEDO (VEC3, the albedo baked into the
+// vertex's transfer); per model the cluster means and directions as float accessors under the root
+// extension PRT_transfer.
+#include <string>
+
+#include "compress/compressed.h"
+#include "mesh/mesh.h"
+
+namespace prt::pipeline {
+
+/// The vendor extension's name, in extensionsUsed (not extensionsRequired).
+inline constexpr const char* kTransferExtension = "PRT_transfer";
+/// The CPCA settings an export compresses an uncompressed per-vertex transfer with: K = min(this,
+/// vertex count) clusters, N = min(this, values per point) PCA vectors.
+inline constexpr int kExportClusters = 64;
+inline constexpr int kExportPca = 8;
+
+/// Writes `path` (atomically): `source_path`, the mesh file `mesh` was loaded from, as an engine glTF
+/// carrying `model` (per vertex, diffuse: unshadowed, shadowed or interreflected; its source header
+/// matching the mesh). The albedo attribute is shade::surface_albedo's. Throws prt::Error naming the
+/// file for a texel or glossy model, a model of another mesh, or what mesh::write_engine_glb refuses.
+void write_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
+                       const compress::CompressedTransfer& model);
+
+}  // namespace prt::pipeline
