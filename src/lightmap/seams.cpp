@@ -127,7 +127,7 @@ StitchReport stitch_seams(std::vector<float>& values, std::vector<float>& bounce
   for (const SeamEdge& s : seams) {
     const double len = std::max(glm::length((glm::dvec2(s.uv_a[1]) - glm::dvec2(s.uv_a[0])) * size),
                                 glm::length((glm::dvec2(s.uv_b[1]) - glm::dvec2(s.uv_b[0])) * size));
-    const int n = std::max(2, int(std::ceil(len * o.samples_per_texel)));
+    const int n = std::max(4, int(std::ceil(len * o.samples_per_texel)));
     for (int k = 0; k < n; ++k) {
       const double t = (k + 0.5) / n;
       const Footprint fa = footprint(glm::mix(glm::dvec2(s.uv_a[0]), glm::dvec2(s.uv_a[1]), t), width, height);

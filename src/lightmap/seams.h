@@ -36,9 +36,9 @@ struct SeamEdge {
 std::vector<SeamEdge> find_seams(const mesh::Mesh& mesh, float smooth_cos = 0.99f);
 
 struct StitchOptions {
-  double pull = 1000.0;         ///< weight of the seams' agreement against staying close to the bake; > 0
+  double pull = 1e6;         ///< weight of the seams' agreement against staying close to the bake; > 0
   double gutter_weight = 0.05;  ///< d_t of a gutter texel (covered texels 1); > 0
-  int samples_per_texel = 3;    ///< points per texel of seam edge; 1..16
+  int samples_per_texel = 8;    ///< points per texel of seam edge (at least 4 per edge); 1..16
 };
 
 struct StitchReport {
