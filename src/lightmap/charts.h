@@ -1,6 +1,6 @@
 #pragma once
 // Lightmap charts: the connected pieces of a mesh's lightmap UV layout (docs/conventions.md, "Lightmap
-// charts"). Two triangles are in one chart when they share an edge in UV: both corners of the edge have
+// charts, denoising and seams"). Two triangles are in one chart when they share an edge in UV: both corners of the edge have
 // bit-identical UVs in the two triangles (the mesh's vertex indices do not matter, so an unwelded mesh
 // with a continuous UV layout is one chart). A UV seam (the same 3D edge at two places in the UV square)
 // separates charts, and so does a chart border.

@@ -40,10 +40,14 @@ struct Grid {
   }
 };
 
+// In 8 lanes (c mod 8) summed at the end: a fixed order the compiler can vectorise.
 float squared_distance(const float* a, const float* b, std::size_t stride) {
-  float sum = 0.0f;
-  for (std::size_t c = 0; c < stride; ++c) sum += (a[c] - b[c]) * (a[c] - b[c]);
-  return sum;
+  float lane[8] = {};
+  std::size_t c = 0;
+  for (; c + 8 <= stride; c += 8)
+    for (std::size_t k = 0; k < 8; ++k) lane[k] += (a[c + k] - b[c + k]) * (a[c + k] - b[c + k]);
+  for (std::size_t k = 0; c < stride; ++c, ++k) lane[k] += (a[c] - b[c]) * (a[c] - b[c]);
+  return ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
 }
 
 // The initial noise variance of each covered texel's transfer vector (denoise.h): the median over p's

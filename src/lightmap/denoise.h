@@ -1,6 +1,6 @@
 #pragma once
 // Denoising of texel transfer (`prt bake --lightmap ... --denoise`; docs/conventions.md, "Lightmap
-// denoising"). Filters the transfer COEFFICIENTS, not a lit image: every weight depends only on guides
+// charts, denoising and seams"). Filters the transfer COEFFICIENTS, not a lit image: every weight depends only on guides
 // that no lighting changes, and the same weight multiplies every coefficient of a texel (both
 // sections), so the filtered lightmap is linear in the lighting like the bake and one denoised bake
 // serves every environment.

@@ -1,5 +1,5 @@
 #pragma once
-// Seam stitching of texel transfer (docs/conventions.md, "Lightmap seams"): where one smooth surface
+// Seam stitching of texel transfer (docs/conventions.md, "Lightmap charts, denoising and seams"): where one smooth surface
 // edge appears twice in the lightmap UVs (a UV seam between two charts, or two chart borders), a
 // bilinear lookup on the two sides reads different texels and the lit values jump. The stitch moves
 // the texels those lookups read so that both sides agree, as little as it can, for every coefficient at

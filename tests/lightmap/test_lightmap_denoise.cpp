@@ -4,7 +4,9 @@
 // 128 samples denoised against a 4096-sample bake (another seed) lit by three HDRIs, no worse than the
 // 1024-sample bake undenoised, over all covered texels, over the contact band around the box's foot
 // and over the chart-border texels.
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -208,6 +210,30 @@ TEST_CASE("denoise: box on a floor, 128 samples denoised vs 4096 under three HDR
   INFO("contact band: 128 raw " << c_raw << ", denoised " << c_dn << "; chart borders: " << b_raw << ", " << b_dn);
   CHECK(c_dn <= 0.7 * c_raw);
   CHECK(b_dn <= 0.7 * b_raw);
+}
+
+}  // namespace prt
+
+namespace prt {
+
+TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same bytes for 1 and 2 threads; refused without "
+          "--lightmap", "[lightmap][denoise]") {
+  const std::string dir = test::fresh_temp_dir("lightmap_denoise_cli"), mesh = dir + "/box.obj";
+  test::write_obj_with_uv(mesh, test::floor_and_box(true));
+  const std::string common = "bake " + mesh + " --quiet --lightmap 48 --samples 64 --denoise --stitch";
+  const test::RunResult one = test::run_prt(common + " --threads 1 -o " + dir + "/one.prt");
+  INFO(one.output);
+  REQUIRE(one.exit_code == 0);
+  REQUIRE(test::run_prt(common + " --threads 2 -o " + dir + "/two.prt").exit_code == 0);
+  const transfer::TransferData a = transfer::read_transfer(dir + "/one.prt"), b = transfer::read_transfer(dir + "/two.prt");
+  CHECK(a.values == b.values);
+  CHECK(a.header.parameters_json.find("\"denoise\":{\"iterations\":4") != std::string::npos);
+  CHECK(a.header.parameters_json.find("\"stitch\":{") != std::string::npos);
+  const test::RunResult bad = test::run_prt("bake " + mesh + " --quiet --denoise -o " + dir + "/bad.prt");
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.output.find("--denoise applies to lightmap bakes only") != std::string::npos);
+  CHECK(std::count(bad.output.begin(), bad.output.end(), '\n') == 1);
+  CHECK_FALSE(std::ifstream(dir + "/bad.prt").good());
 }
 
 }  // namespace prt
