@@ -46,7 +46,8 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
   const std::uint64_t stride_bytes = 4ull * std::uint64_t(o.bands) * std::uint64_t(o.bands) * std::uint64_t(channels);
   // Per texel: raster state and coverage (~40 bytes), the sample (~80), and transfer buffers: values;
   // with bounces also bounce-only, prev grid, next and the per-sample sums (5 more).
-  const std::uint64_t buffers = o.kind == transfer::Kind::interreflected ? 6 : 2;
+  // --denoise: a second copy of each section and the variances; --stitch: the seams' system, small.
+  const std::uint64_t buffers = (o.kind == transfer::Kind::interreflected ? 6 : 2) + (l.denoise ? 2 : 0);
   return texels * (120 + buffers * stride_bytes);
 }
 
