@@ -69,6 +69,25 @@ TEST_CASE("denoise: a constant transfer stays exactly constant; zero iterations 
   CHECK(same == before);
 }
 
+TEST_CASE("denoise: a linear ramp stays exactly linear, up to the chart's border and corners", "[lightmap][denoise]") {
+  const int w = 32, h = 24;
+  const lightmap::DenoiseGuides g = plane_guides(w, h);
+  std::vector<float> values(std::size_t(w * h)), none;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) values[std::size_t(i + j * w)] = 1.0f + 0.05f * float(i) - 0.03f * float(j);
+  for (const bool linear : {true, false}) {
+    lightmap::DenoiseOptions o;
+    o.linear = linear;
+    std::vector<float> filtered = values;
+    lightmap::denoise_texels(filtered, none, 1, g, o);
+    double worst = 0.0;
+    for (std::size_t t = 0; t < values.size(); ++t) worst = std::max(worst, std::abs(double(filtered[t]) - values[t]));
+    INFO((linear ? "local linear" : "weighted mean") << ": worst deviation " << worst);
+    if (linear) CHECK(worst < 1e-3);  // the slope ridge (1e-3) leaves a trace
+    else CHECK(worst > 0.01);  // the weighted mean pulls border texels inwards: what the linear fit removes
+  }
+}
+
 TEST_CASE("denoise: white noise on a plane falls below 1/6 of its level; bytes equal for 1 and 2 threads", "[lightmap][denoise]") {
   const int w = 96, h = 96;
   const lightmap::DenoiseGuides g = plane_guides(w, h);
