@@ -67,7 +67,6 @@ std::vector<SeamEdge> find_seams(const mesh::Mesh& mesh, float smooth_cos) {
   std::unordered_map<PositionEdge, EdgeEnd, PositionEdgeHash> edges;
   edges.reserve(mesh.indices.size());
   std::vector<SeamEdge> seams;
-  std::vector<std::size_t> seam_of;  // index into seams per (second) occurrence, to drop non-manifold edges
   std::vector<PositionEdge> seam_keys;
   for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t)
     for (int k = 0; k < 3; ++k) {
