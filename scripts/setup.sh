@@ -7,7 +7,7 @@
 #               mono-mcs (compiles and runs the Unity importer against stand-in Unity types),
 #               Node.js and the npm packages of probes/threejs (the three.js browser test) and
 #               tests/engines (the engines' own code: Babylon.js, Filament, three.js, ktx-parse, the
-#               Khronos glTF validator), each from its package-lock.json; clang 14 with libFuzzer and
+#               Khronos glTF validator) and web (the three.js PRT runtime), each from its package-lock.json; clang 14 with libFuzzer and
 #               llvm-cov (the fuzz targets of tests/fuzz, scripts/fuzz.sh).
 #   --no-build  install only.
 #   --target    build only this target (repeatable); default: everything (libraries, prt, tests, benches).
@@ -66,7 +66,7 @@ if ((${#missing[@]})); then
 fi
 
 if ((with_tests)); then
-  for folder in probes/threejs tests/engines; do
+  for folder in probes/threejs tests/engines web; do
     if [ ! -d "$folder/node_modules" ] || [ "$folder/package-lock.json" -nt "$folder/node_modules" ]; then
       echo "setup: installing the npm packages of $folder (npm ci)" >&2
       (cd "$folder" && npm ci --no-audit --no-fund --loglevel=error && touch node_modules) >&2

@@ -7,6 +7,7 @@
 //   USED_COUNT     k^2: only the first k lighting bands are used (truncation), k <= bands
 //   OUT_COUNT      bands_out^2: matrix rows, and the size of the BRDF matrix B (OUT_COUNT x OUT_COUNT)
 //   CHUNKS         1..8 buffer-texture views the transfer is split into (see TransferBuffer)
+//   BRDF_TABLE     (defined only with several BRDFs) vertex v uses B number vertex_brdf[v] of the table
 //   SUN            (defined only with discs) add the discs' bounce coefficients B (M_bounce L_discs),
 //                  computed by this same program when the lighting changes, into O
 const int channels = CHANNELS;
@@ -45,8 +46,12 @@ uniform int vertex_count;
 
 // Lighting in the object's frame (rotated on the CPU), rgb per coefficient, flat index l(l+1)+m.
 layout(std140, binding = 0) uniform Lighting { vec4 lighting[1024]; };
-// The BRDF matrix B, row-major [out k][in j], rgb per entry (a grey B repeated in r, g, b).
+// The BRDF matrix B, row-major [out k][in j], rgb per entry (a grey B repeated in r, g, b); with
+// BRDF_TABLE several such matrices back to back, and each vertex's index into them.
 layout(std430, binding = 1) readonly buffer BrdfMatrix { vec4 brdf[]; };
+#ifdef BRDF_TABLE
+layout(std430, binding = 7) readonly buffer VertexBrdf { uint vertex_brdf[]; };
+#endif
 // Output: out_count rgb coefficients per vertex (w unused), vertex-major, local frame of the vertex.
 layout(std430, binding = 2) writeonly buffer Outgoing { vec4 outgoing[]; };
 #ifdef SUN
@@ -97,9 +102,14 @@ void main() {
     t[k] = sum;
   }
   // O = B T.
+#ifdef BRDF_TABLE
+  int first = int(vertex_brdf[v]) * out_count * out_count;
+#else
+  int first = 0;
+#endif
   for (int k = 0; k < out_count; ++k) {
     vec3 sum = vec3(0.0);
-    for (int j = 0; j < out_count; ++j) sum += brdf[k * out_count + j].rgb * t[j];
+    for (int j = 0; j < out_count; ++j) sum += brdf[first + k * out_count + j].rgb * t[j];
 #ifdef SUN
     sum += bounce_outgoing[v * out_count + k].rgb;
 #endif

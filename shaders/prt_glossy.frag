@@ -8,6 +8,8 @@
 //   OUT_BANDS   bands of the outgoing radiance coefficients (the transfer's bands_out)
 //   SUN         (defined only with discs) add each disc's direct light: the BRDF evaluated exactly in the
 //               interpolated normal's shading frame, times E V (prt::shade::disc_direct_glossy)
+//   BRDF_TABLE  (with SUN, several BRDFs) each corner's own BRDF (vertex_brdf), the values blended with
+//               the fragment's barycentrics as the corners' transferred radiance is
 const int out_bands = OUT_BANDS;
 const int out_count = OUT_BANDS * OUT_BANDS;
 
@@ -25,6 +27,9 @@ layout(std430, binding = 5) readonly buffer Normals { float normals[]; };
 uniform vec3 eye_object;  // the eye point in mesh coordinates
 #ifdef SUN
 #include "sun_light.glsl"
+#endif
+#ifdef BRDF_TABLE
+layout(std430, binding = 7) readonly buffer VertexBrdf { uint vertex_brdf[]; };
 #endif
 
 vec3 load3(int which, uint i) {
@@ -97,8 +102,14 @@ void main() {
   vec3 w_o = shading_local(n, view);
   for (int k = 0; k < disc_count; ++k) {
     if (dot(n, disc_direction[k]) <= 0.0) continue;  // back-facing: no light, no shadow lookup
-    sum += disc_irradiance[k] * brdf_eval_cosine(shading_local(n, disc_direction[k]), w_o) *
-           disc_visibility(k, object_position, n);
+    vec3 w_i = shading_local(n, disc_direction[k]);
+#ifdef BRDF_TABLE
+    vec3 f = vec3(0.0);
+    for (int c = 0; c < 3; ++c) f += weight[c] * brdf_eval_cosine_of(vertex_brdf[corner[c]], w_i, w_o);
+#else
+    vec3 f = brdf_eval_cosine(w_i, w_o);
+#endif
+    sum += disc_irradiance[k] * f * disc_visibility(k, object_position, n);
   }
   sum = max(sum, vec3(0.0));  // as split shading clamps
 #endif

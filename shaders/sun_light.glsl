@@ -117,11 +117,26 @@ float disc_visibility(int k, vec3 p, vec3 n) {
 
 // The BRDF as prt::brdf::terms: up to max_terms (shape, parameter, rgb weight); shapes as brdf::Shape
 // (0 lambert, 1 phong, 2 blinn-phong, 3 ggx_f0, 4 ggx_edge, 5 lambert_fresnel). Set for glossy transfer only.
+// With BRDF_TABLE defined, a table of BRDFs (one per vertex, Renderer::set_brdfs): BRDF b's term t is
+// brdf_terms[2 (b max_terms + t)] = (shape, parameter, term count, 0) and the next entry (rgb weight, 0);
+// else one BRDF in uniforms (index b ignored).
 const int max_terms = 8;
+#ifdef BRDF_TABLE
+layout(std430, binding = 8) readonly buffer BrdfTerms { vec4 brdf_terms[]; };
+int brdf_terms_of(uint b) { return int(brdf_terms[2u * b * uint(max_terms)].z); }
+int brdf_shape_of(uint b, int t) { return int(brdf_terms[2u * (b * uint(max_terms) + uint(t))].x); }
+float brdf_parameter_of(uint b, int t) { return brdf_terms[2u * (b * uint(max_terms) + uint(t))].y; }
+vec3 brdf_weight_of(uint b, int t) { return brdf_terms[2u * (b * uint(max_terms) + uint(t)) + 1u].rgb; }
+#else
 uniform int brdf_term_count;
 uniform int brdf_shape[max_terms];
 uniform float brdf_parameter[max_terms];
 uniform vec3 brdf_weight[max_terms];
+int brdf_terms_of(uint b) { return brdf_term_count; }
+int brdf_shape_of(uint b, int t) { return brdf_shape[t]; }
+float brdf_parameter_of(uint b, int t) { return brdf_parameter[t]; }
+vec3 brdf_weight_of(uint b, int t) { return brdf_weight[t]; }
+#endif
 
 // prt::brdf::eval_shape: local frame (+z the normal), w_i.z > 0, w_o mirrored to the upper side.
 float brdf_shape_value(int shape, float parameter, vec3 w_i, vec3 w_o_signed) {
@@ -151,13 +166,17 @@ float brdf_shape_value(int shape, float parameter, vec3 w_i, vec3 w_o_signed) {
   return d * (0.5 / lambda_sum) * (shape == 3 ? 1.0 - s5 : s5);
 }
 
-// prt::brdf::eval_cosine: fbar(w_i, w_o) max(w_i.z, 0) per channel.
-vec3 brdf_eval_cosine(vec3 w_i, vec3 w_o) {
+// prt::brdf::eval_cosine of BRDF b (see BRDF_TABLE above): fbar(w_i, w_o) max(w_i.z, 0) per channel.
+vec3 brdf_eval_cosine_of(uint b, vec3 w_i, vec3 w_o) {
   if (!(w_i.z > 0.0)) return vec3(0.0);
   vec3 sum = vec3(0.0);
-  for (int t = 0; t < brdf_term_count; ++t) sum += brdf_weight[t] * brdf_shape_value(brdf_shape[t], brdf_parameter[t], w_i, w_o);
+  int count = brdf_terms_of(b);
+  for (int t = 0; t < count; ++t) sum += brdf_weight_of(b, t) * brdf_shape_value(brdf_shape_of(b, t), brdf_parameter_of(b, t), w_i, w_o);
   return sum * w_i.z;
 }
+
+// The one BRDF's (uniforms).
+vec3 brdf_eval_cosine(vec3 w_i, vec3 w_o) { return brdf_eval_cosine_of(0u, w_i, w_o); }
 
 // prt::brdf::shading_frame's local coordinates of v for the unit normal n: (t . v, b . v, n . v) with
 // t = normalize(Y x n) (X made orthogonal to n at the poles), b = n x t.

@@ -68,7 +68,11 @@ void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, flo
                        WeightMap& weights) {
   const glm::vec2* c = grid.corner_uv->data() + 3 * triangle;
   const glm::vec2 uv = (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
-  const float x = uv.x * static_cast<float>(grid.width) - 0.5f, y = uv.y * static_cast<float>(grid.height) - 0.5f;
+  // UVs far outside [0, 1] (a triangle the texel bake skipped, lightmap/uv_validation.h) are brought
+  // to [-1, 2] and NaN to 0 before the integer conversion; the texels read are clamped to the edge
+  // below, and UVs within [-1, 2] are used exactly as they are.
+  auto tame = [](float s) { return s >= -1.0f ? (s <= 2.0f ? s : 2.0f) : (s < -1.0f ? -1.0f : 0.0f); };
+  const float x = tame(uv.x) * static_cast<float>(grid.width) - 0.5f, y = tame(uv.y) * static_cast<float>(grid.height) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
   const float ax = x - fx, ay = y - fy;
   std::uint32_t texel[4];
@@ -100,8 +104,13 @@ class BounceWorker {
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
 
+  // The batch's front-face hits first, each textured one's lookup set up and its texels requested (the
+  // hits fall on the texture at random: requested together, their loads overlap); then their weights,
+  // in ray order.
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t) {
     const mesh::Mesh& mesh = *ctx_.mesh;
+    front_.clear();
+    colours_.clear();
     for (std::size_t i = 0; i < batch.size(); ++i) {
       if (!batch.is_hit(i)) continue;
       const trace::HitResult hit = batch.hit(i);
@@ -109,11 +118,19 @@ class BounceWorker {
       const glm::vec3& p0 = mesh.positions[tri[0]];
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
-      const glm::vec3 albedo = at_hits_ ? mesh::TriangleColour(mesh, hit.prim_id).at(hit.u, hit.v) : glm::vec3(1.0f);
+      front_.push_back(hit);
+      if (!at_hits_) continue;
+      colours_.emplace_back(mesh, hit.prim_id);
+      colours_.back().prefetch(hit.u, hit.v);
+    }
+    for (std::size_t k = 0; k < front_.size(); ++k) {
+      const trace::HitResult& hit = front_[k];
+      const glm::vec3 albedo = at_hits_ ? colours_[k].at(hit.u, hit.v) : glm::vec3(1.0f);
       if (ctx_.grid) {
         add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, albedo, weights_);
         continue;
       }
+      const std::uint32_t* tri = mesh.indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
       weights_.add(tri[0], (1.0f - hit.u - hit.v) * albedo);
       weights_.add(tri[1], hit.u * albedo);
       weights_.add(tri[2], hit.v * albedo);
@@ -146,6 +163,8 @@ class BounceWorker {
   bool at_hits_;
   WeightMap weights_;
   std::vector<float> gathered_;
+  std::vector<trace::HitResult> front_;       // this batch's front-face hits
+  std::vector<mesh::TriangleColour> colours_;  // their base colour lookups (at_hits_ only)
 };
 
 }  // namespace

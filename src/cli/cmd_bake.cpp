@@ -212,6 +212,7 @@ void run_bake(const BakeCommandOptions& o) {
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
   if (o.denoise && o.lightmap.empty()) fail("--denoise applies to lightmap bakes only (give --lightmap SIZE)");
   if (o.stitch && o.lightmap.empty()) fail("--stitch applies to lightmap bakes only (give --lightmap SIZE)");
+  if (o.lightmap.empty() && o.uv != "file") fail("--uv applies to texel bakes only (--lightmap SIZE)");
   if (o.lightmap.empty())
     bake_vertices(o, options, out);
   else

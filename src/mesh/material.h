@@ -43,11 +43,12 @@ struct Material {
   glm::vec3 base_color_factor{1.0f};  ///< linear RGB (glTF baseColorFactor.rgb, MTL Kd)
   TextureRef base_color;
   /// glTF pbrMetallicRoughness.metallicFactor and roughnessFactor, each in [0, 1] (a glTF primitive
-  /// without a material: glTF's defaults 1 and 1). OBJ/MTL states neither: 0 and 1, a rough
+  /// without a material: glTF's defaults 1 and 1). OBJ/MTL: Pm and Pr, else 0 and 1, a rough
   /// dielectric. What `--brdf mesh` makes of them: brdf/brdf.h, the gltf lobe.
   float metallic_factor = 0.0f;
   float roughness_factor = 1.0f;
-  /// glTF: the material has a metallicRoughnessTexture (not read; the factors alone are used).
+  /// glTF: the material has a metallicRoughnessTexture; MTL: map_Pr or map_Pm (not read; the factors
+  /// alone are used).
   bool metallic_roughness_textured = false;
   bool textured() const { return base_color.image >= 0; }
 };

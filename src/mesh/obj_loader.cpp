@@ -150,6 +150,7 @@ struct ObjData {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
+  std::map<std::string, MtlPbr> pbr;  ///< the MTL files' Pr, Pm, map_Pr and map_Pm (scan_mtl_pbr)
 };
 
 /// The OBJ's folder with a trailing '/', or "" for a file in the working folder: where MTL names resolve.
@@ -164,7 +165,7 @@ std::string obj_folder(const std::string& path) {
 /// folder at ':'). A missing file is a warning, as in tinyobjloader; any other problem an Error.
 class MtlReader : public tinyobj::MaterialReader {
  public:
-  explicit MtlReader(std::string folder) : folder_(std::move(folder)) {}
+  MtlReader(std::string folder, std::map<std::string, MtlPbr>* pbr) : folder_(std::move(folder)), pbr_(pbr) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* names, std::string* warn, std::string* err) override {
     const std::string file = folder_ + name;
@@ -173,13 +174,16 @@ class MtlReader : public tinyobj::MaterialReader {
       if (warn) *warn += "Material file [ " + name + " ] not found\n";
       return false;
     }
-    std::istringstream text(read_file(file));
+    const std::string bytes = read_file(file);
+    scan_mtl_pbr(file, bytes, pbr_);
+    std::istringstream text(bytes);
     tinyobj::LoadMtl(names, materials, &text, warn, err);
     return true;
   }
 
  private:
   std::string folder_;
+  std::map<std::string, MtlPbr>* pbr_;
 };
 
 }  // namespace
@@ -227,7 +231,7 @@ ObjData read_obj(const std::string& path, RawMesh* raw) {
   ObjData obj;
   std::string warn, err;
   std::istringstream stream(text);
-  MtlReader mtl(obj_folder(path));
+  MtlReader mtl(obj_folder(path), &obj.pbr);
   // triangulate = false: prt fan-triangulates itself (and tinyobjloader's triangulation would index
   // vertices before prt has range-checked them). default_vcols_fallback = false: colours are ignored.
   const bool ok = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, &stream, &mtl,
@@ -377,7 +381,7 @@ RawMesh load_obj(const std::string& path) {
   }
   obj_materials(obj, &refs, &raw);
   if (refs.any_material) {
-    obj_material_list(obj_folder(path), obj.materials, &raw);
+    obj_material_list(obj_folder(path), obj.materials, obj.pbr, &raw);
     raw.base_color_uv = raw.corner_uv;
     const bool textured = std::any_of(raw.materials.begin(), raw.materials.end(), [](const Material& m) { return m.textured(); });
     if (textured && raw.base_color_uv.empty())

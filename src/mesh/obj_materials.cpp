@@ -1,7 +1,10 @@
 #include "mesh/obj_materials.h"
 
+#include <charconv>
+#include <cmath>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -19,7 +22,53 @@ TextureTransform mtl_transform(const tinyobj::texture_option_t& option) {
   return t;
 }
 
+std::string_view trimmed(std::string_view s) {
+  const std::size_t first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+// The value of a Pr or Pm line (`rest`: the line after its tag): one finite number in [0, 1], else
+// prt::Error naming the file, the line and the material.
+float pbr_value(const std::string& file, std::size_t line_number, const std::string& material, std::string_view tag,
+                std::string_view rest) {
+  const std::string_view token = trimmed(rest);
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value) ||
+      value < 0.0 || value > 1.0)
+    fail_file(file, "line " + std::to_string(line_number) + ": material " + material + ": " + std::string(tag) + " \"" +
+                        std::string(token.substr(0, 30)) + "\" is not one number in [0, 1]");
+  return float(value);
+}
+
 }  // namespace
+
+void scan_mtl_pbr(const std::string& file, const std::string& text, std::map<std::string, MtlPbr>* keys) {
+  std::istringstream lines(text);
+  std::size_t line_number = 0;
+  MtlPbr* current = nullptr;  // the material being defined, or null (none yet, or a repeated name)
+  std::string name;
+  for (std::string line; std::getline(lines, line);) {
+    ++line_number;
+    const std::string_view body = trimmed(line);
+    const std::size_t tag_end = std::min(body.find_first_of(" \t"), body.size());
+    const std::string_view tag = body.substr(0, tag_end), rest = body.substr(tag_end);
+    if (tag == "newmtl") {
+      name = std::string(trimmed(rest));
+      const auto [it, fresh] = keys->emplace(name, MtlPbr{});
+      current = fresh ? &it->second : nullptr;
+    } else if (current == nullptr) {
+      continue;
+    } else if (tag == "Pr") {
+      current->roughness = pbr_value(file, line_number, name, tag, rest);
+    } else if (tag == "Pm") {
+      current->metallic = pbr_value(file, line_number, name, tag, rest);
+    } else if (tag == "map_Pr" || tag == "map_Pm") {
+      current->textured = true;
+    }
+  }
+}
 
 std::vector<std::string> mtl_texture_files(const std::string& mtl_path, const std::string& folder) {
   std::vector<std::string> files;
@@ -40,13 +89,20 @@ std::vector<std::string> mtl_texture_files(const std::string& mtl_path, const st
   return files;
 }
 
-void obj_material_list(const std::string& folder, const std::vector<tinyobj::material_t>& mtl, RawMesh* raw) {
+void obj_material_list(const std::string& folder, const std::vector<tinyobj::material_t>& mtl,
+                       const std::map<std::string, MtlPbr>& pbr, RawMesh* raw) {
   std::map<std::string, int> decoded;  // map_Kd file -> texture index, or -1 if it failed
   std::uint64_t held_bytes = 0;
   for (const tinyobj::material_t& m : mtl) {
     Material material;
     material.name = m.name;
     material.base_color_factor = glm::vec3(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
+    const auto keys = pbr.find(std::string(trimmed(m.name)));
+    if (keys != pbr.end()) {
+      material.roughness_factor = keys->second.roughness.value_or(material.roughness_factor);
+      material.metallic_factor = keys->second.metallic.value_or(material.metallic_factor);
+      material.metallic_roughness_textured = keys->second.textured;
+    }
     if (!m.diffuse_texname.empty()) {
       const std::string file = folder + m.diffuse_texname;
       auto [it, fresh] = decoded.emplace(file, -1);

@@ -45,18 +45,49 @@ template <class Texels>
                  std::size_t(wrap_texel(x, texture.width, ref.wrap_s))) * 3);
 }
 
-// sample_texture on texels read by `texels`.
-template <class Texels>
-glm::vec3 sample(const Texture& texture, const TextureRef& ref, Texels texels, glm::vec2 uv) {
+// Where sample_texture reads for `uv`: texel (x0, y0) (before wrapping) and, bilinear, its right and
+// lower neighbours with the fractions fx, fy (nearest: 0).
+struct Spot {
+  std::int64_t x0 = 0, y0 = 0;
+  float fx = 0.0f, fy = 0.0f;
+};
+Spot locate(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
   const double x = std::clamp(double(uv.x) * texture.width, -kMaxTexelCoordinate, kMaxTexelCoordinate);
   const double y = std::clamp(double(uv.y) * texture.height, -kMaxTexelCoordinate, kMaxTexelCoordinate);
-  if (ref.filter == Filter::nearest) return texel(texture, ref, texels, std::int64_t(std::floor(x)), std::int64_t(std::floor(y)));
+  if (ref.filter == Filter::nearest) return {std::int64_t(std::floor(x)), std::int64_t(std::floor(y))};
   const double fx0 = std::floor(x - 0.5), fy0 = std::floor(y - 0.5);
-  const float fx = float(x - 0.5 - fx0), fy = float(y - 0.5 - fy0);
-  const std::int64_t x0 = std::int64_t(fx0), y0 = std::int64_t(fy0);
-  return bilinear(texel(texture, ref, texels, x0, y0), texel(texture, ref, texels, x0 + 1, y0),
-                  texel(texture, ref, texels, x0, y0 + 1), texel(texture, ref, texels, x0 + 1, y0 + 1), fx, fy);
+  return {std::int64_t(fx0), std::int64_t(fy0), float(x - 0.5 - fx0), float(y - 0.5 - fy0)};
+}
+
+// sample_texture on texels read by `texels`.
+template <class Texels>
+glm::vec3 sample(const Texture& texture, const TextureRef& ref, Texels texels, glm::vec2 uv) {
+  const Spot s = locate(texture, ref, uv);
+  if (ref.filter == Filter::nearest) return texel(texture, ref, texels, s.x0, s.y0);
+  return bilinear(texel(texture, ref, texels, s.x0, s.y0), texel(texture, ref, texels, s.x0 + 1, s.y0),
+                  texel(texture, ref, texels, s.x0, s.y0 + 1), texel(texture, ref, texels, s.x0 + 1, s.y0 + 1), s.fx, s.fy);
+}
+
+// Asks the CPU to load the rows sample() will read for `uv` into the cache (the bakers' hits read
+// textures at random: each lookup otherwise waits for memory in turn).
+void prefetch_texels(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
+  const Spot s = locate(texture, ref, uv);
+  const std::size_t column = std::size_t(wrap_texel(s.x0, texture.width, ref.wrap_s));
+  const std::size_t rows[2] = {std::size_t(wrap_texel(s.y0, texture.height, ref.wrap_t)),
+                               std::size_t(wrap_texel(s.y0 + 1, texture.height, ref.wrap_t))};
+  for (std::size_t row : rows) {
+    const std::size_t i = (row * std::size_t(texture.width) + column) * 3;
+    const void* address = texture.codes.empty() ? static_cast<const void*>(texture.rgb.data() + i)
+                                                : static_cast<const void*>(texture.codes.data() + i);
+#if defined(__x86_64__) || defined(__i386__)
+    // GCC 12 deletes __builtin_prefetch here (it finds the address otherwise unused); the instruction
+    // itself stays.
+    asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(address)));
+#else
+    __builtin_prefetch(address);
+#endif
+  }
 }
 
 // The material of a textured triangle, else null.
@@ -196,6 +227,10 @@ glm::vec3 TriangleColour::at(double b1, double b2) const {
     colour *= glm::vec3((1.0 - b1 - b2) * glm::dvec3(*colours_[0]) + b1 * glm::dvec3(*colours_[1]) + b2 * glm::dvec3(*colours_[2]));
   for (int c = 0; c < 3; ++c) colour[c] = std::isnan(colour[c]) ? 0.0f : std::clamp(colour[c], 0.0f, 1.0f);
   return colour;
+}
+
+void TriangleColour::prefetch(double b1, double b2) const {
+  if (texture_) prefetch_texels(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
 }
 
 double TriangleColour::texel_length(const glm::dvec2& a, const glm::dvec2& b) const {

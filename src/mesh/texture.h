@@ -58,6 +58,11 @@ class TriangleColour {
   /// caller's default albedo applies there: albedo_source none).
   glm::vec3 at(double b1, double b2) const;
 
+  /// Starts loading into the CPU's cache the texels that at(b1, b2) reads; changes no result. A loop
+  /// over many lookups (a ray batch's hits) that prefetches them all first waits for memory once
+  /// rather than once per lookup.
+  void prefetch(double b1, double b2) const;
+
   /// The length in texels of the transformed UV segment between the points with barycentrics a and b;
   /// 0 for an untextured triangle.
   double texel_length(const glm::dvec2& a, const glm::dvec2& b) const;

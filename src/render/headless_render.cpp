@@ -45,13 +45,10 @@ void render_to_file(const RenderOptions& options) {
   if (background == Background::environment && !lighting.has_image)
     fail_file_option(options.environment, "background", " env needs an environment image, this is an SH lighting file");
 
-  // Glossy transfer: the BRDF matrix, before any GL work.
-  std::optional<brdf::BrdfMatrix> glossy;
-  brdf::Brdf surface;
-  if (transfer::is_glossy(scene.transfers[0].header.kind)) {
-    surface = glossy_brdf(scene.transfers[0], scene.transfer_paths[0], options.brdf);
-    glossy = brdf::project(surface, static_cast<int>(scene.transfers[0].header.bands_out));
-  }
+  // Glossy transfer: its BRDFs (one per vertex from a --brdf mesh bake, or --brdf's for all), before any GL work.
+  std::optional<brdf::VertexBrdfs> glossy;
+  if (transfer::is_glossy(scene.transfers[0].header.kind))
+    glossy = glossy_brdfs(scene.transfers[0], scene.transfer_paths[0], options.brdf);
   else if (!options.brdf.empty())
     fail_file_option(scene.transfer_paths[0], "brdf", " applies to glossy transfer; this one is " +
                                            std::string(transfer::kind_name(scene.transfers[0].header.kind)));
@@ -60,7 +57,7 @@ void render_to_file(const RenderOptions& options) {
   Renderer renderer;
   renderer.set_mesh(scene.mesh);
   const int index = add_scene_transfer(renderer, scene, 0);
-  if (glossy) renderer.set_brdf(index, *glossy, surface);
+  if (glossy) renderer.set_brdfs(index, *glossy);
   if (!lighting.discs.empty() && !glossy)
     renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[0].header, scene.transfer_paths[0]));
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);

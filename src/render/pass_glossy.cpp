@@ -20,6 +20,7 @@ constexpr GLuint kLightingBinding = 0;         // prt_glossy.comp: uniform Light
 constexpr GLuint kBrdfBinding = 1;             // prt_glossy.comp: buffer BrdfMatrix
 constexpr GLuint kOutgoingBinding = 2;         // prt_glossy.comp (written), prt_glossy.frag (read)
 constexpr GLuint kBounceOutgoingBinding = 6;   // prt_glossy.comp (SUN)
+constexpr GLuint kVertexBrdfBinding = 7;       // prt_glossy.comp, prt_glossy.frag (BRDF_TABLE)
 
 // A storage buffer of at least `bytes`, reallocated (contents undefined) only when it grows.
 void ensure_buffer(GLuint& buffer, std::size_t& size, std::size_t bytes, GLbitfield flags) {
@@ -44,29 +45,38 @@ class GlossyPass final : public TransferPass {
     }
   }
   ~GlossyPass() override {
-    for (GLuint* buffer : {&brdf_, &outgoing_, &bounce_outgoing_, &disc_lighting_}) delete_buffer(*buffer);
+    for (GLuint* buffer : {&brdf_, &vertex_brdf_, &outgoing_, &bounce_outgoing_, &disc_lighting_}) delete_buffer(*buffer);
   }
 
   const transfer::Header& header() const override { return transfer_.header(); }
   const char* name() const override { return "glossy"; }
 
-  void set_brdf(const brdf::BrdfMatrix& matrix) override {
-    const int n = matrix.coefficients();
-    std::vector<glm::vec4> entries(static_cast<std::size_t>(n) * n);
-    for (int c = 0; c < 3; ++c) {
-      const double* b = matrix.for_colour(c);
-      for (std::size_t i = 0; i < entries.size(); ++i) entries[i][c] = static_cast<float>(b[i]);
-    }
+  void set_brdf(const brdf::BrdfMatrix& matrix) override { set_brdf_table({matrix}, {}); }
+
+  // The matrices back to back in brdf_ (rgb per entry), and with several each vertex's index in vertex_brdf_.
+  void set_brdf_table(const std::vector<brdf::BrdfMatrix>& matrices, const std::vector<std::uint32_t>& vertex) override {
+    const int n = matrices.front().coefficients();
+    const std::size_t block = static_cast<std::size_t>(n) * n;
+    std::vector<glm::vec4> entries(block * matrices.size());
+    for (std::size_t m = 0; m < matrices.size(); ++m)
+      for (int c = 0; c < 3; ++c) {
+        const double* b = matrices[m].for_colour(c);
+        for (std::size_t i = 0; i < block; ++i) entries[m * block + i][c] = static_cast<float>(b[i]);
+      }
     const auto bytes = static_cast<GLsizeiptr>(entries.size() * sizeof(glm::vec4));
-    if (brdf_ != 0 && brdf_bands_ == matrix.bands) {
+    if (brdf_ != 0 && brdf_bands_ == matrices.front().bands && brdf_count_ == matrices.size()) {
       glNamedBufferSubData(brdf_, 0, bytes, entries.data());
     } else {
       delete_buffer(brdf_);
       brdf_ = make_buffer(bytes, entries.data(), GL_DYNAMIC_STORAGE_BIT);
     }
-    brdf_bands_ = matrix.bands;
+    delete_buffer(vertex_brdf_);
+    if (matrices.size() > 1)
+      vertex_brdf_ = make_buffer(static_cast<GLsizeiptr>(vertex.size() * sizeof(std::uint32_t)), vertex.data(), 0);
+    brdf_bands_ = matrices.front().bands;
+    brdf_count_ = matrices.size();
     ++brdf_version_;  // the bounce light goes through B
-    check_gl("uploading a BRDF matrix");
+    check_gl("uploading BRDF matrices");
   }
 
   void prepare_sun(FrameCore& core, const Frame& frame) override;
@@ -78,8 +88,11 @@ class GlossyPass final : public TransferPass {
     return core.program({"prt_glossy.comp"}, "#define CHANNELS " + std::to_string(h.channels) + "\n#define IN_COUNT " +
                                                  std::to_string(h.bands * h.bands) + "\n#define USED_COUNT " +
                                                  std::to_string(used_count) + "\n#define OUT_COUNT " + std::to_string(out_count()) +
-                                                 "\n#define CHUNKS " + std::to_string(chunks) + "\n" + (sun ? "#define SUN 1\n" : ""));
+                                                 "\n#define CHUNKS " + std::to_string(chunks) + "\n" + (sun ? "#define SUN 1\n" : "") +
+                                                 table_define());
   }
+  /// "#define BRDF_TABLE 1\n" with several BRDFs, else "".
+  std::string table_define() const { return brdf_count_ > 1 ? "#define BRDF_TABLE 1\n" : ""; }
   int out_count() const { return static_cast<int>(transfer_.header().bands_out * transfer_.header().bands_out); }
   /// O (or the bounce) of every vertex into `output`, from `transfer` and the lighting in uniform buffer `lighting`.
   void dispatch(const FrameCore& core, const Program& compute, const TransferBuffer& transfer, GLuint lighting, GLuint output) const {
@@ -90,13 +103,16 @@ class GlossyPass final : public TransferPass {
     glBindBufferBase(GL_UNIFORM_BUFFER, kLightingBinding, lighting);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBrdfBinding, brdf_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOutgoingBinding, output);
+    if (vertex_brdf_ != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertexBrdfBinding, vertex_brdf_);
   }
 
   TransferBuffer transfer_;
   bool interreflected_ = false;
   std::unique_ptr<TransferBuffer> bounce_;  // the bounce-only part (null if none)
-  GLuint brdf_ = 0;                         // B as vec4 per entry (0 until set_brdf)
+  GLuint brdf_ = 0;                         // B as vec4 per entry, brdf_count_ of them (0 until set_brdf)
+  GLuint vertex_brdf_ = 0;                  // each vertex's index into them (uint), with several; else 0
   int brdf_bands_ = 0, brdf_version_ = 0;
+  std::size_t brdf_count_ = 0;
   GLuint outgoing_ = 0;                     // O of every vertex, vec4 per coefficient
   std::size_t outgoing_bytes_ = 0;
   GLuint bounce_outgoing_ = 0;              // the discs' bounce light, vec4 per coefficient per vertex
@@ -156,7 +172,8 @@ void GlossyPass::draw(FrameCore& core, const Frame& frame) {
   glBindVertexArray(core.mesh_vao);
   const int out_bands = static_cast<int>(transfer_.header().bands_out);
   const Program& draw = core.program({"prt_glossy.vert", "prt_glossy.frag"},
-                                     "#define OUT_BANDS " + std::to_string(out_bands) + "\n" + (frame.sun ? "#define SUN 1\n" : ""));
+                                     "#define OUT_BANDS " + std::to_string(out_bands) + "\n" +
+                                         (frame.sun ? "#define SUN 1\n" + table_define() : std::string()));
   glUseProgram(draw.id());
   glUniformMatrix4fv(draw.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(core.model_view_projection));
   const glm::vec3 eye_object = core.eye_object(frame.settings);
@@ -165,6 +182,7 @@ void GlossyPass::draw(FrameCore& core, const Frame& frame) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, core.indices);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, core.positions);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, core.normals);
+  if (vertex_brdf_ != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertexBrdfBinding, vertex_brdf_);
   if (frame.sun) core.sun->bind(core, draw, sun_surface_, true);
   core.draw_mesh_elements();
 }

@@ -187,6 +187,46 @@ void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix, const brdf
   sun.has_terms = true;
 }
 
+void Renderer::set_brdfs(int transfer, const brdf::VertexBrdfs& brdfs) {
+  const transfer::Header& header = transfer_header(transfer);
+  if (!transfer::is_glossy(header.kind))
+    fail(std::string("renderer: set_brdfs needs a glossy transfer, this one is ") + transfer::kind_name(header.kind));
+  if (brdfs.table.empty()) fail("renderer: set_brdfs needs at least one BRDF");
+  if (brdfs.table.size() == 1) {
+    set_brdf(transfer, brdf::project(brdfs.table[0], static_cast<int>(header.bands_out)), brdfs.table[0]);
+    return;
+  }
+  if (brdfs.vertex.size() != core_->vertex_count)
+    fail("renderer: set_brdfs has " + std::to_string(brdfs.vertex.size()) + " vertex indices for " +
+         std::to_string(core_->vertex_count) + " vertices");
+  for (std::uint32_t index : brdfs.vertex)
+    if (index >= brdfs.table.size())
+      fail("renderer: a vertex's BRDF index " + std::to_string(index) + " is not below the table's " +
+           std::to_string(brdfs.table.size()) + " BRDFs");
+  std::vector<brdf::BrdfMatrix> matrices;
+  std::vector<glm::vec4> terms(brdfs.table.size() * 2 * kMaxBrdfTerms, glm::vec4(0.0f));  // sun_light.glsl BrdfTerms
+  for (std::size_t b = 0; b < brdfs.table.size(); ++b) {
+    matrices.push_back(brdf::project(brdfs.table[b], static_cast<int>(header.bands_out)));
+    const std::vector<brdf::Term> t = brdf::terms(brdfs.table[b]);
+    if (t.size() > static_cast<std::size_t>(kMaxBrdfTerms))
+      fail("renderer: BRDF " + std::to_string(b) + " has " + std::to_string(t.size()) +
+           " terms; the disc term evaluates at most " + std::to_string(kMaxBrdfTerms));
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const std::size_t at = 2 * (b * kMaxBrdfTerms + i);
+      terms[at] = glm::vec4(static_cast<float>(static_cast<int>(t[i].shape)), static_cast<float>(t[i].parameter),
+                            i == 0 ? static_cast<float>(t.size()) : 0.0f, 0.0f);
+      terms[at + 1] = glm::vec4(glm::vec3(t[i].weight), 0.0f);
+    }
+  }
+  pass(transfer).set_brdf_table(matrices, brdfs.vertex);
+  SunSurface& sun = pass(transfer).sun_surface();
+  delete_buffer(sun.term_table);
+  sun.term_table = make_buffer(static_cast<GLsizeiptr>(terms.size() * sizeof(glm::vec4)), terms.data(), 0);
+  sun.terms = brdf::terms(brdfs.table[0]);
+  sun.has_terms = true;
+  check_gl("uploading the BRDFs' terms");
+}
+
 void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& albedo) {
   TransferPass& p = pass(transfer);
   if (albedo.size() != core_->vertex_count)

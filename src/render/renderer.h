@@ -84,6 +84,7 @@
 #include "brdf/projection.h"
 #include "camera/camera.h"
 #include "brdf/brdf.h"
+#include "brdf/vertex_brdfs.h"
 #include "image/image.h"
 #include "light/disc.h"
 #include "mesh/mesh.h"
@@ -214,6 +215,13 @@ class Renderer {
   /// The same, and the BRDF itself, which the discs' direct light evaluates exactly (at most 8
   /// brdf::terms). A glossy transfer needs this form before it is rendered with discs.
   void set_brdf(int transfer, const brdf::BrdfMatrix& matrix, const brdf::Brdf& surface);
+  /// One BRDF per vertex (a `--brdf mesh` bake, shade::baked_brdfs): vertex v is shaded with
+  /// brdfs.table[brdfs.of(v)], projected here to the transfer's output bands; the discs' direct light
+  /// evaluates each corner's BRDF exactly and blends the values with the fragment's barycentrics. A
+  /// table of one is set_brdf with it. Throws prt::Error unless `transfer` is a per-vertex glossy
+  /// transfer's index (a compressed one takes one BRDF), brdfs.vertex is empty or has one index below
+  /// the table's size per vertex, and each BRDF has at most 8 brdf::terms.
+  void set_brdfs(int transfer, const brdf::VertexBrdfs& brdfs);
   /// The per-vertex albedo the discs' diffuse direct light uses for transfer `transfer`
   /// (shade::surface_albedo: the albedo it was baked with). Until set: the mesh's albedo (0.8 grey
   /// where it has none). Throws prt::Error for a wrong size or index.

@@ -80,12 +80,9 @@ Lighting load_render_lighting(const std::string& spec, int bands, const light::S
   return lighting;
 }
 
-brdf::Brdf glossy_brdf(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec) {
-  return spec.empty() ? shade::baked_brdf(transfer.header, origin) : brdf::parse_brdf(spec);
-}
-
-brdf::BrdfMatrix glossy_brdf_matrix(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec) {
-  return brdf::project(glossy_brdf(transfer, origin, spec), static_cast<int>(transfer.header.bands_out));
+brdf::VertexBrdfs glossy_brdfs(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec) {
+  if (!spec.empty()) return brdf::VertexBrdfs{{brdf::parse_brdf(spec)}, {}};
+  return shade::baked_brdfs(transfer.header, origin);
 }
 
 int max_bands(const SceneInputs& scene) {

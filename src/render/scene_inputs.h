@@ -8,6 +8,7 @@
 
 #include "brdf/brdf.h"
 #include "brdf/projection.h"
+#include "brdf/vertex_brdfs.h"
 #include "compress/compressed.h"
 #include "image/image.h"
 #include "light/scene_lighting.h"
@@ -62,11 +63,9 @@ Lighting load_render_lighting(const std::string& spec, int bands, const light::S
 /// Largest band count among the transfers (the bands lighting is projected to).
 int max_bands(const SceneInputs& scene);
 
-/// The BRDF matrix a glossy transfer is shaded with: `spec` (a --brdf SPEC or material file) if not
-/// empty, else the BRDF recorded in the transfer at bake time (shade::baked_brdf), projected to the
-/// transfer's output bands. Throws prt::Error naming `origin` if the transfer records none.
-brdf::BrdfMatrix glossy_brdf_matrix(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec);
-/// The BRDF itself that glossy_brdf_matrix projects.
-brdf::Brdf glossy_brdf(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec);
+/// The BRDFs a glossy transfer is shaded with: `spec`'s for every vertex if not empty, else those recorded
+/// at bake time, one per vertex for a `--brdf mesh` bake (shade::baked_brdfs). Throws prt::Error naming
+/// `origin` if the transfer records none, or `spec` does not parse.
+brdf::VertexBrdfs glossy_brdfs(const transfer::TransferData& transfer, const std::string& origin, const std::string& spec);
 
 }  // namespace prt::render

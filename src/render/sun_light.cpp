@@ -22,6 +22,7 @@ namespace {
 constexpr GLuint kSunAlbedoBinding = 6;       // prt_diffuse.vert, prt_lightmap.vert (SUN); sun_visibility.comp: Visibility
 constexpr GLuint kShadowUnit = 8;             // sun_light.glsl: shadow_maps
 constexpr int kMaxTerms = kMaxBrdfTerms;
+constexpr GLuint kBrdfTermsBinding = 8;      // sun_light.glsl (BRDF_TABLE): buffer BrdfTerms
 constexpr GLuint kTileUnit = 9;               // sun_light.glsl: shadow_tiles
 constexpr GLuint kTriangleCornersUnit = 13;   // prt_sun.frag: triangle_corners
 constexpr GLuint kSurfaceUnit = 14;           // prt_sun.frag: surface
@@ -69,6 +70,7 @@ std::string lookup_defines() {
 SunSurface::~SunSurface() {
   delete_buffer(albedo);
   delete_buffer(surface_buffer);
+  delete_buffer(term_table);
   release_texture(surface_texture);
 }
 
@@ -299,6 +301,7 @@ void SunLight::bind(const FrameCore& core, const Program& program, const SunSurf
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSunAlbedoBinding, t.albedo != 0 ? t.albedo : core.albedo);
     return;
   }
+  if (t.term_table != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBrdfTermsBinding, t.term_table);
   const int terms = static_cast<int>(t.terms.size());
   GLint shapes[kMaxTerms];
   float parameters[kMaxTerms];

@@ -39,6 +39,9 @@ struct SunSurface {
   GLuint albedo = 0;                                ///< x y z floats per vertex (0: the mesh's albedo)
   GLuint surface_buffer = 0, surface_texture = 0;   ///< deferred pass: position, normal, albedo per vertex
   std::vector<brdf::Term> terms;                    ///< glossy: the BRDF for the direct light
+  /// Glossy with one BRDF per vertex (Renderer::set_brdfs): each BRDF's terms as sun_light.glsl's
+  /// BrdfTerms reads them (2 kMaxBrdfTerms vec4 per BRDF), or 0; the pass binds the vertices' indices.
+  GLuint term_table = 0;
   bool has_terms = false;
   bool warned = false;                              ///< the "no bounce-only section" warning was printed
 };

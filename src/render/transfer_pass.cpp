@@ -26,6 +26,10 @@ TransferPass::TransferPass(const std::string& origin, transfer::Kind kind) {
 
 void TransferPass::set_brdf(const brdf::BrdfMatrix&) { fail(std::string("renderer: a ") + name() + " pass takes no BRDF matrix"); }
 
+void TransferPass::set_brdf_table(const std::vector<brdf::BrdfMatrix>&, const std::vector<std::uint32_t>&) {
+  fail(std::string("renderer: a ") + name() + " pass takes one BRDF, not one per vertex");
+}
+
 void TransferPass::prepare_sun(FrameCore&, const Frame&) {}
 
 void TransferPass::warn_no_bounce(const char* what) {

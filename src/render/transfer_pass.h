@@ -51,6 +51,9 @@ class TransferPass {
   virtual const char* name() const = 0;
   /// The BRDF matrix of a glossy transfer (Renderer::set_brdf checked kind and bands).
   virtual void set_brdf(const brdf::BrdfMatrix& matrix);
+  /// Several BRDF matrices (equal bands) and each vertex's index into them (Renderer::set_brdfs checked
+  /// kind, bands, sizes and indices). Only the per-vertex glossy pass takes them; the others throw.
+  virtual void set_brdf_table(const std::vector<brdf::BrdfMatrix>& matrices, const std::vector<std::uint32_t>& vertex);
   /// Before the frame's framebuffer is bound, with the shadow maps up to date: whatever of the discs'
   /// light the pass computes when the lighting changes (its bounce light). Only on frames with discs.
   virtual void prepare_sun(FrameCore& core, const Frame& frame);

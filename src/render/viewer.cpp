@@ -227,7 +227,7 @@ void apply_requests(Session& s, Renderer& renderer, const Camera& initial_camera
   }
   if (state.brdf_changed) {
     state.brdf_changed = false;
-    if (state.current_glossy()) {
+    if (state.current_glossy() && !state.current_table()) {
       // Live BRDF edits: re-project B on the CPU (tens of ms at 5 bands) and upload it.
       const auto start = std::chrono::steady_clock::now();
       try {
@@ -279,9 +279,10 @@ void init_state(ViewerState& state, const SceneInputs& scene, const ViewerOption
                                    transfer_memory_label(scene, i) + ")");
     state.transfer_bands.push_back(static_cast<int>(h.bands));
     const bool glossy = transfer::is_glossy(h.kind);
-    state.transfer_brdfs.push_back(glossy ? (options.brdf.empty() ? shade::baked_brdf(h, scene.transfer_paths[i])
-                                                                  : brdf::parse_brdf(options.brdf))
-                                          : brdf::Brdf{});
+    const brdf::VertexBrdfs brdfs = glossy ? glossy_brdfs(scene.transfers[i], scene.transfer_paths[i], options.brdf)
+                                           : brdf::VertexBrdfs{{brdf::Brdf{}}, {}};
+    state.transfer_brdfs.push_back(brdfs.table[0]);
+    state.transfer_tables.push_back(brdfs.table.size() > 1 ? brdfs : brdf::VertexBrdfs{});
     state.transfer_bands_out.push_back(glossy ? static_cast<int>(h.bands_out) : 0);
   }
   state.vertex_count = scene.mesh.vertex_count();
@@ -302,7 +303,9 @@ void upload_scene(Renderer& renderer, const SceneInputs& scene, const ViewerStat
   renderer.set_mesh(scene.mesh);
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const int index = add_scene_transfer(renderer, scene, i);
-    if (!state.transfer_brdfs[i].empty())
+    if (!state.transfer_tables[i].table.empty())
+      renderer.set_brdfs(index, state.transfer_tables[i]);
+    else if (!state.transfer_brdfs[i].empty())
       renderer.set_brdf(index, brdf::project(state.transfer_brdfs[i], state.transfer_bands_out[i]), state.transfer_brdfs[i]);
     else
       renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[i].header, scene.transfer_paths[i]));

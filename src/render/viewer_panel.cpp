@@ -56,6 +56,11 @@ bool edit_colour(const char* label, glm::dvec3& colour) {
 
 // The glossy transfer's BRDF: full or diffuse lobes (G), and each lobe's parameters, edited live.
 void draw_brdf_controls(ViewerState& state) {
+  if (state.current_table()) {
+    ImGui::TextWrapped("BRDFs: %zu, one per material (--brdf mesh; not edited here)",
+                       state.transfer_tables[static_cast<std::size_t>(state.settings.transfer)].table.size());
+    return;
+  }
   brdf::Brdf& brdf = state.transfer_brdfs[static_cast<std::size_t>(state.settings.transfer)];
   ImGui::TextWrapped("BRDF: %s", brdf::to_spec(brdf).c_str());
   int diffuse = state.diffuse_lobes_only ? 1 : 0;
@@ -155,7 +160,7 @@ bool apply_key(ViewerState& state, int key, int mods) {
     case GLFW_KEY_L: s.shading = s.shading == Shading::prt ? Shading::lambert : Shading::prt; break;
     case GLFW_KEY_U: s.sun = !s.sun; break;
     case GLFW_KEY_G:
-      if (state.current_glossy()) {
+      if (state.current_glossy() && !state.current_table()) {
         state.diffuse_lobes_only = !state.diffuse_lobes_only;
         state.brdf_changed = true;
       }

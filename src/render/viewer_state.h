@@ -17,6 +17,9 @@ struct ViewerState {
   std::vector<std::string> transfer_names;  ///< one line per transfer for the panel
   std::vector<int> transfer_bands;
   std::vector<brdf::Brdf> transfer_brdfs;   ///< per transfer: its BRDF (empty for diffuse transfers)
+  /// Per transfer: its BRDFs when a `--brdf mesh` bake has several (shown as they are, not edited; its
+  /// transfer_brdfs entry is the first), else an empty table.
+  std::vector<brdf::VertexBrdfs> transfer_tables;
   std::vector<int> transfer_bands_out;      ///< per transfer: output bands (0 for diffuse transfers)
   std::vector<Lighting> environments;
   int projection_bands = 1;                 ///< bands environments are projected to
@@ -52,6 +55,8 @@ struct ViewerState {
   int current_bands() const { return transfer_bands[static_cast<std::size_t>(settings.transfer)]; }
   /// Whether the current transfer is glossy.
   bool current_glossy() const { return !transfer_brdfs[static_cast<std::size_t>(settings.transfer)].empty(); }
+  /// The current transfer has one BRDF per vertex (transfer_tables).
+  bool current_table() const { return !transfer_tables[static_cast<std::size_t>(settings.transfer)].table.empty(); }
 };
 
 /// Draws the Dear ImGui panel and applies its edits to the state. Between ImGui::NewFrame and Render.

@@ -96,7 +96,7 @@ brdf::VertexBrdfs baked_brdfs(const transfer::Header& header, const std::string&
 brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what) {
   brdf::VertexBrdfs brdfs = baked_brdfs(header, what);
   if (brdfs.table.size() != 1)
-    fail_file(what, "the transfer has one BRDF per material (--brdf mesh), which only prt shade applies per vertex; give one BRDF");
+    fail_file(what, "the transfer has one BRDF per material (--brdf mesh), which prt shade, render and view apply per vertex; give one BRDF");
   return brdfs.table[0];
 }
 

@@ -260,3 +260,44 @@ TEST_CASE("OBJ with a missing MTL loads without albedo and notes the warning", "
   REQUIRE(report.notes.size() == 2);
   CHECK_THAT(report.notes[0], Catch::StartsWith("OBJ reader: "));
 }
+
+TEST_CASE("OBJ PBR keys: each MTL material's Pr and Pm are its roughness and metallic factors", "[mesh][obj][materials]") {
+  // Values chosen apart from every default (tinyobjloader's 0, prt's metallic 0 / roughness 1), and a
+  // name with a trailing blank and a repeated definition (the first one counts, as for Kd).
+  write_temp("pbr.mtl",
+             "newmtl shiny \nKd 1 1 1\nPr 0.25\nPm 0.75\n"
+             "newmtl plain\nKd 0.5 0.5 0.5\n"
+             "newmtl half\r\nPm 1\r\nPr 0.0625\r\nmap_Pr rough.png\r\n"
+             "newmtl shiny\nPr 0.5\nPm 0.5\n");
+  const std::string path = write_temp("pbr.obj", "mtllib pbr.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+                                                 "usemtl shiny\nf 1//1 2//1 3//1\nusemtl plain\nf 1//1 3//1 4//1\n"
+                                                 "usemtl half\nf 2//1 3//1 4//1\n");
+  const Mesh mesh = load_mesh(path, nullptr, true);
+  REQUIRE(mesh.triangle_material.size() == 3);
+  const Material& shiny = mesh.materials[mesh.triangle_material[0]];
+  const Material& plain = mesh.materials[mesh.triangle_material[1]];
+  const Material& half = mesh.materials[mesh.triangle_material[2]];
+  CHECK(shiny.roughness_factor == 0.25f);
+  CHECK(shiny.metallic_factor == 0.75f);
+  CHECK_FALSE(shiny.metallic_roughness_textured);
+  CHECK(plain.roughness_factor == 1.0f);  // MTL without Pr / Pm: a rough dielectric
+  CHECK(plain.metallic_factor == 0.0f);
+  CHECK(half.roughness_factor == 0.0625f);
+  CHECK(half.metallic_factor == 1.0f);
+  CHECK(half.metallic_roughness_textured);  // map_Pr is not read: noted where a glossy BRDF is made
+}
+
+TEST_CASE("OBJ PBR keys out of [0, 1] or not a number are one line naming the MTL file", "[mesh][obj][materials]") {
+  const std::string obj = "mtllib bad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+  const std::pair<const char*, const char*> cases[] = {
+      {"newmtl m\nPr 1.5\n", "line 2: material m: Pr \"1.5\" is not one number in [0, 1]"},
+      {"newmtl m\nKd 1 1 1\nPm -0.1\n", "line 3: material m: Pm \"-0.1\" is not one number in [0, 1]"},
+      {"newmtl m\nPm nan\n", "line 2: material m: Pm \"nan\" is not one number in [0, 1]"},
+      {"newmtl m\nPr 0.5 0.5\n", "line 2: material m: Pr \"0.5 0.5\" is not one number in [0, 1]"},
+      {"newmtl m\nPr\n", "line 2: material m: Pr \"\" is not one number in [0, 1]"}};
+  for (const auto& [mtl, problem] : cases) {
+    const std::string mtl_path = write_temp("bad.mtl", mtl);
+    const std::string path = write_temp("bad_pbr.obj", obj);
+    CHECK(error_of([&] { load_mesh(path, nullptr, true); }) == mtl_path + ": " + problem);
+  }
+}

@@ -234,6 +234,30 @@ TEST_CASE("prt probes bakes every format, probes-relight applies a rotated sky",
   CHECK(no_transfer.output.find("has no transfer") != std::string::npos);
 }
 
+TEST_CASE("prt probes-relight without --env re-exports a plain probe file as the bake would have", "[probes][cli]") {
+  // Truth: the files `prt probes` writes directly in each format from the same bake (same seed, so the
+  // same probes); the re-export from the plain .prtprobes must be the same bytes.
+  const std::string dir = test::fresh_temp_dir("probe_cli_reexport");
+  const std::string scene = write_scene(dir);
+  const std::string base = "probes " + scene + " --env " + sky() + " --grid 3,2,3 --rays 256 --surface-samples 64 -q ";
+  REQUIRE(test::run_prt(base + "--format prt -o " + dir + "/plain.prtprobes").exit_code == 0);
+  for (const char* f : {"threejs", "unity", "godot", "filament", "bevy", "prt"}) {
+    const test::RunResult direct = test::run_prt(base + "--format " + f + " -o " + dir + "/direct." + f);
+    const test::RunResult again = test::run_prt("probes-relight " + dir + "/plain.prtprobes --format " + f + " -o " + dir + "/again." + f);
+    INFO(f << ": " << direct.output << again.output);
+    REQUIRE(direct.exit_code == 0);
+    REQUIRE(again.exit_code == 0);
+    CHECK(again.output.find("re-exported as baked") != std::string::npos);
+    const std::string a = read_file(dir + "/direct." + f), b = read_file(dir + "/again." + f);
+    CHECK(!a.empty());
+    CHECK(a == b);
+  }
+  const test::RunResult rotate_alone = test::run_prt("probes-relight " + dir + "/plain.prtprobes --rotate 90,0,0 -o " + dir + "/x.json --format threejs");
+  CHECK(rotate_alone.exit_code == 1);
+  CHECK(rotate_alone.output == "prt: --rotate needs --env (the environment to rotate)\n");
+  CHECK(!std::ifstream(dir + "/x.json").good());
+}
+
 TEST_CASE("prt probes lights probes with the scene's emission (OBJ/MTL Ke)", "[probes][cli]") {
   // A large emissive floor (Ke 1, Kd 0) under a black sky: a probe above it sees radiance 1 over the
   // lower hemisphere (all but the last 1e-4 radians above the horizon), so c_0 = 2 sqrt(pi) / 2 and

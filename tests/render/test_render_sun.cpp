@@ -370,6 +370,51 @@ TEST_CASE("glossy render with a sun equals the split glossy shading with the BRD
   }
 }
 
+// One BRDF per vertex (Renderer::set_brdfs, a --brdf mesh bake): each vertex's O through its own BRDF's
+// matrix, and the disc's direct light of each corner's BRDF blended with the pixel's barycentrics.
+TEST_CASE("glossy render with one BRDF per vertex and a sun equals the split shading of each vertex's BRDF",
+          "[render][gl][sun][glossy][materials]") {
+  SunScene box;
+  render::Renderer& renderer = box.renderer;
+  const mesh::Mesh& mesh = box.mesh;
+  brdf::VertexBrdfs brdfs;
+  for (const char* spec : {"gltf:basecolor=0.8/0.5/0.3,metallic=0,roughness=0.3", "gltf:basecolor=0.6/0.6/0.7,metallic=0.6,roughness=0.8",
+                           "phong:exponent=20,ks=0.5,kd=0.4"})
+    brdfs.table.push_back(brdf::parse_brdf(spec));
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) brdfs.vertex.push_back(std::uint32_t((v * 7 / 3) % 3));
+  const transfer::TransferData transfer = bake_transfer(mesh, transfer::Kind::glossy_interreflected, 3, "phong:exponent=8,kd=0.5,ks=0.3");
+  const sh::RgbCoefficients sky = test_lighting(3);
+  const int index = renderer.add_transfer(transfer, "test");
+  renderer.set_brdfs(index, brdfs);
+  renderer.set_lighting(sky, nullptr);
+  renderer.set_discs({box.sun});
+  const render::FrameSettings settings = frame(index, render::Camera{-120.0, 40.0, 0.0});
+  renderer.render(settings, kWidth, kHeight);
+  const GlossyFrame f{renderer.read_radiance(), renderer.read_triangle_ids(), renderer.shadow_visibility(settings, 0)};
+  // CPU: each BRDF's O for every vertex (as shade_glossy_vertex_brdfs), each vertex keeping its own.
+  transfer::TransferData bounce = transfer;
+  bounce.values = transfer.bounce_only;
+  std::vector<glm::vec3> outgoing(mesh.vertex_count() * 9);
+  for (std::size_t b = 0; b < brdfs.table.size(); ++b) {
+    const brdf::BrdfMatrix matrix = brdf::project(brdfs.table[b], 3);
+    std::vector<glm::vec3> o = shade::glossy_outgoing_coefficients(transfer, matrix, sky);
+    const std::vector<glm::vec3> disc_o = shade::glossy_outgoing_coefficients(bounce, matrix, light::disc_coefficients(3, box.sun));
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (brdfs.vertex[v] == b)
+        for (std::size_t k = 0; k < 9; ++k) outgoing[v * 9 + k] = o[v * 9 + k] + disc_o[v * 9 + k];
+  }
+  const glm::dvec3 eye = renderer.last_view().eye;
+  const image::Image cpu = per_pixel_on_cpu(mesh, renderer.last_model_view_projection(), f.ids, kWidth, kHeight, [&](const PixelPoint& p) {
+    const glm::dvec3 v = glm::normalize(eye - p.position);
+    glm::dvec3 direct(0.0);
+    for (int c = 0; c < 3; ++c)
+      direct += p.weight[c] * glossy_direct(brdfs.table[brdfs.vertex[p.corner[c]]], box.sun, glm::dvec3(mesh.normals[p.corner[0]]), v,
+                                            box.rays[p.corner[0]]);
+    return glm::max(glossy_prt_at(mesh, outgoing, 3, p, v) + direct, glm::dvec3(0.0));
+  });
+  check_uniform(f, cpu, mesh, box.rays, 2e-3);
+}
+
 TEST_CASE("glossy CPCA render with a sun: per-vertex PRT of the model plus the disc's direct light per pixel", "[render][gl][sun][glossy][compress]") {
   SunScene box;
   render::Renderer& renderer = box.renderer;

@@ -84,7 +84,7 @@ TEST_CASE("unwrap: a developable cylinder strip (50 degrees of arc) unrolls isom
                    512, 1e-4);
 }
 
-TEST_CASE("unwrap: charts split at hard edges and at the normal cone, not across smooth edges", "[unwrap]") {
+TEST_CASE("unwrap: charts split at hard edges and at the normal cone but not across smooth edges", "[unwrap]") {
   // Two faces of a box sharing an edge, with split normals (a hard edge): two charts. The same two
   // faces with one shared normal (a smooth edge) at 90 degrees: the cone (60) still splits them.
   mesh::Mesh m;

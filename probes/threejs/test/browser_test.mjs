@@ -1,8 +1,9 @@
-// Browser test of the three.js probe volume: bakes a 3x2x3 probe grid with the real `prt`, opens the
+// Browser test of the three.js probe volume and the page's display transform: bakes a 3x2x3 probe grid with the real `prt`, opens the
 // example page (../index.html: real three.js from node_modules and ../prt_probe_volume.js) in headless
 // Chromium driven by playwright-core, moves the sphere through the volume and, at each stop,
 // screenshots the canvas and compares it with prt's own CPU render of the same sphere lit by the SH the
-// blend must give there (tests/probes/probe_sphere_reference.cpp): exactly one probe at a probe's
+// blend must give there (tests/probes/probe_sphere_reference.cpp, shown through prt's own
+// image::to_display with the page's exposure and tone map): exactly one probe at a probe's
 // position and outside the grid (clamped), the mean of two probes at an edge midpoint, and the mean of
 // the seven VALID corners at the centre of a cell one of whose corners lies inside the box (invalid).
 //
@@ -63,11 +64,16 @@ if (exported.valid[10] !== 0 || validCorners.length !== 7) {
   console.error(`browser_test: expected probe 10 alone invalid in the cell, valid = ${exported.valid}`);
   process.exit(1);
 }
+// display: [exposure stops, tone map] of the page (prt_tone_map.js) and of the reference
+// (image::to_display); [0, 'clamp'] is three's plain sRGB output. The last two stops show the sky at
+// 4x (clipping in 'clamp' is what ACES avoids) and ACES at -1 stop.
 const stops = [
-  { at: position(17), probes: '17', what: 'at probe 17' },
-  { at: mean([15, 16]), probes: '15+16', what: 'moved midway between probes 15 and 16' },
-  { at: mean(cell), probes: validCorners.join('+'), what: 'centre of a cell with invalid corner 10' },
-  { at: [3, 2, 3], probes: '17', what: 'outside the grid (clamped to probe 17)' },
+  { at: position(17), probes: '17', what: 'at probe 17', display: [0, 'clamp'] },
+  { at: mean([15, 16]), probes: '15+16', what: 'moved midway between probes 15 and 16', display: [0, 'clamp'] },
+  { at: mean(cell), probes: validCorners.join('+'), what: 'centre of a cell with invalid corner 10', display: [0, 'clamp'] },
+  { at: [3, 2, 3], probes: '17', what: 'outside the grid (clamped to probe 17)', display: [0, 'clamp'] },
+  { at: position(17), probes: '17', what: 'at probe 17, exposure +2, ACES', display: [2, 'aces'] },
+  { at: position(17), probes: '17', what: 'at probe 17, exposure -1, ACES', display: [-1, 'aces'] },
 ];
 
 // Static server on the loopback interface: the page folder, and the bake under /work/.
@@ -103,9 +109,11 @@ try {
   const ready = await page.evaluate(() => window.prtReady === true);
   if (!ready) throw new Error(`the page did not render: ${errors.join('; ') || 'timeout'}`);
   for (const stop of stops) {
+    await page.evaluate((d) => window.prtSetDisplay(d[0], d[1]), stop.display);
     const info = await page.evaluate((p) => window.prtRenderAt(p[0], p[1], p[2]), stop.at);
-    const referenceFile = join(work, `reference_${stop.probes}.rgba`);
-    const referenceReport = run(referenceTool, [join(work, 'probes.prtprobes'), stop.probes, String(albedo), String(size), referenceFile]);
+    const referenceFile = join(work, `reference_${stop.probes}_${stop.display.join('')}.rgba`);
+    const referenceReport = run(referenceTool, [join(work, 'probes.prtprobes'), stop.probes, String(albedo), String(size), referenceFile,
+                                                String(stop.display[0]), stop.display[1]]);
     const reference = readFileSync(referenceFile);
     const shot = decodePng(await page.locator('canvas').screenshot());
     if (shot.width !== size || shot.height !== size) throw new Error(`screenshot is ${shot.width}x${shot.height}, expected ${size}x${size}`);

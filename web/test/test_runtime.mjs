@@ -1,0 +1,143 @@
+// Acceptance test of the three.js runtime (web/prt_transfer.js) in headless Chromium with the real
+// three.js of web/package-lock.json: its pixels against `prt render`'s for the same bake, camera and
+// lighting. Both sides render linear radiance (prt: EXR; the page: a float render target), and the
+// comparison runs over the object's pixels (the page's coverage, less the 1-pixel rim of silhouettes,
+// creases and depth steps where the two rasterisers may pick different triangles; compareImages):
+// rel_rms = sqrt(sum |a - b|^2 / sum |b|^2) <= 1%, and the 99th percentile of |a - b| / rms(b) is printed.
+//
+// Cases (each: a bake's engine glTF from `prt bake --gltf`, a `prt light` JSON, camera, rotation, sun):
+// per-vertex interreflected transfer of a sphere on a floor with the sun off, a 2-degree disc, the map's
+// own sun and a rotated environment; a textured glTF (BoxTextured: base colour texture per pixel, the
+// albedo split); a glTF of many nodes with their transforms and instanced meshes (2CylinderEngine, when
+// Debian's assimp-testmodels is installed); a lightmap (per-texel transfer, PRT_lightmap_transfer). Every
+// export has at most 16 vertex attributes.
+//
+// Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
+//        [--nodes <glTF>] [--work DIR]
+//        [--dump DIR] (PPM images of each case); PRT_ONLY=<text> runs the cases whose name contains it
+//        [--break order|rotation]  (a deliberately wrong runtime: swapped SH coefficients or no rotation;
+//                                   the test must then fail)
+// Exit status 0 pass, 1 fail, 77 skipped (no Chromium).
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { FloatType } from 'three';
+import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
+import { argument, run } from '../../tests/engines/common.mjs';
+import { openPage, requireBrowser, runInBrowser } from './browser.mjs';
+import { bakeGlb, prepareBake } from './bake_fixture.mjs';
+import { writeLightmapScene } from './lightmap_scene.mjs';
+
+requireBrowser();
+const prt = argument('prt');
+const env = resolve(argument('env'));
+const mesh = resolve(argument('mesh'));
+const work = resolve(argument('work', mkdtempSync(join(tmpdir(), 'prt-web-runtime-'))));
+const breakage = argument('break', '');
+const dump = argument('dump', '');  // a folder: writes each case's page, prt and |difference| x 10 as PPM
+mkdirSync(work, { recursive: true });
+const size = 256;
+const bands = 3;
+
+const bake = prepareBake({ prt, mesh, env, work, bands });
+const textured = bakeGlb({ prt, mesh: resolve(argument('textured')), work, name: 'textured', samples: 64 });
+const nodes = bakeGlb({ prt, mesh: resolve(argument('nodes', '/nonexistent')), work, name: 'nodes', samples: 16 });
+if (!textured) throw new Error('the textured glTF is missing');
+// Per texel: a 64 x 64 lightmap of a floor and a box (web/test/lightmap_scene.mjs), `prt bake --lightmap --gltf`.
+const lightmapObj = writeLightmapScene(work);
+const lightmap = bakeGlb({ prt, mesh: lightmapObj, work, name: 'lightmap', samples: 64, extra: ['--lightmap', '64x64'] });
+
+const cases = [
+  { name: 'sun off', light: 'sky.json', camera: [30, 25], rotate: [0, 0, 0], sun: false },
+  { name: 'sun on (a 2-degree disc high in the sky: PCSS shadow, bounce)', light: 'disc.json', camera: [30, 25], rotate: [0, 0, 0], sun: true },
+  { name: 'sun on (the map\'s own sun, found by prt light)', light: 'sun.json', camera: [30, 25], rotate: [0, 0, 0], sun: true },
+  { name: 'rotated environment, sun on', light: 'disc.json', camera: [-40, 30], rotate: [70, 20, 0], sun: true },
+  { name: 'textured glTF (BoxTextured), sun on', glb: textured, light: 'disc.json', camera: [35, 30], rotate: [20, 0, 0], sun: true },
+  { name: 'lightmap (per texel), sun off', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'sky.json', camera: [30, 35], rotate: [40, 0, 0], sun: false },
+  { name: 'lightmap (per texel), sun on', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'disc.json', camera: [30, 35], rotate: [40, 0, 0], sun: true,
+    albedo: [0.8, 0.8, 0.8] },
+  ...(nodes ? [{ name: 'glTF with many nodes (2CylinderEngine), sun on', glb: nodes, light: 'disc.json', camera: [10, 30], rotate: [0, 0, 0], sun: true }] : []),
+];
+
+// A deliberately broken page needs only the cases it must fail: the plain one (coefficient order), the
+// rotated one (missing rotation).
+if (process.env.PRT_ONLY) cases.splice(0, cases.length, ...cases.filter((c) => c.name.includes(process.env.PRT_ONLY)));
+if (breakage) cases.splice(0, cases.length, ...cases.filter((c) => (breakage === 'order' ? c === cases[0] : c.rotate.some((v) => v !== 0))));
+
+function readExr(path) {
+  const data = new EXRLoader().setDataType(FloatType).parse(readFileSync(path).buffer.slice(0));
+  const { width, height } = data;
+  const channels = data.data.length / (width * height);
+  const out = new Float32Array(3 * width * height);
+  for (let y = 0; y < height; y++) for (let x = 0; x < width; x++) for (let c = 0; c < 3; c++) {
+    out[3 * (y * width + x) + c] = data.data[((height - 1 - y) * width + x) * channels + c];  // EXRLoader rows run bottom first
+  }
+  return { width, height, pixels: out };
+}
+
+/// rel_rms and the 99th percentile of |a - b| / rms(b) over the object's pixels: covered (alpha 1 in the
+/// page's image) together with all 8 neighbours, and on the same surface as them (the page's
+/// `surface` buffer: triangle-plane normals within 2.6 degrees, view depths within 1%). The rest is the
+/// rim where two rasterisers may cover a pixel with different triangles: silhouettes, creases, parts
+/// in front of others.
+export function compareImages(page, reference, width, height, surface) {
+  const covered = (x, y) => x >= 0 && y >= 0 && x < width && y < height && page[4 * (y * width + x) + 3] > 0.5;
+  const same = (i, j) => surface[4 * i] * surface[4 * j] + surface[4 * i + 1] * surface[4 * j + 1] + surface[4 * i + 2] * surface[4 * j + 2] > 0.999 &&
+                         Math.abs(surface[4 * i + 3] - surface[4 * j + 3]) < 0.01 * surface[4 * i + 3];
+  const diffs = [];
+  let sumSq = 0, refSq = 0;
+  for (let y = 0; y < height; y++) for (let x = 0; x < width; x++) {
+    let inside = true;
+    for (let dy = -1; dy <= 1; dy++) for (let dx = -1; dx <= 1; dx++) inside = inside && covered(x + dx, y + dy) && same(y * width + x, (y + dy) * width + x + dx);
+    if (!inside) continue;
+    for (let c = 0; c < 3; c++) {
+      const a = page[4 * (y * width + x) + c], b = reference[3 * (y * width + x) + c];
+      sumSq += (a - b) ** 2;
+      refSq += b * b;
+      diffs.push(Math.abs(a - b));
+    }
+  }
+  const rms = Math.sqrt(refSq / Math.max(1, diffs.length));
+  diffs.sort((p, q) => p - q);
+  return { pixels: diffs.length / 3, relRms: Math.sqrt(sumSq / refSq), p99: diffs[Math.floor(0.99 * (diffs.length - 1))] / rms,
+           max: diffs[diffs.length - 1] / rms };
+}
+
+// Binary PPMs (clamped linear values x 255) of the page's image, prt's and 10 |page - prt|, side by side.
+function dumpImages(prefix, page, reference) {
+  const out = Buffer.alloc(3 * 3 * size * size);
+  for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) for (let c = 0; c < 3; c++) {
+    const a = page[4 * (y * size + x) + c], b = reference[3 * (y * size + x) + c];
+    [a, b, 10 * Math.abs(a - b)].forEach((v, k) => { out[3 * (y * 3 * size + k * size + x) + c] = Math.max(0, Math.min(255, Math.round(255 * v))); });
+  }
+  writeFileSync(`${prefix}.ppm`, Buffer.concat([Buffer.from(`P6 ${3 * size} ${size} 255\n`), out]));
+}
+
+await runInBrowser(work, size, size, async ({ port, context }) => {
+  let failed = false;
+  const page = await openPage(context, `http://127.0.0.1:${port}/web/test/harness.html${breakage ? `?break=${breakage}` : ''}`, 'prtHarnessReady');
+  for (const c of cases) {
+    const reference = join(work, `reference_${cases.indexOf(c)}.exr`);
+    const glb = join(work, c.glb || bake.glb);
+    run(prt, ['render', ...(c.render || [glb, glb]), '--env', join(work, c.light), '--window', 'none',
+              '--background', 'black', '--size', `${size}x${size}`, '--camera', `${c.camera[0]},${c.camera[1]},${c.camera[2] || 'auto'}`,
+              '--rotate', c.rotate.join(','), '--sun', c.sun ? 'auto' : 'none', '-o', reference]);
+    await page.reload();
+    await page.waitForFunction(() => window.prtHarnessReady === true);
+    const info = await page.evaluate((a) => window.prtLoad(a), { glb: `/work/${c.glb || bake.glb}`, light: `/work/${c.light}`, albedo: c.albedo });
+    const shot = await page.evaluate((a) => window.prtRender(a), { width: size, height: size, camera: { azimuth: c.camera[0], elevation: c.camera[1], distance: c.camera[2] || 'auto' },
+                                                                  rotate: c.rotate, sun: c.sun });
+    const pixels = new Float32Array(Buffer.from(shot.pixels, 'base64').buffer.slice(0));
+    const ref = readExr(reference);
+    const surface = new Float32Array(Buffer.from(shot.surface, 'base64').buffer.slice(0));
+    const r = compareImages(pixels, ref.pixels, size, size, surface);
+    if (dump) dumpImages(join(dump, `case${cases.indexOf(c)}`), pixels, ref.pixels);
+    const ok = r.relRms <= 0.01 && r.pixels > 0.05 * size * size && info.maxAttributes <= 16 && page.errors.length === 0;
+    console.log(`${ok ? 'ok  ' : 'FAIL'} ${c.name}: rel_rms ${(100 * r.relRms).toFixed(3)}% over ${r.pixels} pixels ` +
+                `(bound 1%); 99th percentile |error| ${(100 * r.p99).toFixed(2)}% of rms, max ${(100 * r.max).toFixed(1)}%; ` +
+                `${info.maxAttributes} vertex attributes (MAX_VERTEX_ATTRIBS ${info.gl}); three r${info.three}`);
+    if (page.errors.length) console.log(`  page errors: ${page.errors.join('; ')}`);
+    if (!ok) failed = true;
+  }
+  return failed;
+});
