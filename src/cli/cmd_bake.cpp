@@ -47,6 +47,8 @@ struct BakeCommandOptions {
   std::string lightmap;  // "WxH" or "SIZE": bake texels (src/lightmap)
   int gutter = 2;
   bool no_repair = false;
+  bool denoise = false;  // --lightmap: filter the texel transfer (lightmap/denoise.h)
+  bool stitch = false;   // --lightmap: stitch the seams (lightmap/seams.h)
   std::string uv = "file";  // --lightmap: file | auto | generate (lightmap/uv_source.h)
 };
 
@@ -57,7 +59,8 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
          " albedo " + exact(b.albedo.r) + "," + exact(b.albedo.g) + "," + exact(b.albedo.b) + " seed " +
          std::to_string(b.seed) + " footprint " + mesh::footprint_name(b.footprint) + " brdf " + (b.brdf_from_mesh ? "mesh" : b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
          std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty()) +
-         " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair) + " uv " + o.uv;
+         " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair) + " uv " + o.uv +
+         " denoise " + std::to_string(o.denoise) + " stitch " + std::to_string(o.stitch);
 }
 
 // Bytes a per-vertex bake of `vertices` needs at most: the sample set's basis (samples x bands^2
@@ -150,6 +153,8 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap::parse_lightmap_size(o.lightmap, lightmap.width, lightmap.height);
   lightmap.gutter = o.gutter;
   lightmap.repair = !o.no_repair;
+  lightmap.denoise = o.denoise;
+  lightmap.stitch = o.stitch;
   lightmap.mesh_path = o.mesh_path;
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path});
   const lightmap::UvMode uv_mode = lightmap::parse_uv_mode(o.uv);
@@ -183,7 +188,17 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
                 "%u bands, %u channel(s)",
                 transfer::kind_name(options.kind), lightmap.width, lightmap.height, report.covered, report.gutter,
                 report.moved, report.unrecoverable, header.bands, header.channels);
-  print_summary(what, report.bake, options.kind, seconds_since(start), o.output);
+  std::string summary = what;
+  char extra[128];
+  if (lightmap.denoise) {
+    std::snprintf(extra, sizeof extra, ", denoised in %.2f s", report.seconds_denoise);
+    summary += extra;
+  }
+  if (lightmap.stitch) {
+    std::snprintf(extra, sizeof extra, ", %zu seam edges stitched in %.2f s", report.stitch.seams, report.seconds_stitch);
+    summary += extra;
+  }
+  print_summary(summary, report.bake, options.kind, seconds_since(start), o.output);
 }
 
 void run_bake(const BakeCommandOptions& o) {
@@ -217,6 +232,8 @@ void run_bake(const BakeCommandOptions& o) {
   out.threads = o.threads;
   if (!o.compress.empty() && !parse_compress_setting(o.compress, out.clusters, out.pca))
     fail("--compress: expected K,N (clusters, PCA vectors), got '" + o.compress + "'");
+  if (o.denoise && o.lightmap.empty()) fail("--denoise applies to lightmap bakes only (give --lightmap SIZE)");
+  if (o.stitch && o.lightmap.empty()) fail("--stitch applies to lightmap bakes only (give --lightmap SIZE)");
   if (o.lightmap.empty() && o.uv != "file") fail("--uv applies to texel bakes only (--lightmap SIZE)");
   if (o.lightmap.empty())
     bake_vertices(o, options, out);
@@ -268,6 +285,12 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--gutter", options->gutter, "--lightmap: gutter (chart dilation) in texels, 0..64")->capture_default_str();
   cmd->add_flag("--no-sample-repair", options->no_repair,
                 "--lightmap: keep texel samples that lie inside geometry where they are (default: move them out)");
+  cmd->add_flag("--denoise", options->denoise,
+                "--lightmap: filter the baked transfer coefficients with an edge-aware a-trous filter guided by position, normal, "
+                "chart and the transfer's own DC term (one denoised bake serves every lighting); e.g. --samples 128 --denoise");
+  cmd->add_flag("--stitch", options->stitch,
+                "--lightmap: make the texels on the two sides of every smooth UV seam agree under bilinear lookup (least squares "
+                "over the texels the lookups read, after --denoise)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress bar or summary");
   cmd->callback([options] { run_bake(*options); });
 }

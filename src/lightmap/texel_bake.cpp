@@ -46,7 +46,8 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
   const std::uint64_t stride_bytes = 4ull * std::uint64_t(o.bands) * std::uint64_t(o.bands) * std::uint64_t(channels);
   // Per texel: raster state and coverage (~40 bytes), the sample (~80), and transfer buffers: values;
   // with bounces also bounce-only, prev grid, next and the per-sample sums (5 more).
-  const std::uint64_t buffers = o.kind == transfer::Kind::interreflected ? 6 : 2;
+  // --denoise: a second copy of each section and the variances; --stitch: the seams' system, small.
+  const std::uint64_t buffers = (o.kind == transfer::Kind::interreflected ? 6 : 2) + (l.denoise ? 2 : 0);
   return texels * (120 + buffers * stride_bytes);
 }
 
@@ -108,6 +109,7 @@ void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, co
   if (lightmap.width < 1 || lightmap.height < 1 || lightmap.width > side_max || lightmap.height > side_max)
     fail_option("lightmap", " " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
+  if (lightmap.denoise) validate_denoise_options(lightmap.denoise_options);
   check_memory(lightmap, options, bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo)));
 }
 
@@ -140,6 +142,14 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
                    {"covered", rep.covered},
                    {"moved", rep.moved},
                    {"unrecoverable", rep.unrecoverable}};
+  if (l.stitch)
+    j["lightmap"]["stitch"] = {{"pull", l.stitch_options.pull}, {"gutter_weight", l.stitch_options.gutter_weight},
+                               {"samples_per_texel", l.stitch_options.samples_per_texel}, {"seams", rep.stitch.seams}};
+  if (l.denoise) {
+    const DenoiseOptions& d = l.denoise_options;
+    j["lightmap"]["denoise"] = {{"iterations", d.iterations}, {"plane_sigma", d.plane_sigma}, {"normal_power", d.normal_power},
+                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}};
+  }
   return j.dump();
 }
 
@@ -157,6 +167,32 @@ transfer::Header texel_header(const mesh::Mesh& mesh, const bake::BakeOptions& o
   h.uv_fingerprint = mesh::uv_fingerprint(mesh);
   h.bounce_only_section = options.kind == transfer::Kind::interreflected;
   return h;
+}
+
+// The optional passes over the finished grids (rank 0): denoising, then the gutters again, then seams.
+struct GridShape {
+  const std::vector<std::uint8_t>& coverage;  // grown by grow_gutter
+  const std::vector<std::vector<std::uint32_t>>& rounds;
+  std::size_t stride;
+};
+
+void filter_texels(const mesh::Mesh& mesh, const TexelSamples& samples, const LightmapOptions& lightmap, int threads,
+                   const GridShape& shape, transfer::TransferData& data, LightmapReport& rep) {
+  if (lightmap.denoise) {
+    const auto start = std::chrono::steady_clock::now();
+    DenoiseOptions denoise = lightmap.denoise_options;
+    denoise.threads = threads;
+    denoise_texels(data.values, data.bounce_only, shape.stride, denoise_guides(mesh, samples), denoise);
+    fill_gutter(data.values, shape.stride, shape.coverage, shape.rounds, lightmap.width, lightmap.height);
+    if (!data.bounce_only.empty()) fill_gutter(data.bounce_only, shape.stride, shape.coverage, shape.rounds, lightmap.width, lightmap.height);
+    rep.seconds_denoise = seconds_since(start);
+  }
+  if (lightmap.stitch) {
+    const auto start = std::chrono::steady_clock::now();
+    rep.stitch = stitch_seams(data.values, data.bounce_only, shape.stride, shape.coverage, lightmap.width, lightmap.height,
+                              find_seams(mesh), lightmap.stitch_options);
+    rep.seconds_stitch = seconds_since(start);
+  }
 }
 
 }  // namespace
@@ -225,6 +261,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
     to_grid(bounce_only, data.bounce_only);
   }
   to_grid(values, data.values);
+  if (dist.is_root()) filter_texels(mesh, samples, lightmap, options.threads, {coverage, rounds, stride}, data, rep);  // rank 0 holds it all
   data.coverage = std::move(coverage);
   rep.bake.rays_traced = dist.sum(rep.bake.rays_traced);
   data.header.parameters_json = lightmap_parameters(options, mesh, lightmap, rep, scene.ray_offset());

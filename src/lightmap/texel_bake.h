@@ -13,13 +13,16 @@
 // 256 (trace/vertex_rays.h). Channels: 1 if every vertex albedo is grey, else 3 (RGB). Glossy
 // kinds are refused (per-texel matrices wait for transfer compression).
 // Pipeline: UV checks (uv_validation.h) -> rasterize (rasterize.h) -> sample repair
-// (sample_repair.h) -> passes -> gutters (gutter.h). Byte-identical for any thread count.
+// (sample_repair.h) -> passes -> optional denoising (denoise.h) -> gutters (gutter.h) -> optional seam
+// stitching (seams.h). Byte-identical for any thread count.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "bake/bake.h"
+#include "lightmap/denoise.h"
+#include "lightmap/seams.h"
 #include "lightmap/rasterize.h"
 #include "mesh/mesh.h"
 #include "trace/scene.h"
@@ -33,6 +36,10 @@ struct LightmapOptions {
   bool repair = true;         ///< move buried samples out (sample_repair.h)
   std::string mesh_path;      ///< names the mesh in errors about its UVs
   std::string missing_uv_reason;  ///< mesh::LoadReport::missing_uv_reason, for the error when there are no UVs
+  bool denoise = false;       ///< filter the baked transfer (denoise.h) before the gutters are filled
+  DenoiseOptions denoise_options;  ///< its settings (threads: the bake's)
+  bool stitch = false;        ///< stitch the seams (seams.h) after denoising and gutters
+  StitchOptions stitch_options;
 };
 
 struct LightmapReport {
@@ -40,7 +47,8 @@ struct LightmapReport {
   std::size_t moved = 0, unrecoverable = 0;  ///< sample repair
   std::vector<std::string> uv_summary;       ///< UV defects tolerated (UvProblems::summary), one line each
   bake::BakeReport bake;
-  double seconds_raster = 0.0, seconds_repair = 0.0;
+  StitchReport stitch;
+  double seconds_raster = 0.0, seconds_repair = 0.0, seconds_denoise = 0.0, seconds_stitch = 0.0;
 };
 
 /// Parses "WxH" or "SIZE" (square); throws prt::Error("--lightmap: ...") for anything else and for

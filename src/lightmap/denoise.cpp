@@ -1,0 +1,270 @@
+#include "lightmap/denoise.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "lightmap/charts.h"
+
+namespace prt::lightmap {
+
+namespace {
+
+// Rows per parallel chunk: every texel's output depends only on the previous iteration, so the split
+// does not change the bytes.
+constexpr std::size_t kRowGrain = 4;
+
+// x^p for x in [0, 1]: repeated squaring for integer p (exact and fast), else exp(p log x).
+float power01(float x, float p, bool integer) {
+  if (x <= 0.0f) return p == 0.0f ? 1.0f : 0.0f;
+  if (!integer) return std::exp(p * std::log(x));
+  float result = 1.0f, base = x;
+  for (unsigned e = unsigned(p); e; e >>= 1) {
+    if (e & 1u) result *= base;
+    base *= base;
+  }
+  return result;
+}
+
+struct Grid {
+  const DenoiseGuides& g;
+  bool same_chart(std::size_t p, long i, long j) const {
+    if (i < 0 || j < 0 || i >= g.width || j >= g.height) return false;
+    const std::size_t q = std::size_t(i) + std::size_t(j) * std::size_t(g.width);
+    return g.covered[q] && g.chart[q] == g.chart[p];
+  }
+};
+
+// In 8 lanes (c mod 8) summed at the end: a fixed order the compiler can vectorise.
+float squared_distance(const float* a, const float* b, std::size_t stride) {
+  float lane[8] = {};
+  std::size_t c = 0;
+  for (; c + 8 <= stride; c += 8)
+    for (std::size_t k = 0; k < 8; ++k) lane[k] += (a[c + k] - b[c + k]) * (a[c + k] - b[c + k]);
+  for (std::size_t k = 0; c < stride; ++c, ++k) lane[k] += (a[c] - b[c]) * (a[c] - b[c]);
+  return ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
+}
+
+// The initial noise variance of each covered texel's transfer vector (denoise.h): the median over p's
+// 5 x 5 chart window of the squared norm of each texel's difference from the mean of its chart's 3 x 3
+// neighbours, corrected for the mean's share of the noise (x k / (k - 1) for k texels).
+std::vector<float> initial_variance(const std::vector<float>& values, std::size_t stride, const DenoiseGuides& g, int threads) {
+  const Grid grid{g};
+  const std::size_t w = std::size_t(g.width);
+  std::vector<float> residual(g.covered.size(), -1.0f), variance(g.covered.size(), 0.0f);
+  parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<double> mean(stride);
+    for (std::size_t j = begin; j < end; ++j)
+      for (std::size_t i = 0; i < w; ++i) {
+        const std::size_t p = i + j * w;
+        if (!g.covered[p]) continue;
+        std::fill(mean.begin(), mean.end(), 0.0);
+        int k = 0;
+        for (long dj = -1; dj <= 1; ++dj)
+          for (long di = -1; di <= 1; ++di)
+            if (grid.same_chart(p, long(i) + di, long(j) + dj)) {
+              const float* q = values.data() + std::size_t(long(p) + di + dj * long(w)) * stride;
+              for (std::size_t c = 0; c < stride; ++c) mean[c] += q[c];
+              ++k;
+            }
+        if (k < 2) continue;
+        double r2 = 0.0;
+        for (std::size_t c = 0; c < stride; ++c) {
+          const double r = values[p * stride + c] - mean[c] / k;
+          r2 += r * r;
+        }
+        residual[p] = float(r2 * k / (k - 1));
+      }
+  });
+  parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> window;
+    for (std::size_t j = begin; j < end; ++j)
+      for (std::size_t i = 0; i < w; ++i) {
+        const std::size_t p = i + j * w;
+        if (!g.covered[p]) continue;
+        window.clear();
+        for (long dj = -2; dj <= 2; ++dj)
+          for (long di = -2; di <= 2; ++di)
+            if (grid.same_chart(p, long(i) + di, long(j) + dj)) {
+              const float r = residual[std::size_t(long(p) + di + dj * long(w))];
+              if (r >= 0.0f) window.push_back(r);
+            }
+        if (window.empty()) continue;
+        const auto mid = window.begin() + std::ptrdiff_t(window.size() / 2);
+        std::nth_element(window.begin(), mid, window.end());
+        variance[p] = *mid;
+      }
+  });
+  return variance;
+}
+
+// Turns the weights w of taps at grid offsets (in steps) into the equivalent kernel of a weighted local
+// linear fit T(q) ~ a + b . offset, evaluated at the centre (a): w_q (c0 + c1 dx + c2 dy) with
+// c = M^-1 e0, M = sum w [1 dx dy]^T [1 dx dy] (ridge 1e-3 sum w on the slopes against collinear taps),
+// renormalised to sum 1. A weighted mean is biased by one-sided neighbourhoods (a chart border, a
+// contact line, taps cut off by the range weight) wherever the transfer has a gradient; the linear
+// fit is not, for gradients that are linear over the taps.
+void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<float, 9>& w) {
+  double m[3][3] = {};
+  for (int k = 0; k < n; ++k) {
+    const double x[3] = {1.0, offsets[std::size_t(k)].x, offsets[std::size_t(k)].y};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) m[a][b] += w[std::size_t(k)] * x[a] * x[b];
+  }
+  m[1][1] += 1e-3 * m[0][0];
+  m[2][2] += 1e-3 * m[0][0];
+  // First column of the inverse of the symmetric 3 x 3 matrix (cofactors / determinant).
+  const double c0 = m[1][1] * m[2][2] - m[1][2] * m[2][1], c1 = m[1][2] * m[2][0] - m[1][0] * m[2][2],
+               c2 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+  const double det = m[0][0] * c0 + m[0][1] * c1 + m[0][2] * c2;
+  if (!(std::abs(det) > 1e-12 * m[0][0] * m[0][0] * m[0][0])) return;  // keep the weighted mean
+  double sum = 0.0;
+  std::array<double, 9> out{};
+  for (int k = 0; k < n; ++k) {
+    out[std::size_t(k)] = w[std::size_t(k)] * (c0 + c1 * offsets[std::size_t(k)].x + c2 * offsets[std::size_t(k)].y) / det;
+    sum += out[std::size_t(k)];
+  }
+  for (int k = 0; k < n; ++k) w[std::size_t(k)] = float(out[std::size_t(k)] / sum);
+}
+
+struct Iteration {
+  const DenoiseGuides& g;
+  const DenoiseOptions& o;
+  long step;
+  const std::vector<float>& variance;
+
+  // The taps' weights of covered texel p at (i, j), from `in` (the previous iteration); returns how
+  // many taps (q indices in `taps`).
+  int weights(const std::vector<float>& in, std::size_t stride, std::size_t p, long i, long j, std::array<std::size_t, 9>& taps,
+              std::array<float, 9>& w) const {
+    std::array<glm::vec2, 9> offsets;
+    static constexpr float h[3] = {0.25f, 0.5f, 0.25f};
+    constexpr long r = 1;
+    const Grid grid{g};
+    const bool integer = o.normal_power == std::floor(o.normal_power) && o.normal_power <= 1024.0f;
+    const float plane = o.plane_sigma * g.size[p];
+    const float inv_plane2 = plane > 0.0f ? 1.0f / (plane * plane) : 0.0f;
+    const float* tp = in.data() + p * stride;
+    const float norm2 = o.value_floor * o.value_floor * std::inner_product(tp, tp + stride, tp, 0.0f) + 1e-30f;
+    const bool value_weight = !std::isinf(o.value_sigma);
+    int n = 0;
+    for (long dj = -r; dj <= r; ++dj)
+      for (long di = -r; di <= r; ++di) {
+        if (!grid.same_chart(p, i + di * step, j + dj * step)) continue;
+        const std::size_t q = std::size_t(long(p) + (di + dj * long(g.width)) * step);
+        if (q == p) {
+          taps[std::size_t(n)] = q;
+          offsets[std::size_t(n)] = {0.0f, 0.0f};
+          w[std::size_t(n++)] = h[r] * h[r];  // the centre always counts fully
+          continue;
+        }
+        const float d_plane = glm::dot(g.normal[p], g.position[q] - g.position[p]);
+        float exponent = d_plane * d_plane * inv_plane2;
+        if (value_weight) {
+          const float noise = variance[p] + variance[q];
+          const float signal2 = std::max(0.0f, squared_distance(tp, in.data() + q * stride, stride) - noise);
+          exponent += signal2 / (o.value_sigma * o.value_sigma * noise + norm2);
+        }
+        const float wq = h[di + r] * h[dj + r] * power01(glm::dot(g.normal[p], g.normal[q]), o.normal_power, integer) *
+                         std::exp(-exponent);
+        if (!(wq > 0.0f)) continue;
+        taps[std::size_t(n)] = q;
+        offsets[std::size_t(n)] = {float(di), float(dj)};
+        w[std::size_t(n++)] = wq;
+      }
+    if (o.linear) local_linear(n, offsets, w);
+    return n;
+  }
+
+  void apply(const std::vector<float>& in, std::vector<float>& out, const std::vector<float>* bounce_in,
+             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance) const {
+    const std::size_t width = std::size_t(g.width);
+    parallel_for(std::size_t(g.height), kRowGrain, o.threads, [&](std::size_t begin, std::size_t end) {
+      std::array<std::size_t, 9> taps{};
+      std::array<float, 9> w{};
+      std::vector<float> acc(stride);
+      auto filter = [&](const std::vector<float>& src, std::vector<float>& dst, std::size_t p, int n, float inv_sum) {
+        std::fill(acc.begin(), acc.end(), 0.0f);
+        for (int k = 0; k < n; ++k) {
+          const float* s = src.data() + taps[std::size_t(k)] * stride;
+          const float wk = w[std::size_t(k)];
+          for (std::size_t c = 0; c < stride; ++c) acc[c] += wk * s[c];
+        }
+        float* d = dst.data() + p * stride;
+        for (std::size_t c = 0; c < stride; ++c) d[c] = acc[c] * inv_sum;
+      };
+      for (std::size_t j = begin; j < end; ++j)
+        for (std::size_t i = 0; i < width; ++i) {
+          const std::size_t p = i + j * width;
+          if (!g.covered[p]) continue;
+          const int n = weights(in, stride, p, long(i), long(j), taps, w);
+          float sum = 0.0f, var = 0.0f;
+          for (int k = 0; k < n; ++k) {
+            sum += w[std::size_t(k)];
+            var += w[std::size_t(k)] * w[std::size_t(k)] * variance[taps[std::size_t(k)]];
+          }
+          const float inv_sum = 1.0f / sum;
+          next_variance[p] = var * inv_sum * inv_sum;
+          filter(in, out, p, n, inv_sum);
+          if (bounce_in) filter(*bounce_in, *bounce_out, p, n, inv_sum);
+        }
+    });
+  }
+};
+
+}  // namespace
+
+DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples) {
+  DenoiseGuides g;
+  g.width = samples.width;
+  g.height = samples.height;
+  const std::size_t texels = std::size_t(g.width) * std::size_t(g.height);
+  g.covered.assign(texels, 0);
+  g.position.assign(texels, glm::vec3(0.0f));
+  g.normal.assign(texels, glm::vec3(0.0f));
+  g.size.assign(texels, 0.0f);
+  g.chart.assign(texels, 0);
+  const std::vector<std::uint32_t> charts = triangle_charts(mesh);
+  const std::vector<float> sizes = texel_world_sizes(mesh, g.width, g.height);
+  for (const TexelSample& s : samples.samples) {
+    g.covered[s.texel] = 1;
+    g.position[s.texel] = s.position;
+    g.normal[s.texel] = s.normal;
+    g.size[s.texel] = sizes[s.triangle];
+    g.chart[s.texel] = charts[s.triangle];
+  }
+  return g;
+}
+
+void validate_denoise_options(const DenoiseOptions& o) {
+  if (o.iterations < 0 || o.iterations > 12) fail_option("iterations", " " + std::to_string(o.iterations) + " is out of range 0..12");
+  if (!(o.plane_sigma > 0.0f)) fail_option("plane_sigma", " " + std::to_string(o.plane_sigma) + " must be > 0");
+  if (!(o.normal_power >= 0.0f) || std::isinf(o.normal_power))
+    fail_option("normal_power", " " + std::to_string(o.normal_power) + " must be finite and >= 0");
+  if (!(o.value_sigma > 0.0f)) fail_option("value_sigma", " " + std::to_string(o.value_sigma) + " must be > 0");
+  if (!(o.value_floor >= 0.0f) || std::isinf(o.value_floor))
+    fail_option("value_floor", " " + std::to_string(o.value_floor) + " must be finite and >= 0");
+}
+
+void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only, std::size_t stride,
+                    const DenoiseGuides& guides, const DenoiseOptions& options, const std::vector<float>* noise) {
+  validate_denoise_options(options);
+  if (options.iterations == 0 || stride == 0) return;
+  const bool bounce = !bounce_only.empty();
+  std::vector<float> next_values(values), next_bounce(bounce_only);
+  std::vector<float> variance = noise ? *noise : initial_variance(values, stride, guides, options.threads), next_variance = variance;
+  for (int it = 0; it < options.iterations; ++it) {
+    const Iteration iteration{guides, options, 1L << it, variance};
+    iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance);
+    values.swap(next_values);
+    if (bounce) bounce_only.swap(next_bounce);
+    variance.swap(next_variance);
+  }
+}
+
+}  // namespace prt::lightmap

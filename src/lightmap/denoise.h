@@ -1,0 +1,74 @@
+#pragma once
+// Denoising of texel transfer (`prt bake --lightmap ... --denoise`; docs/conventions.md, "Lightmap
+// charts, denoising and seams"). Filters the transfer COEFFICIENTS, not a lit image: every weight depends only on guides
+// that no lighting changes, and the same weight multiplies every coefficient of a texel (both
+// sections), so the filtered lightmap is linear in the lighting like the bake and one denoised bake
+// serves every environment.
+//
+// FILTER. An edge-avoiding a-trous wavelet filter (Dammertz et al., "Edge-Avoiding A-Trous Wavelet
+// Transform for fast Global Illumination Filtering", HPG 2010) over the covered texels, with a
+// noise-aware range weight in the spirit of SVGF (Schied et al., HPG 2017) and non-local means (Buades
+// et al., CVPR 2005). Iteration i (step s = 2^i texels) sets each covered texel p to
+// sum_q w(p,q) T_q / sum_q w(p,q) over the 3 x 3 taps q = p + s (dx, dy), dx, dy in {-1, 0, 1}, that
+// are covered texels of p's chart (the centre q = p always with weight 1/4), with
+//   w(p,q) = h(dx) h(dy)                                         h = (1/4, 1/2, 1/4): B-spline taps
+//          * exp(-(n_p . (x_q - x_p))^2 / (plane_sigma * size_p)^2   off p's tangent plane
+//                - D(p,q) / (value_sigma^2 (v_p + v_q) + value_floor^2 |T_p|^2))
+//          * max(0, n_p . n_q)^normal_power                           normals turning
+// where x, n are the texel's sample position and unit normal, size_p the world size of a texel there
+// (charts.h), T the texel's whole transfer vector (every coefficient of every channel; the bounce-only
+// section follows the weights of `values`), and D(p,q) = max(0, |T_q - T_p|^2 - v_p - v_q) the squared
+// distance of the two vectors less what their noise alone gives it. |T_q - T_p|^2 is the mean squared
+// difference of the two texels' lit values over lightings with independent unit SH coefficients, so the
+// range weight keeps apart texels that some lighting tells apart (a contact shadow, the shadow of a
+// compact light), whichever lighting is used later. v_p is the noise variance (summed over the vector)
+// of T_p: at the start the median, over the chart's texels in p's 5 x 5 window, of the squared norm of
+// each texel's difference from the mean of its chart's 3 x 3 neighbours (x k/(k-1) for k texels);
+// each iteration propagates it as v_p <- sum w^2 v_q / (sum w)^2. Gutter and empty texels are not
+// read or written (refill the gutters afterwards, gutter.h).
+// Deterministic: each iteration reads only the previous one's values, so the bytes do not depend on
+// the thread count.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "lightmap/rasterize.h"
+#include "mesh/mesh.h"
+#include "transfer/transfer_file.h"
+
+namespace prt::lightmap {
+
+struct DenoiseOptions {
+  bool linear = true;          ///< weighted local linear fit instead of the weighted mean (no bias from one-sided taps)
+  int iterations = 4;          ///< a-trous levels (steps 1, 2, 4, ...): footprint 2^(iterations+1) - 1 texels; 0..12
+  float plane_sigma = 0.5f;    ///< tangent-plane distance scale, in texels' world size; > 0
+  float normal_power = 64.0f;  ///< exponent of the normal weight; >= 0
+  float value_sigma = 2.0f;    ///< transfer distance scale, in noise standard deviations; > 0 (infinity: no range weight)
+  float value_floor = 0.01f;   ///< transfer distance scale floor, relative to |T_p| (noise-free regions); >= 0
+  int threads = 0;             ///< 0 = all cores; the output does not depend on it
+};
+
+/// The guides of a lightmap, one per texel (row-major, width x height); meaningful at covered texels.
+struct DenoiseGuides {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> covered;   ///< 1 at covered texels (their transfer is filtered), else 0
+  std::vector<glm::vec3> position, normal;  ///< the texel's sample point and unit normal (rasterize.h)
+  std::vector<float> size;             ///< world size of a texel at the sample (charts.h), > 0
+  std::vector<std::uint32_t> chart;    ///< the chart of the sample's triangle (charts.h)
+};
+
+/// The guides of `samples`, the texel samples of `mesh`'s lightmap (texel_bake.h, texel_samples).
+DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples);
+
+/// Throws prt::OptionError naming the field for options out of range.
+void validate_denoise_options(const DenoiseOptions& options);
+
+/// Filters the covered texels of `values` (and of `bounce_only` unless it is empty; same layout, same
+/// weights), blocks of `stride` floats per texel, in place. Gutter and empty texels are left as they
+/// are: refill the gutters afterwards (gutter.h, fill_gutter). Throws prt::OptionError for options out
+/// of range.
+void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only, std::size_t stride,
+                    const DenoiseGuides& guides, const DenoiseOptions& options, const std::vector<float>* noise = nullptr);
+
+}  // namespace prt::lightmap
