@@ -1,18 +1,23 @@
-// Per-texel (lightmap) transfer in three.js: the PRT_lightmap_transfer primitives of `prt bake MESH
-// --lightmap WxH --gltf OUT.glb` (docs/formats.md, "Lightmap transfer in glTF": KTX2 RGBA16F texture
-// arrays, value 4k+j of a texel's block in component j of layer k, channel-major then SH index; image
-// `transfer` and, for interreflected bakes, `bounceOnly`), shaded per pixel as `prt render` shades a
-// lightmap (docs/conventions.md, "Lightmap rendering"): every layer sampled bilinearly at the lightmap UV
-// (level 0 only: this runtime builds no mip chain, so a lightmap seen minified aliases where prt's
-// coverage-aware mips would not), dotted with the rotated sky (and the bounce layers with the discs'
-// SH), plus the discs' direct light with the material's base colour as albedo.
-import { ClampToEdgeWrapping, Color, DataArrayTexture, HalfFloatType, LinearFilter, RGBAFormat, ShaderMaterial, UniformsUtils, Vector4 } from 'three';
+// Per-texel (lightmap) transfer in three.js: the per-texel PRT_transfer primitives of `prt bake MESH
+// --lightmap WxH --gltf OUT.glb` (docs/formats.md, "The engine glTF", "Per texel": the root's CPCA model
+// and, on the primitive, {model, texCoord, width, height, cluster, weights}; `cluster` a KTX2 RGBA16F 2D
+// texture of R = cluster k, G = coverage code (0 empty, 1 covered, 2 gutter); `weights` a KTX2 RGBA16F
+// array of ceil(N / 4) layers, w_{4a+1..4a+4} in layer a), shaded per pixel as `prt render` shades the
+// decompressed lightmap (docs/conventions.md, "Lightmap rendering"): the pixel fetches the 4 texels a
+// bilinear lookup of level 0 at its lightmap UV reads (clamp to edge; clusters and weights fetched, never
+// filtered), reconstructs each texel's radiance s_k0 + sum_j w_j s_kj from the per-cluster shaded values
+// of the model (prt_transfer.js, clusterProducts: sky and the discs' bounce, one texture shared with the
+// per-vertex materials), an empty texel 0 (prt's level 0 holds 0 there), blends the 4 bilinearly and adds
+// the discs' direct light with the material's base colour as albedo. Level 0 only: this runtime builds no
+// mip chain, so a lightmap seen minified aliases where prt's coverage-aware mips would not.
+import { ClampToEdgeWrapping, Color, DataArrayTexture, HalfFloatType, NearestFilter, RGBAFormat, ShaderMaterial, UniformsUtils } from 'three';
 import { SUN_GLSL, SURFACE_VERTEX_GLSL } from './prt_sun.js';
 
 const VK_FORMAT_R16G16B16A16_SFLOAT = 97;
 
-/// A KTX2 file of RGBA16F texels (one level, no supercompression, W x H x layers) as a DataArrayTexture
-/// (rows top first, as the file stores them and as glTF UVs address them). Throws naming `what`.
+/// A KTX2 file of RGBA16F texels (one level, no supercompression, W x H x layers; a 2D texture as one
+/// layer) as a DataArrayTexture read with texelFetch (nearest, rows top first as the file stores them and
+/// as glTF UVs address them). Throws naming `what`.
 export function parseKtx2(buffer, what) {
   const bytes = new Uint8Array(buffer);
   const identifier = [0xab, 0x4b, 0x54, 0x58, 0x20, 0x32, 0x30, 0xbb, 0x0d, 0x0a, 0x1a, 0x0a];
@@ -20,15 +25,15 @@ export function parseKtx2(buffer, what) {
   const view = new DataView(buffer);
   const u32 = (o) => view.getUint32(o, true);
   const [format, width, height, layers, levels, scheme] = [u32(12), u32(20), u32(24), Math.max(1, u32(32)), u32(40), u32(44)];
-  if (format !== VK_FORMAT_R16G16B16A16_SFLOAT || scheme !== 0 || levels > 1) {
-    throw new Error(`${what}: KTX2 format ${format}, supercompression ${scheme}, ${levels} levels (expected R16G16B16A16_SFLOAT, none, 1)`);
+  if (format !== VK_FORMAT_R16G16B16A16_SFLOAT || scheme !== 0 || levels > 1 || u32(28) > 1) {
+    throw new Error(`${what}: KTX2 format ${format}, supercompression ${scheme}, ${levels} levels, depth ${u32(28)} (expected R16G16B16A16_SFLOAT, none, 1, 2D)`);
   }
   const offset = Number(view.getBigUint64(80, true)), length = Number(view.getBigUint64(88, true));
   if (length !== width * height * layers * 8 || offset + length > bytes.length) throw new Error(`${what}: KTX2 level 0 holds ${length} bytes`);
   const texture = new DataArrayTexture(new Uint16Array(buffer.slice(offset, offset + length)), width, height, layers);
   texture.format = RGBAFormat;
   texture.type = HalfFloatType;
-  texture.minFilter = texture.magFilter = LinearFilter;
+  texture.minFilter = texture.magFilter = NearestFilter;
   texture.wrapS = texture.wrapT = ClampToEdgeWrapping;
   texture.generateMipmaps = false;
   texture.flipY = false;
@@ -36,36 +41,28 @@ export function parseKtx2(buffer, what) {
   return texture;
 }
 
-/// Loads a primitive's PRT_lightmap_transfer textures through the GLTFLoader parser.
-export async function loadLightmap(parser, ext, what) {
+/// Loads a primitive's per-texel PRT_transfer textures through the GLTFLoader parser. model: the root
+/// model it names (prt_transfer.js, loadModel). Throws naming `what` for a malformed extension.
+export async function loadLightmap(parser, ext, model, what) {
   const image = async (index) => {
-    const def = parser.json.images[index];
+    const def = parser.json.images && parser.json.images[index];
     if (!def || def.mimeType !== 'image/ktx2' || def.bufferView === undefined) throw new Error(`${what}: image ${index} is not an embedded KTX2 image`);
     return parseKtx2(await parser.getDependency('bufferView', def.bufferView), `${what} image ${index}`);
   };
-  const transfer = await image(ext.transfer);
-  const bounce = ext.bounceOnly !== undefined ? await image(ext.bounceOnly) : null;
-  const layers = Math.ceil(ext.channels * ext.bands * ext.bands / 4);
-  if (transfer.image.depth !== layers || transfer.image.width !== ext.width || transfer.image.height !== ext.height) {
-    throw new Error(`${what}: its texture is ${transfer.image.width}x${transfer.image.height}x${transfer.image.depth}, the extension says ${ext.width}x${ext.height}x${layers}`);
+  if (!(Number.isInteger(ext.width) && ext.width >= 1 && Number.isInteger(ext.height) && ext.height >= 1)) {
+    throw new Error(`${what}: width ${ext.width} or height ${ext.height} is not a positive integer`);
   }
-  return { bands: ext.bands, channels: ext.channels, kind: ext.kind, texCoord: ext.texCoord || 0, layers, transfer, bounce };
-}
-
-/// Per-layer weights that turn a texel's layers into RGB: channel c = sum_k dot(layer_k, w[c][k]).
-/// light: RGB SH (coefficient-major) with at least `bands` bands. Writes into out (3 arrays of Vector4).
-export function layerWeights(lightmap, light, out) {
-  const n2 = lightmap.bands * lightmap.bands;
-  for (let k = 0; k < lightmap.layers; k++) {
-    for (let c = 0; c < 3; c++) out[c][k].set(0, 0, 0, 0);
-    for (let j = 0; j < 4; j++) {
-      const v = 4 * k + j;
-      if (v >= lightmap.channels * n2) break;
-      const i = v % n2;
-      const channels = lightmap.channels === 1 ? [0, 1, 2] : [Math.floor(v / n2)];
-      for (const c of channels) out[c][k].setComponent(j, light ? light[3 * i + c] : 0);
-    }
+  const layers = Math.ceil(model.terms / 4);
+  if (layers > 0 && ext.weights === undefined) throw new Error(`${what}: no weights image for ${model.terms} terms`);
+  const [cluster, weights] = await Promise.all([image(ext.cluster), layers > 0 ? image(ext.weights) : null]);
+  const size = (t) => `${t.image.width}x${t.image.height}x${t.image.depth}`;
+  if (cluster.image.width !== ext.width || cluster.image.height !== ext.height || cluster.image.depth !== 1) {
+    throw new Error(`${what}: its cluster texture is ${size(cluster)}, the extension says ${ext.width}x${ext.height}`);
   }
+  if (weights && (weights.image.width !== ext.width || weights.image.height !== ext.height || weights.image.depth !== layers)) {
+    throw new Error(`${what}: its weights texture is ${size(weights)}, the extension says ${ext.width}x${ext.height}x${layers}`);
+  }
+  return { model: ext.model, texCoord: ext.texCoord || 0, width: ext.width, height: ext.height, layers, cluster, weights };
 }
 
 const VERTEX = /* glsl */ `
@@ -79,29 +76,51 @@ void main() {
   gl_Position = prt_surface();
 }`;
 
-const FRAGMENT = /* glsl */ `
+function fragmentShader(terms) {
+  const blend = [];
+  for (let j = 1; j <= terms; j++) blend.push(`  r += w${(j - 1) >> 2}[${(j - 1) & 3}] * prt_product(base + ${j});`);
+  const fetches = [];
+  for (let a = 0; a < Math.ceil(terms / 4); a++) fetches.push(`  vec4 w${a} = texelFetch(prt_weights, ivec3(texel, ${a}), 0);`);
+  return /* glsl */ `
 precision highp sampler2DArray;
 ${SUN_GLSL}
-uniform sampler2DArray prt_transfer;
-uniform vec4 prt_sky_r[LAYERS], prt_sky_g[LAYERS], prt_sky_b[LAYERS];
-#ifdef PRT_BOUNCE
-uniform sampler2DArray prt_bounce;
-uniform vec4 prt_disc_r[LAYERS], prt_disc_g[LAYERS], prt_disc_b[LAYERS];
+uniform highp sampler2D prt_products;
+uniform sampler2DArray prt_cluster;
+#if TERMS > 0
+uniform sampler2DArray prt_weights;
 #endif
 uniform vec3 prt_albedo;
 in vec2 prt_lightmap_uv;
 in vec3 prt_world_position;
 in vec3 prt_world_normal;
+
+vec3 prt_product(int t) {
+  int width = textureSize(prt_products, 0).x;
+  return texelFetch(prt_products, ivec2(t % width, t / width), 0).rgb;
+}
+
+// The radiance of texel (x, y) of level 0: its cluster's values blended with its weights; 0 when empty.
+vec3 prt_texel(ivec2 texel) {
+  vec4 c = texelFetch(prt_cluster, ivec3(texel, 0), 0);
+  if (c.g < 0.5) return vec3(0.0);
+  int base = int(c.r + 0.5) * ${terms + 1};
+  vec3 r = prt_product(base);
+${fetches.join('\n')}
+${blend.join('\n')}
+  return r;
+}
+
 void main() {
-  vec3 radiance = vec3(0.0);
-  for (int k = 0; k < LAYERS; ++k) {
-    vec4 t = texture(prt_transfer, vec3(prt_lightmap_uv, float(k)));
-    radiance += vec3(dot(t, prt_sky_r[k]), dot(t, prt_sky_g[k]), dot(t, prt_sky_b[k]));
-#ifdef PRT_BOUNCE
-    vec4 b = texture(prt_bounce, vec3(prt_lightmap_uv, float(k)));
-    radiance += vec3(dot(b, prt_disc_r[k]), dot(b, prt_disc_g[k]), dot(b, prt_disc_b[k]));
-#endif
-  }
+  // Bilinear filtering of level 0 done by hand (clamp to edge), as the GPU samples prt's lightmap.
+  ivec2 size = textureSize(prt_cluster, 0).xy;
+  vec2 uv = prt_lightmap_uv;
+  if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
+  vec2 p = uv * vec2(size) - 0.5;
+  vec2 f = fract(p);
+  ivec2 i0 = ivec2(floor(p));
+  ivec2 lo = clamp(i0, ivec2(0), size - 1), hi = clamp(i0 + 1, ivec2(0), size - 1);
+  vec3 radiance = mix(mix(prt_texel(lo), prt_texel(ivec2(hi.x, lo.y)), f.x),
+                      mix(prt_texel(ivec2(lo.x, hi.y)), prt_texel(hi), f.x), f.y);
   if (prt_disc_count > 0) {
     radiance = max(radiance + prt_albedo * 0.31830988618379067 * prt_disc_light(prt_world_position, normalize(prt_world_normal)), vec3(0.0));
   }
@@ -109,31 +128,25 @@ void main() {
   #include <tonemapping_fragment>
   #include <colorspace_fragment>
 }`;
-
-/// The lightmap material of `mesh` (mesh.userData.prtLightmap from the plugin). The discs' direct light
-/// takes the old material's colour as albedo (prt: the mesh's albedo; set it to the bake's).
-export function createLightmapMaterial(mesh, lightmap, sun) {
-  const weights = () => Array.from({ length: lightmap.layers }, () => new Vector4());
-  const material = new ShaderMaterial({
-    defines: { LAYERS: lightmap.layers, PRT_LIGHTMAP_UV: lightmap.texCoord === 1 ? 'uv1' : 'uv', ...(lightmap.texCoord === 1 ? { PRT_UV1: '' } : {}),
-               ...(lightmap.bounce ? { PRT_BOUNCE: '' } : {}) },
-    uniforms: UniformsUtils.merge([{ prt_albedo: { value: new Color(1, 1, 1).copy(mesh.material.color || new Color(1, 1, 1)) },
-                                     prt_disc_shadows: { value: lightmap.kind !== 'unshadowed' } }]),
-    vertexShader: VERTEX,
-    fragmentShader: FRAGMENT,
-  });
-  Object.assign(material.uniforms, sun.uniforms, {
-    prt_transfer: { value: lightmap.transfer }, prt_bounce: { value: lightmap.bounce },
-    prt_sky_r: { value: weights() }, prt_sky_g: { value: weights() }, prt_sky_b: { value: weights() },
-    prt_disc_r: { value: weights() }, prt_disc_g: { value: weights() }, prt_disc_b: { value: weights() },
-  });
-  material.name = `prt-lightmap:${mesh.material.name || ''}`;
-  return material;
 }
 
-/// Sets a lightmap material's weights for this frame's sky and discs' SH (null: none).
-export function updateLightmapMaterial(material, lightmap, sky, discs) {
-  const u = material.uniforms;
-  layerWeights(lightmap, sky, [u.prt_sky_r.value, u.prt_sky_g.value, u.prt_sky_b.value]);
-  layerWeights(lightmap, discs, [u.prt_disc_r.value, u.prt_disc_g.value, u.prt_disc_b.value]);
+/// The lightmap material of `mesh` (mesh.userData.prtLightmap from the plugin) shading `model` (its
+/// products texture, shared and updated per frame by PrtRelighting). The discs' direct light takes the
+/// old material's colour as albedo (prt: the mesh's albedo; set it to the bake's).
+export function createLightmapMaterial(mesh, lightmap, model, sun) {
+  const uv1 = lightmap.texCoord === 1;
+  const material = new ShaderMaterial({
+    defines: { TERMS: model.terms, PRT_LIGHTMAP_UV: uv1 ? 'uv1' : 'uv', ...(uv1 ? { PRT_UV1: '' } : {}) },
+    uniforms: UniformsUtils.merge([{ prt_albedo: { value: new Color(1, 1, 1).copy(mesh.material.color || new Color(1, 1, 1)) },
+                                     prt_disc_shadows: { value: model.kind !== 'unshadowed' } }]),
+    vertexShader: VERTEX,
+    fragmentShader: fragmentShader(model.terms),
+  });
+  // Shared, not copied: the products and the discs change every frame for every material.
+  Object.assign(material.uniforms, sun.uniforms, {
+    prt_products: { value: model.products }, prt_cluster: { value: lightmap.cluster }, prt_weights: { value: lightmap.weights },
+  });
+  material.name = `prt-lightmap:${mesh.material.name || ''}`;
+  material.side = mesh.material.side;
+  return material;
 }

@@ -13,7 +13,8 @@
 // Per frame on the CPU (one dot product per cluster, term and channel: K (N+1) C B^2 multiply-adds):
 // s_kj[c] = sum_i T_kj[c][i] L_c[i] + sum_i Tb_kj[c][i] D_c[i] with the rotated sky L and the discs'
 // SH D (bounce models only); in the vertex shader a vertex of cluster k with weights w gets
-// s_k0 + sum_j w_j s_kj. Textured scenes: the vertex radiance is divided by _PRT_ALBEDO per channel (0 where
+// s_k0 + sum_j w_j s_kj (per texel: the fragment shader does so for the 4 texels of a bilinear lookup,
+// web/prt_lightmap.js). Textured scenes: the vertex radiance is divided by _PRT_ALBEDO per channel (0 where
 // it is 0) and the pixel multiplies by its base colour (factor x texture x COLOR_0); the discs add
 // (albedo / pi) E max(n.d, 0) V per pixel, V from an orthographic depth map per disc filtered
 // PCSS-style for the disc's size (web/prt_sun.js); with discs every channel is clamped at 0.
@@ -21,17 +22,18 @@ import { DataTexture, FloatType, NearestFilter, RGBAFormat } from 'three';
 import { discCoefficients, rotateRgb, shRotation } from './sh.js';
 import { createPrtMaterial } from './prt_material.js';
 import { PrtSun } from './prt_sun.js';
-import { createLightmapMaterial, loadLightmap, updateLightmapMaterial } from './prt_lightmap.js';
+import { createLightmapMaterial, loadLightmap } from './prt_lightmap.js';
 
 const EXTENSION = 'PRT_transfer';
-const LIGHTMAP_EXTENSION = 'PRT_lightmap_transfer';  // per texel, docs/formats.md "Lightmap transfer in glTF"
 
 export const MAX_VERTEX_ATTRIBUTES = 16;  // WebGL2's MAX_VERTEX_ATTRIBS minimum (and Chromium's value)
 
 /// GLTFLoader plugin: reads the root PRT_transfer models (their means and bases accessors) into
 /// gltf.userData.prtTransfer = {version, models: [{kind, bands, channels, clusters, terms, bounce,
 /// means: Float32Array, bases: Float32Array}]}, and marks each mesh whose primitive carries the extension
-/// with mesh.userData.prtTransfer = {model}. Throws on a malformed extension (one line naming it).
+/// with mesh.userData.prtTransfer = {model} (per vertex) or mesh.userData.prtLightmap = {model, texCoord,
+/// width, height, layers, cluster, weights} (per texel: "width" in the extension; web/prt_lightmap.js).
+/// Throws on a malformed extension (one line naming it).
 export class PrtTransferPlugin {
   constructor(parser) {
     this.parser = parser;
@@ -41,10 +43,9 @@ export class PrtTransferPlugin {
   async afterRoot(result) {
     const json = this.parser.json;
     const root = json.extensions && json.extensions[EXTENSION];
-    const used = json.extensionsUsed || [];
-    if (!root && !used.includes(LIGHTMAP_EXTENSION)) return;
-    if (root && (root.version !== 1 || !Array.isArray(root.models))) throw new Error(`${EXTENSION}: version ${root.version} is not 1, or no models`);
-    const models = root ? await Promise.all(root.models.map((m, i) => this.loadModel(m, i))) : [];
+    if (!root) return;
+    if (root.version !== 1 || !Array.isArray(root.models)) throw new Error(`${EXTENSION}: version ${root.version} is not 1, or no models`);
+    const models = await Promise.all(root.models.map((m, i) => this.loadModel(m, i)));
     result.userData.prtTransfer = { version: 1, models };
     const lightmaps = [];
     result.scene.traverse((object) => {
@@ -52,12 +53,13 @@ export class PrtTransferPlugin {
       const where = this.parser.associations.get(object);
       if (!where || where.meshes === undefined || where.primitives === undefined) return;
       const primitive = json.meshes[where.meshes].primitives[where.primitives];
-      const texel = primitive.extensions && primitive.extensions[LIGHTMAP_EXTENSION];
-      if (texel) lightmaps.push(loadLightmap(this.parser, texel, `${LIGHTMAP_EXTENSION} of mesh ${where.meshes}`).then((lm) => { object.userData.prtLightmap = lm; }));
       const ext = primitive.extensions && primitive.extensions[EXTENSION];
       if (!ext) return;
       if (!(ext.model >= 0 && ext.model < models.length)) throw new Error(`${EXTENSION}: mesh ${where.meshes} names model ${ext.model} of ${models.length}`);
-      if (ext.width !== undefined) throw new Error(`${EXTENSION}: per-texel transfer is not supported by this runtime yet (mesh ${where.meshes})`);
+      if (ext.width !== undefined) {
+        lightmaps.push(loadLightmap(this.parser, ext, models[ext.model], `${EXTENSION} of mesh ${where.meshes}`).then((lm) => { object.userData.prtLightmap = lm; }));
+        return;
+      }
       const count = Object.keys(object.geometry.attributes).length;
       if (count > MAX_VERTEX_ATTRIBUTES) throw new Error(`${EXTENSION}: mesh ${where.meshes} has ${count} vertex attributes (WebGL2 allows ${MAX_VERTEX_ATTRIBUTES})`);
       const clusters = object.geometry.attributes._prt_cluster;
@@ -138,13 +140,13 @@ export class PrtRelighting {
     this.sun = new PrtSun(gltf.scene, this.meshes);
     for (const mesh of this.meshes) {
       if (mesh.userData.prtLightmap) {
-        mesh.material = createLightmapMaterial(mesh, mesh.userData.prtLightmap, this.sun);
+        mesh.material = createLightmapMaterial(mesh, mesh.userData.prtLightmap, this.models[mesh.userData.prtLightmap.model], this.sun);
         continue;
       }
       const model = this.models[mesh.userData.prtTransfer.model];
       mesh.material = createPrtMaterial(mesh, model, { textured, sun: this.sun });
     }
-    this.bands = Math.max(...this.models.map((m) => m.bands), ...this.meshes.filter((m) => m.userData.prtLightmap).map((m) => m.userData.prtLightmap.bands));
+    this.bands = Math.max(...this.models.map((m) => m.bands));
     this.rotation = [1, 0, 0, 0, 1, 0, 0, 0, 1];
     this.lighting = null;
     this.sunEnabled = true;
@@ -187,9 +189,6 @@ export class PrtRelighting {
     for (const model of this.models) {
       clusterProducts(model, sky, discSh, model.products.image.data);
       model.products.needsUpdate = true;
-    }
-    for (const mesh of this.meshes) {
-      if (mesh.userData.prtLightmap) updateLightmapMaterial(mesh.material, mesh.userData.prtLightmap, sky, discSh);
     }
     this.sun.setDiscs(discs);
     this.sun.update(renderer);

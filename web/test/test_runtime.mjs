@@ -9,7 +9,7 @@
 // per-vertex interreflected transfer of a sphere on a floor with the sun off, a 2-degree disc, the map's
 // own sun and a rotated environment; a textured glTF (BoxTextured: base colour texture per pixel, the
 // albedo split); a glTF of many nodes with their transforms and instanced meshes (2CylinderEngine, when
-// Debian's assimp-testmodels is installed); a lightmap (per-texel transfer, PRT_lightmap_transfer). Every
+// Debian's assimp-testmodels is installed); a lightmap (per-texel transfer, the per-texel PRT_transfer form). Every
 // export has at most 16 vertex attributes.
 //
 // Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
