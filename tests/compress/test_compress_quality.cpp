@@ -140,19 +140,22 @@ TEST_CASE("CPCA of converged transfer of a bowl: glossy K 64 N 8 within 2%, diff
   CHECK(diffuse <= 0.01);
 }
 
-TEST_CASE("CPCA of the lion: glossy K 64 N 8 within 2%, diffuse interreflected K 1024 N 4 within 1%", "[compress][slow]") {
+TEST_CASE("CPCA of the lion: glossy K 64 N 8 within 3%, diffuse interreflected K 1024 N 4 within 1%", "[compress][slow]") {
   const mesh::Mesh lion = mesh::load_mesh(PRT_SOURCE_DIR "/assets/meshes/guardian_lion_10k.ply", nullptr, true);
   const light::SceneLighting glossy_light = split_sunrise(true);
   const transfer::TransferData glossy = bake_glossy(lion, 1024);
   const compress::CompressedTransfer gc = compress_for(glossy, 64, 8, glossy_light);
   const double glossy_radiance = glossy_error(lion, glossy, gc, glossy_light);
   INFO("lion glossy: transfer " << gc.total.transfer_relative() << ", radiance " << glossy_radiance);
-  CHECK(glossy_radiance <= 0.02);
+  // 3%, not the 2% of the windowed sky: the default --window auto no longer windows the sky (it clamps the
+  // shaded values, docs/conventions.md), so the glossy radiance keeps band 4's ringing, which a rank-8 model
+  // keeps less of (2.72% measured, 2.87% turned).
+  CHECK(glossy_radiance <= 0.03);
   // The metric averages over rotations of the lighting: another orientation of the same sky is as good.
   const glm::dvec3 turn(120.0, 35.0, 0.0);
   const double turned = glossy_error(lion, glossy, gc, split_sunrise(true, turn));
   INFO("lion glossy, environment turned (yaw 120, pitch 35): " << turned);
-  CHECK(turned <= 0.02);
+  CHECK(turned <= 0.03);
 
   // Diffuse interreflected, N = 4, with the bounce-only part in the same model (50 values per point).
   // The lion needs many clusters at N = 4: K 256 gives 1.40%, K 512 1.08%, K 768 0.83% (note of issue
