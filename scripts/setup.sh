@@ -44,7 +44,9 @@ if ((with_tests)) || ((${#targets[@]} == 0)); then
   cmake_args+=(-DPRT_WITH_MPI=ON)
 fi
 if ((with_tests)); then
-  packages+=(xvfb xauth chromium mono-mcs clang-14 libfuzzer-14-dev llvm-14)
+  # assimp-testmodels: Khronos' glTF sample models (2CylinderEngine, BoxTexcoords) that the engine glTF,
+  # unwrap and web tests read from /usr/share/assimp.
+  packages+=(xvfb xauth chromium mono-mcs clang-14 libfuzzer-14-dev llvm-14 assimp-testmodels)
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
 fi
