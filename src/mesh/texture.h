@@ -81,12 +81,14 @@ glm::vec3 base_color(const Mesh& mesh, std::uint32_t triangle, double b1, double
 /// The quadrature of the averages below splits a region of a triangle into n x n similar sub-triangles
 /// and takes the base colour at each one's centroid. n = ceil(kQuadraturePerTexel x the region's longest
 /// edge in texels of its texture, after the transform), clamped to [kMinQuadrature, kMaxQuadrature]:
-/// sub-triangle edges of at most 1/2 texel for regions up to 1024 texels across; untextured regions use
-/// kMinQuadrature (the base colour is linear there, up to the clamp). tests/mesh/test_texture.cpp
-/// bounds the error on checker textures.
+/// sub-triangle edges of at most 1/2 texel for regions up to 256 texels across, coarser beyond (the cap
+/// bounds a triangle's cost at 512^2 lookups: a fuzzed 12-triangle glTF whose UVs span thousands of texels
+/// took 24 s under AddressSanitizer at a cap of 2048); untextured regions use kMinQuadrature (the base
+/// colour is linear there, up to the clamp). tests/mesh/test_texture.cpp bounds the error on checker
+/// textures.
 inline constexpr int kQuadraturePerTexel = 2;
 inline constexpr int kMinQuadrature = 4;
-inline constexpr int kMaxQuadrature = 2048;
+inline constexpr int kMaxQuadrature = 512;
 
 /// The mean base colour over the part of `triangle` whose corners have barycentrics (b1, b2) =
 /// corners[0], corners[1], corners[2] (the whole triangle: (0,0), (1,0), (0,1)), by the quadrature
