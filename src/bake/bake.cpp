@@ -239,19 +239,4 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
   return data;
 }
 
-std::vector<mesh::VertexAttribute> pack_transfer_attributes(const transfer::TransferData& transfer) {
-  const transfer::Header& h = transfer.header;
-  if (transfer::is_glossy(h.kind)) fail("glTF export of glossy transfer matrices is not supported; use the .prt file");
-  const std::size_t per_vertex = h.values_per_vertex();
-  const std::size_t attributes = (per_vertex + 3) / 4;
-  std::vector<mesh::VertexAttribute> out(attributes);
-  for (std::size_t a = 0; a < attributes; ++a) {
-    out[a].name = "_PRT_T" + std::to_string(a);
-    out[a].values.assign(h.vertex_count, glm::vec4(0.0f));
-  }
-  for (std::size_t v = 0; v < h.vertex_count; ++v)
-    for (std::size_t k = 0; k < per_vertex; ++k) out[k / 4].values[v][static_cast<int>(k % 4)] = transfer.values[v * per_vertex + k];
-  return out;
-}
-
 }  // namespace prt::bake

@@ -137,9 +137,4 @@ trace::SceneOptions bake_scene_options(int threads);
 /// Per-vertex albedo the bake uses: the mesh's own, or options.albedo for every vertex.
 std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback);
 
-/// Packs a diffuse transfer into vec4 vertex attributes "_PRT_T0", "_PRT_T1", ... for write_glb:
-/// channel-major, coefficients in index order, 4 per attribute, the last one zero-padded
-/// (docs/formats.md, "Transfer in glTF").
-std::vector<mesh::VertexAttribute> pack_transfer_attributes(const transfer::TransferData& transfer);
-
 }  // namespace prt::bake

@@ -303,19 +303,6 @@ TEST_CASE("bake options out of range are refused", "[bake]") {
   CHECK_THROWS_WITH(bake::bake(m, o), Catch::Contains("albedo components"));
 }
 
-TEST_CASE("transfer is packed four coefficients per glTF attribute", "[bake]") {
-  const mesh::Mesh m = test::uv_sphere(4, 8);
-  const transfer::TransferData t = bake::bake(m, options(transfer::Kind::unshadowed, 3, 1));
-  const auto attributes = bake::pack_transfer_attributes(t);
-  REQUIRE(attributes.size() == 3);  // 9 coefficients -> 3 vec4, the last padded
-  CHECK(attributes[0].name == "_PRT_T0");
-  CHECK(attributes[2].name == "_PRT_T2");
-  for (std::size_t v = 0; v < m.positions.size(); ++v) {
-    for (int k = 0; k < 9; ++k) REQUIRE(attributes[k / 4].values[v][k % 4] == t.values[v * 9 + k]);
-    REQUIRE(attributes[2].values[v][1] == 0.0f);
-  }
-}
-
 TEST_CASE("a library option error names the options field and its value, never a command-line flag", "[bake]") {
   // The CLI maps the field to its flag (cli/arguments.h flag_of_field; test_bake_cli checks "--bands 40").
   bake::BakeOptions options;
