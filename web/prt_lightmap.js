@@ -121,7 +121,7 @@ void main() {
   ivec2 lo = clamp(i0, ivec2(0), size - 1), hi = clamp(i0 + 1, ivec2(0), size - 1);
   vec3 radiance = mix(mix(prt_texel(lo), prt_texel(ivec2(hi.x, lo.y)), f.x),
                       mix(prt_texel(ivec2(lo.x, hi.y)), prt_texel(hi), f.x), f.y);
-  if (prt_disc_count > 0) {
+  if (disc_count > 0) {
     radiance = max(radiance + prt_albedo * 0.31830988618379067 * prt_disc_light(prt_world_position, normalize(prt_world_normal)), vec3(0.0));
   }
   gl_FragColor = vec4(radiance, 1.0);
@@ -138,7 +138,7 @@ export function createLightmapMaterial(mesh, lightmap, model, sun) {
   const material = new ShaderMaterial({
     defines: { TERMS: model.terms, PRT_LIGHTMAP_UV: uv1 ? 'uv1' : 'uv', ...(uv1 ? { PRT_UV1: '' } : {}) },
     uniforms: UniformsUtils.merge([{ prt_albedo: { value: new Color(1, 1, 1).copy(mesh.material.color || new Color(1, 1, 1)) },
-                                     prt_disc_shadows: { value: model.kind !== 'unshadowed' } }]),
+                                     disc_shadows: { value: model.kind !== 'unshadowed' } }]),
     vertexShader: VERTEX,
     fragmentShader: fragmentShader(model.terms),
   });

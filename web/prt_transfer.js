@@ -129,6 +129,7 @@ export function clusterProducts(model, sky, discs, out) {
 /// transfer by a PRT material that keeps its base colour (factor, texture, vertex colours).
 /// options.textured: apply the albedo split (docs/conventions.md "Albedo and textures"); default: when
 /// any baked mesh's material has a base colour texture (what `prt render` calls a textured mesh).
+/// options.shadowMapSize: the discs' depth maps' texels per side (default 2048, prt render's).
 export class PrtRelighting {
   constructor(gltf, options = {}) {
     const info = gltf.userData.prtTransfer;
@@ -137,7 +138,7 @@ export class PrtRelighting {
     this.meshes = [];
     gltf.scene.traverse((o) => { if (o.isMesh && (o.userData.prtTransfer || o.userData.prtLightmap)) this.meshes.push(o); });
     const textured = options.textured ?? this.meshes.some((m) => m.userData.prtTransfer && !!m.material.map);
-    this.sun = new PrtSun(gltf.scene, this.meshes);
+    this.sun = new PrtSun(gltf.scene, this.meshes, { mapSize: options.shadowMapSize });
     for (const mesh of this.meshes) {
       if (mesh.userData.prtLightmap) {
         mesh.material = createLightmapMaterial(mesh, mesh.userData.prtLightmap, this.models[mesh.userData.prtLightmap.model], this.sun);
