@@ -8,7 +8,7 @@
 // filtered), reconstructs each texel's radiance s_k0 + sum_j w_j s_kj from the per-cluster shaded values
 // of the model (prt_transfer.js, clusterProducts: sky and the discs' bounce, one texture shared with the
 // per-vertex materials), an empty texel 0 (prt's level 0 holds 0 there), blends the 4 bilinearly and adds
-// the discs' direct light with the material's base colour as albedo. Level 0 only: this runtime builds no
+// the discs' direct light with the bake's albedo (_PRT_ALBEDO per vertex). Level 0 only: this runtime builds no
 // mip chain, so a lightmap seen minified aliases where prt's coverage-aware mips would not.
 import { ClampToEdgeWrapping, Color, DataArrayTexture, HalfFloatType, NearestFilter, RGBAFormat, ShaderMaterial, UniformsUtils } from 'three';
 import { SUN_GLSL, SURFACE_VERTEX_GLSL } from './prt_sun.js';
@@ -70,9 +70,16 @@ const VERTEX = /* glsl */ `
 in vec2 uv1;
 #endif
 out vec2 prt_lightmap_uv;
+#ifdef PRT_VERTEX_ALBEDO
+in vec3 _prt_albedo;
+out vec3 prt_vertex_albedo;
+#endif
 ${SURFACE_VERTEX_GLSL}
 void main() {
   prt_lightmap_uv = PRT_LIGHTMAP_UV;
+#ifdef PRT_VERTEX_ALBEDO
+  prt_vertex_albedo = _prt_albedo;
+#endif
   gl_Position = prt_surface();
 }`;
 
@@ -91,6 +98,12 @@ uniform sampler2DArray prt_weights;
 #endif
 uniform vec3 prt_albedo;
 in vec2 prt_lightmap_uv;
+#ifdef PRT_VERTEX_ALBEDO
+in vec3 prt_vertex_albedo;  // the bake's albedo (_PRT_ALBEDO), interpolated as prt render interpolates it
+#define PRT_DIRECT_ALBEDO prt_vertex_albedo
+#else
+#define PRT_DIRECT_ALBEDO prt_albedo
+#endif
 in vec3 prt_world_position;
 in vec3 prt_world_normal;
 
@@ -122,7 +135,7 @@ void main() {
   vec3 radiance = mix(mix(prt_texel(lo), prt_texel(ivec2(hi.x, lo.y)), f.x),
                       mix(prt_texel(ivec2(lo.x, hi.y)), prt_texel(hi), f.x), f.y);
   if (disc_count > 0) {
-    radiance = max(radiance + prt_albedo * 0.31830988618379067 * prt_disc_light(prt_world_position, normalize(prt_world_normal)), vec3(0.0));
+    radiance = max(radiance + PRT_DIRECT_ALBEDO * 0.31830988618379067 * prt_disc_light(prt_world_position, normalize(prt_world_normal)), vec3(0.0));
   }
   gl_FragColor = vec4(radiance, 1.0);
   #include <tonemapping_fragment>
@@ -132,11 +145,13 @@ void main() {
 
 /// The lightmap material of `mesh` (mesh.userData.prtLightmap from the plugin) shading `model` (its
 /// products texture, shared and updated per frame by PrtRelighting). The discs' direct light takes the
-/// old material's colour as albedo (prt: the mesh's albedo; set it to the bake's).
+/// bake's albedo, the primitive's _PRT_ALBEDO interpolated (as prt render does); a file without it (an
+/// older export) falls back to the old material's colour (set it to the bake's albedo).
 export function createLightmapMaterial(mesh, lightmap, model, sun) {
   const uv1 = lightmap.texCoord === 1;
+  const vertexAlbedo = !!mesh.geometry.attributes._prt_albedo;
   const material = new ShaderMaterial({
-    defines: { TERMS: model.terms, PRT_LIGHTMAP_UV: uv1 ? 'uv1' : 'uv', ...(uv1 ? { PRT_UV1: '' } : {}) },
+    defines: { TERMS: model.terms, PRT_LIGHTMAP_UV: uv1 ? 'uv1' : 'uv', ...(uv1 ? { PRT_UV1: '' } : {}), ...(vertexAlbedo ? { PRT_VERTEX_ALBEDO: '' } : {}) },
     uniforms: UniformsUtils.merge([{ prt_albedo: { value: new Color(1, 1, 1).copy(mesh.material.color || new Color(1, 1, 1)) },
                                      disc_shadows: { value: model.kind !== 'unshadowed' } }]),
     vertexShader: VERTEX,

@@ -15,7 +15,8 @@
 // Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
 //        [--nodes <glTF>] [--work DIR]
 //        [--dump DIR] (PPM images of each case); PRT_ONLY=<text> runs the cases whose name contains it
-//        [--break order|rotation]  (a deliberately wrong runtime: swapped SH coefficients or no rotation;
+//        [--break order|rotation|albedo]  (a deliberately wrong runtime: swapped SH coefficients, no rotation or
+//                                   the lightmap's _PRT_ALBEDO dropped;
 //                                   the test must then fail)
 // Exit status 0 pass, 1 fail, 77 skipped (no Chromium).
 import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
@@ -46,6 +47,11 @@ if (!textured) throw new Error('the textured glTF is missing');
 // Per texel: a 64 x 64 lightmap of a floor and a box (web/test/lightmap_scene.mjs), `prt bake --lightmap --gltf`.
 const lightmapObj = writeLightmapScene(work);
 const lightmap = bakeGlb({ prt, mesh: lightmapObj, work, name: 'lightmap', samples: 64, extra: ['--lightmap', '64x64'] });
+// A textured lightmap: BoxTextured per texel on generated lightmap UVs. Its transfer holds the texture's
+// colour per texel; the sun's direct light takes the bake's per-vertex albedo (the texture's footprint
+// averages, _PRT_ALBEDO), as prt render does, not the material's white factor.
+const texturedLightmap = bakeGlb({ prt, mesh: resolve(argument('textured')), work, name: 'textured_lightmap', samples: 64,
+                                   extra: ['--lightmap', '64x64', '--uv', 'generate'] });
 
 const cases = [
   { name: 'sun off', light: 'sky.json', camera: [30, 25], rotate: [0, 0, 0], sun: false },
@@ -54,15 +60,16 @@ const cases = [
   { name: 'rotated environment, sun on', light: 'disc.json', camera: [-40, 30], rotate: [70, 20, 0], sun: true },
   { name: 'textured glTF (BoxTextured), sun on', glb: textured, light: 'disc.json', camera: [35, 30], rotate: [20, 0, 0], sun: true },
   { name: 'lightmap (per texel), sun off', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'sky.json', camera: [30, 35], rotate: [40, 0, 0], sun: false },
-  { name: 'lightmap (per texel), sun on', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'disc.json', camera: [30, 35], rotate: [40, 0, 0], sun: true,
-    albedo: [0.8, 0.8, 0.8] },
+  { name: 'lightmap (per texel), sun on', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'disc.json', camera: [30, 35], rotate: [40, 0, 0], sun: true },
+  { name: 'textured lightmap (BoxTextured, generated UVs), sun on', glb: texturedLightmap, light: 'disc.json', camera: [35, 30], rotate: [20, 0, 0], sun: true },
   ...(nodes ? [{ name: 'glTF with many nodes (2CylinderEngine), sun on', glb: nodes, light: 'disc.json', camera: [10, 30], rotate: [0, 0, 0], sun: true }] : []),
 ];
 
 // A deliberately broken page needs only the cases it must fail: the plain one (coefficient order), the
 // rotated one (missing rotation).
 if (process.env.PRT_ONLY) cases.splice(0, cases.length, ...cases.filter((c) => c.name.includes(process.env.PRT_ONLY)));
-if (breakage) cases.splice(0, cases.length, ...cases.filter((c) => (breakage === 'order' ? c === cases[0] : c.rotate.some((v) => v !== 0))));
+const broken = { order: (c) => c === cases[0], rotation: (c) => c.rotate.some((v) => v !== 0), albedo: (c) => c.name.startsWith('textured lightmap') };
+if (breakage) cases.splice(0, cases.length, ...cases.filter(broken[breakage]));
 
 function readExr(path) {
   const data = new EXRLoader().setDataType(FloatType).parse(readFileSync(path).buffer.slice(0));
@@ -124,7 +131,7 @@ await runInBrowser(work, size, size, async ({ port, context }) => {
               '--rotate', c.rotate.join(','), '--sun', c.sun ? 'auto' : 'none', '-o', reference]);
     await page.reload();
     await page.waitForFunction(() => window.prtHarnessReady === true);
-    const info = await page.evaluate((a) => window.prtLoad(a), { glb: `/work/${c.glb || bake.glb}`, light: `/work/${c.light}`, albedo: c.albedo });
+    const info = await page.evaluate((a) => window.prtLoad(a), { glb: `/work/${c.glb || bake.glb}`, light: `/work/${c.light}` });
     const shot = await page.evaluate((a) => window.prtRender(a), { width: size, height: size, camera: { azimuth: c.camera[0], elevation: c.camera[1], distance: c.camera[2] || 'auto' },
                                                                   rotate: c.rotate, sun: c.sun });
     const pixels = new Float32Array(Buffer.from(shot.pixels, 'base64').buffer.slice(0));
