@@ -12,10 +12,21 @@ export const SHADOW_MAP_SIZE = 2048;  // texels per side, as prt render's maps (
 const FILTER_COUNT = 12;  // the PCSS filter's samples, as Renderer::bind_sun sets them (src/render/sun_light.cpp)
 const SHADOW_LAYER = 31;  // the baked meshes' layer: what the depth maps see
 
-/// The text of shaders/sun_pcss.glsl (fetched relative to this module: serve the repository's shaders/
-/// folder beside web/). Throws naming the file when it cannot be read.
+/// shaders/sun_pcss.glsl, read relative to this module when it is imported (serve the repository's
+/// shaders/ folder beside web/; in node, as the tests import the runtime, from the file system). The
+/// import fails naming the file when it cannot be read.
 export const PCSS_URL = new URL('../shaders/sun_pcss.glsl', import.meta.url);
-const PCSS_GLSL = await fetch(PCSS_URL).then((r) => { if (!r.ok) throw new Error(`prt_sun: ${PCSS_URL}: HTTP ${r.status}`); return r.text(); });
+const PCSS_GLSL = await readText(PCSS_URL);
+
+async function readText(url) {
+  if (url.protocol === 'file:') {
+    const fs = 'node:fs/promises';  // a variable: bundlers for the browser leave it alone
+    return (await import(fs)).readFile(url, 'utf8');
+  }
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`prt_sun: ${url}: HTTP ${response.status}`);
+  return response.text();
+}
 
 /// GLSL (ES 3.00) of the discs' uniforms (the names of shaders/sun_light.glsl), disc_visibility(k, p, n)
 /// (the fraction of disc k visible from world point p with unit normal n, 0 below the horizon: sun_pcss.glsl
