@@ -23,7 +23,7 @@ async function readText(url) {
     const fs = 'node:fs/promises';  // a variable: bundlers for the browser leave it alone
     return (await import(fs)).readFile(url, 'utf8');
   }
-  const response = await fetch(url);
+  const response = await fetch(url).catch((e) => { throw new Error(`prt_sun: ${url}: ${e.message}`); });
   if (!response.ok) throw new Error(`prt_sun: ${url}: HTTP ${response.status}`);
   return response.text();
 }
