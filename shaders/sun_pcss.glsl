@@ -1,4 +1,4 @@
-// pass: sun (included by sun_light.glsl; web/prt_sun.js loads this same file for the three.js runtime).
+// pass: sun (included by sun_light.glsl, loaded by web/prt_sun.js too); mirrors prt::shade::disc_visibility.
 // The discs' shadow maps filtered PCSS-style for the disc's size (docs/conventions.md, "Sun shadow
 // maps"), written in the common subset of GLSL 4.50 and GLSL ES 3.00 so that prt's GL renderer and the
 // browser run one filter. The includer declares, before including it: the uniforms disc_direction[],
