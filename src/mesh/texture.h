@@ -51,6 +51,8 @@ glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec
 class TriangleColour {
  public:
   TriangleColour(const Mesh& mesh, std::uint32_t triangle);
+  /// A placeholder to assign to: at() is (1, 1, 1), as for a mesh without materials or colours.
+  TriangleColour() = default;
 
   /// The base colour at barycentrics (b1, b2), the point (1 - b1 - b2) p0 + b1 p1 + b2 p2: the texture
   /// at the transformed interpolated UV (1 if untextured) x the factor x the interpolated vertex colour
