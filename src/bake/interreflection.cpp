@@ -112,6 +112,7 @@ class BounceWorker {
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t) {
     const mesh::Mesh& mesh = *ctx_.mesh;
     front_.clear();
+    requests_.clear();
     for (std::size_t i = 0; i < batch.size(); ++i) {
       if (!batch.is_hit(i)) continue;
       const trace::HitResult hit = batch.hit(i);
@@ -120,10 +121,11 @@ class BounceWorker {
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
       front_.push_back(hit);
-      if (at_hits_) colours_[hit.prim_id].prefetch(hit.u, hit.v);
+      if (at_hits_) requests_.push_back(colours_[hit.prim_id].request(hit.u, hit.v));
     }
-    for (const trace::HitResult& hit : front_) {
-      const glm::vec3 albedo = at_hits_ ? colours_[hit.prim_id].at(hit.u, hit.v) : glm::vec3(1.0f);
+    for (std::size_t k = 0; k < front_.size(); ++k) {
+      const trace::HitResult& hit = front_[k];
+      const glm::vec3 albedo = at_hits_ ? colours_[hit.prim_id].at(requests_[k]) : glm::vec3(1.0f);
       if (ctx_.grid) {
         add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, albedo, weights_);
         continue;
@@ -163,6 +165,7 @@ class BounceWorker {
   std::vector<float> gathered_;
   const std::vector<mesh::TriangleColour>& colours_;  // per triangle (at_hits_ only)
   std::vector<trace::HitResult> front_;               // this batch's front-face hits
+  std::vector<mesh::TriangleColour::Request> requests_;  // their base colour lookups (at_hits_ only)
 };
 
 // Every triangle's base colour lookup, set up once per pass rather than once per hit (at_hits only;
