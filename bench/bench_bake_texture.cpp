@@ -132,6 +132,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    if (!fs::is_regular_file(path)) fail(path + ": cannot open: no such file");
     const bool obj = fs::path(path).extension() == ".obj";
     const fs::path temp = fs::temp_directory_path() / "prt_bench_bake_texture";
     const std::string textured_file = obj ? copy_obj(path, temp / "textured", true) : path;
@@ -144,6 +145,8 @@ int main(int argc, char** argv) {
                 path.c_str(), textured.vertex_count(), textured.triangle_count(), textured.textures.size(), options.bands,
                 options.samples, options.bounces, options.threads, rounds);
     Pair load, bake;
+    bake::bake(textured, options);  // warm-up: the thread pool starts on first use (core/parallel.h)
+    bake::bake(plain, options);
     for (int r = 0; r < rounds; ++r) {
       bake.a.push_back(timed([&] { bake::bake(textured, options); }));
       bake.b.push_back(timed([&] { bake::bake(plain, options); }));
