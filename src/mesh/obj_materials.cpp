@@ -1,7 +1,9 @@
 #include "mesh/obj_materials.h"
 
 #include <charconv>
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -40,6 +42,17 @@ float pbr_value(const std::string& file, std::size_t line_number, const std::str
     fail_file(file, "line " + std::to_string(line_number) + ": material " + material + ": " + std::string(tag) + " \"" +
                         std::string(token.substr(0, 30)) + "\" is not one number in [0, 1]");
   return float(value);
+}
+
+// The file an MTL texture name refers to, against the OBJ's folder: the name as written, or, when no
+// such file exists and the name holds backslashes (MTL files written on Windows: "map_Kd .\\wood.jpg"),
+// the name with them read as folder separators.
+std::string mtl_texture_path(const std::string& folder, const std::string& name) {
+  const std::string literal = folder + name;
+  if (name.find('\\') == std::string::npos || std::filesystem::exists(literal)) return literal;
+  std::string slashed = name;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  return folder + slashed;
 }
 
 }  // namespace
@@ -84,7 +97,7 @@ std::vector<std::string> mtl_texture_files(const std::string& mtl_path, const st
     std::string tag, word, last;
     if (!(words >> tag) || tag != "map_Kd") continue;
     while (words >> word) last = word;
-    if (!last.empty()) files.push_back(folder + last);
+    if (!last.empty()) files.push_back(mtl_texture_path(folder, last));
   }
   return files;
 }
@@ -104,7 +117,7 @@ void obj_material_list(const std::string& folder, const std::vector<tinyobj::mat
       material.metallic_roughness_textured = keys->second.textured;
     }
     if (!m.diffuse_texname.empty()) {
-      const std::string file = folder + m.diffuse_texname;
+      const std::string file = mtl_texture_path(folder, m.diffuse_texname);
       auto [it, fresh] = decoded.emplace(file, -1);
       if (fresh) {
         Texture texture;

@@ -5,6 +5,7 @@
 // come from the colours written, sRGB-decoded here by the IEC 61966-2-1 formula.
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -186,6 +187,21 @@ TEST_CASE("OBJ map_Kd x Kd with -s and -o", "[mesh][texture][obj]") {
   check_close(base_color(mesh, 1, 0.3, 0.3), glm::vec3(0.3f), 1e-6);
   // The images are inputs of the OBJ as much as its MTL file (outputs may not overwrite them).
   CHECK(referenced_files(path) == std::vector<std::string>{temp_path("tex.mtl"), temp_path("obj_checker.png"), temp_path("missing.png")});
+}
+
+TEST_CASE("OBJ map_Kd written on Windows (backslash folders) finds its file", "[mesh][texture][obj]") {
+  // assimp-testmodels' spider.mtl writes "map_Kd .\\wal67ar_small.jpg"; here a folder too.
+  std::filesystem::create_directories(temp_path("win_textures"));
+  checker_png("win_textures/checker.png");
+  write_temp("win.mtl", "newmtl lit\nKd 1 1 1\nmap_Kd .\\win_textures\\checker.png\n");
+  const std::string path = write_temp("win.obj", "mtllib win.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
+                                                 "vt 0 1\nvt 1 1\nvt 1 0\nvn 0 0 1\nusemtl lit\nf 1/1/1 2/2/1 3/3/1\n");
+  LoadReport report;
+  const Mesh mesh = load_mesh(path, &report, true);
+  for (const std::string& note : report.notes) UNSCOPED_INFO(note);
+  CHECK(report.notes.empty());
+  CHECK(mesh.albedo_source == AlbedoSource::texture);
+  CHECK(referenced_files(path) == std::vector<std::string>{temp_path("win.mtl"), temp_path("./win_textures/checker.png")});
 }
 
 TEST_CASE("BoxTextured (glTF sample model, tests/data/BoxTextured) shows its texture", "[mesh][texture][gltf][asset]") {
