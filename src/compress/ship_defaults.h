@@ -37,6 +37,16 @@ struct ShipCompression {
 /// 5 bands. A mesh too small for N = 1 to fit still gets N = 1.
 ShipCompression ship_compression(std::uint64_t vertices, int channels, int sections, int bands);
 
+/// The compressed default for a texel (lightmap) transfer (`prt bake MESH --lightmap SIZE -o T.cprt`): the
+/// rule of ship_compression with the model's points, the `points` non-empty texels (>= 1), in place of
+/// the vertices, and the budget of the uncompressed 5-band float32 texel .prt, which stores every one of
+/// the `texels` (W x H >= points) texels: K = points / 256 clamped to 1..64; N the largest in 1..24 with
+///   points (4 + 2N) + K ((N + 1) channels sections bands^2 2 + 64)  <=  texels channels sections 25 4
+/// (both files also hold the W x H coverage mask, left out of both sides). The renderer shades each
+/// non-empty texel with N + 1 <= 25 products per channel, once per lighting change
+/// (render/pass_lightmap_cpca.cpp), where the 5-band lightmap takes 25 per pixel every frame.
+ShipCompression ship_texel_compression(std::uint64_t points, std::uint64_t texels, int channels, int sections, int bands);
+
 /// The lighting prior the compressed default is fitted to (CompressionRequest::metric_sky): zonal
 /// coefficients c_(l,0) = sqrt((2l+1) / (l+1)^2), the same in every colour, so that its rotation-averaged
 /// spectrum (metric.h) is s_l = (l+1)^-2. Real skies fall off with the band: the eight maps of
