@@ -1,6 +1,7 @@
 #pragma once
 // "Bake high, ship light" (issue 36; docs/conventions.md, "Bake high, ship light"): the defaults of a
-// per-vertex diffuse bake written compressed (`prt bake MESH -o T.cprt`). The bake's cost hardly grows
+// diffuse bake written compressed (`prt bake MESH -o T.cprt`; per texel with `--lightmap SIZE`:
+// ship_texel_compression). The bake's cost hardly grows
 // with the band count (rays dominate), so it bakes kHighBands bands, where the truncation floor under
 // real skies is a third of 5 bands'; clustered PCA (cpca.h) then ships that transfer at the run-time
 // cost and file size of an uncompressed 5-band file: the renderer shades a compressed vertex with
