@@ -1,8 +1,8 @@
-// pass: prt_lightmap_cpca, compute stage: one step of the coverage-aware mip chain of the shaded
-// lightmap, on the GPU; mirrors prt::render::next_mip_level (lightmap_mips.h), whose rule the
-// uncompressed lightmap pass applies to its transfer layers. The rule is linear in the values for a
-// fixed coverage, so the chain of the shaded texels equals the shading of the transfer's chain (up to
-// float rounding). Alpha carries "filled" (1) or not (0); rgb is 0 where not filled.
+// pass: prt_lightmap_cpca (shaded lightmap's mip chain), compute; mirrors prt::render::next_mip_level.
+// One step of the coverage-aware mip chain of the shaded lightmap, on the GPU, by the rule of
+// lightmap_mips.h, which the uncompressed lightmap pass applies to its transfer layers. The rule is
+// linear in the values for a fixed coverage, so the chain of the shaded texels equals the shading of
+// the transfer's chain (up to float rounding). Alpha carries "filled" (1) or not (0); rgb is 0 where not filled.
 //   REDUCE  (defined) source = level l, target = level l + 1 before dilation: the mean of the filled
 //           children (the last row or column of an odd size also takes the leftover child)
 //   else    source = that averaged level, target = level l + 1: unfilled texels with filled

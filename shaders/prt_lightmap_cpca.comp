@@ -1,6 +1,6 @@
-// pass: prt_lightmap_cpca (CPCA-compressed texel transfer), compute stage: shades every non-empty texel
-// once per lighting change; mirrors prt::render::cpca_products + the blend of prt::compress::decompress,
-// shaded as prt::shade::shade_diffuse (and, with the discs, shade_diffuse_split's sky + bounce part).
+// pass: prt_lightmap_cpca (compressed texels, shaded once per lighting change), compute; mirrors prt::compress::decompress + prt::shade::shade_diffuse.
+// Every non-empty texel: the blend of prt::render::cpca_products as prt::compress::decompress blends the
+// vectors, shaded as prt::shade::shade_diffuse (and, with the discs, shade_diffuse_split's sky + bounce part).
 // The CPU computes each cluster's N + 1 products (mean, then the PCA directions) with the object-frame
 // lighting (renderer_lightmap_cpca.h); texel p of cluster k with weights w gets P_k0 + sum_n w_n P_k(n+1),
 // written to its texel of level 0 of the shaded lightmap (rgb; a = 1: filled, for the mip chain).

@@ -1,5 +1,5 @@
-// pass: prt_lightmap_cpca (CPCA-compressed texel transfer, per pixel), fragment stage; with
-// prt_lightmap.vert. Mirrors prt_lightmap.frag: there the transfer's texel blocks are filtered and then
+// pass: prt_lightmap_cpca (compressed texels, per pixel), fragment stage; mirrors prt_lightmap.frag.
+// With prt_lightmap.vert. As prt_lightmap.frag: there the transfer's texel blocks are filtered and then
 // dotted with the lighting; here the texels were shaded first (prt_lightmap_cpca.comp, once per
 // lighting change, and the coverage-aware mip chain lightmap_mip.comp) and are filtered as they are:
 // the filter is linear, so both give the same radiance up to float rounding, and no cluster id is ever
