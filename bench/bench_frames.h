@@ -11,6 +11,7 @@
 #include "mesh/mesh.h"
 #include "render/gl.h"
 #include "render/renderer.h"
+#include "sh/rotation.h"
 #include "transfer/transfer_file.h"
 
 namespace prt::bench {
@@ -75,11 +76,13 @@ inline double median_frame_ms(render::Renderer& renderer, const render::FrameSet
 
 /// Mean milliseconds per frame of settings a and b, rendered alternately at size x size (after one
 /// warm-up frame of each: shader compilation, first-use allocation); the benchmark's time is a's.
+/// With `turn_sky`, the environment turns by a new yaw (7 degrees more) every frame, the same for a and
+/// b: frames with a lighting change.
 struct FramePair {
   double a_ms = 0.0, b_ms = 0.0;
 };
-inline FramePair alternate_frames(benchmark::State& state, render::Renderer& renderer, const render::FrameSettings& a,
-                                  const render::FrameSettings& b, int size) {
+inline FramePair alternate_frames(benchmark::State& state, render::Renderer& renderer, render::FrameSettings a,
+                                  render::FrameSettings b, int size, bool turn_sky = false) {
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); };
   for (const auto* s : {&a, &b}) {
@@ -87,7 +90,9 @@ inline FramePair alternate_frames(benchmark::State& state, render::Renderer& ren
     glFinish();
   }
   double sum_a = 0.0, sum_b = 0.0;
+  int frame = 0;
   for (auto _ : state) {
+    if (turn_sky) a.environment_rotation = b.environment_rotation = sh::rotation_from_yaw_pitch_roll(7.0 * ++frame, 0.0, 0.0);
     auto start = Clock::now();
     renderer.render(a, size, size);
     glFinish();

@@ -10,6 +10,7 @@
 #include "cli/output_paths.h"
 #include "cli/commands.h"
 #include "cli/distributed.h"
+#include "compress/compressed.h"
 #include "compress/ship_defaults.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -86,11 +87,29 @@ void print_summary(const std::string& what, const bake::BakeReport& report, tran
   std::fprintf(stderr, "%s, %.2f s -> %s\n", job_summary().c_str(), seconds, output.c_str());
 }
 
-// The compressed default ("bake high, ship light", docs/conventions.md): a per-vertex diffuse bake written
-// to a .cprt without --compress: kHighBands bands (unless --bands), CPCA with compress::ship_compression,
-// float16 (K and N sized to the 5-band file). Every other bake keeps its form: kShipBands bands by default, uncompressed unless --compress.
+// The compressed default ("bake high, ship light", docs/conventions.md): a diffuse bake, per vertex or
+// per texel, written to a .cprt without --compress: kHighBands bands (unless --bands), CPCA with
+// compress::ship_compression (per texel: ship_texel_compression), float16 (K and N sized to the 5-band
+// file). Every other bake keeps its form: kShipBands bands by default, uncompressed unless --compress.
 bool ships_compressed(const BakeCommandOptions& o, const bake::BakeOptions& options) {
-  return o.compress.empty() && o.lightmap.empty() && !transfer::is_glossy(options.kind) && lower_extension(o.output) == ".cprt";
+  return o.compress.empty() && !transfer::is_glossy(options.kind) && lower_extension(o.output) == ".cprt";
+}
+
+// The ship default's CPCA setting for baked `data` into `out` (K, N; fitted to `prior`, which must
+// outlive `out`).
+void set_ship_compression(const transfer::TransferData& data, const sh::RgbCoefficients& prior, pipeline::TransferOutputs& out) {
+  const transfer::Header& h = data.header;
+  const int channels = static_cast<int>(h.channels), sections = data.bounce_only.empty() ? 1 : 2, bands = static_cast<int>(h.bands);
+  compress::ShipCompression ship;
+  if (h.is_texel()) {
+    const std::uint64_t points = compress::point_blocks(h, data.coverage).size();
+    ship = compress::ship_texel_compression(points, static_cast<std::uint64_t>(h.texel_width) * h.texel_height, channels, sections, bands);
+  } else {
+    ship = compress::ship_compression(h.vertex_count, channels, sections, bands);
+  }
+  out.clusters = ship.clusters;
+  out.pca = ship.pca;
+  out.metric_sky = &prior;
 }
 
 // Per vertex: checks, bakes (split over the ranks of an MPI job) and writes the outputs from rank 0.
@@ -127,14 +146,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   const double seconds = seconds_since(start);
   const transfer::Header header = data.header;
   const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
-  if (ships_compressed(o, options)) {  // the ship default: K and N sized to the mesh (compress/ship_defaults.h)
-    const compress::ShipCompression ship =
-        compress::ship_compression(header.vertex_count, static_cast<int>(header.channels),
-                                   data.bounce_only.empty() ? 1 : 2, static_cast<int>(header.bands));
-    out.clusters = ship.clusters;
-    out.pca = ship.pca;
-    out.metric_sky = &prior;
-  }
+  if (ships_compressed(o, options)) set_ship_compression(data, prior, out);  // K and N sized to the mesh
   pipeline::write_transfer_outputs(mesh, std::move(data), out);
   if (o.quiet) return;
   std::string what = std::string(transfer::kind_name(options.kind)) + ", " + std::to_string(mesh.positions.size()) +
@@ -180,6 +192,8 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   const transfer::Header header = data.header;
   pipeline::TransferOutputs outputs = out;
   outputs.uv_generated = uv_source.generated;  // the glTF then carries the generated UVs
+  const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
+  if (ships_compressed(o, options)) set_ship_compression(data, prior, outputs);  // K and N sized to the texels
   pipeline::write_transfer_outputs(mesh, std::move(data), outputs);
   if (o.quiet) return;
   char what[256];
@@ -258,7 +272,7 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--bands-out", options->bands_out,
                   "Glossy kinds: bands of the transferred radiance (matrix rows), 1..--bands; default --bands");
   cmd->add_option("--bands", options->bands,
-                  "SH bands of the lighting (1..32; 5 = 25 coefficients). Default 5, and 16 for a diffuse per-vertex bake to a .cprt "
+                  "SH bands of the lighting (1..32; 5 = 25 coefficients). Default 5, and 16 for a diffuse bake (per vertex or --lightmap) to a .cprt "
                   "without --compress (bake high, ship light: CPCA-compressed to the size and run-time cost of 5 bands)");
   cmd->add_option("--samples", options->samples, "Rays per vertex (shadowed, interreflected)")->capture_default_str();
   cmd->add_option("--bounces", options->bounces,

@@ -1,6 +1,7 @@
 #pragma once
 // "Bake high, ship light" (issue 36; docs/conventions.md, "Bake high, ship light"): the defaults of a
-// per-vertex diffuse bake written compressed (`prt bake MESH -o T.cprt`). The bake's cost hardly grows
+// diffuse bake written compressed (`prt bake MESH -o T.cprt`; per texel with `--lightmap SIZE`:
+// ship_texel_compression). The bake's cost hardly grows
 // with the band count (rays dominate), so it bakes kHighBands bands, where the truncation floor under
 // real skies is a third of 5 bands'; clustered PCA (cpca.h) then ships that transfer at the run-time
 // cost and file size of an uncompressed 5-band file: the renderer shades a compressed vertex with
@@ -36,6 +37,16 @@ struct ShipCompression {
 /// N <= 24 keeps the renderer's per-vertex work (N + 1 weights per channel) within the 25 products of
 /// 5 bands. A mesh too small for N = 1 to fit still gets N = 1.
 ShipCompression ship_compression(std::uint64_t vertices, int channels, int sections, int bands);
+
+/// The compressed default for a texel (lightmap) transfer (`prt bake MESH --lightmap SIZE -o T.cprt`): the
+/// rule of ship_compression with the model's points, the `points` non-empty texels (>= 1), in place of
+/// the vertices, and the budget of the uncompressed 5-band float32 texel .prt, which stores every one of
+/// the `texels` (W x H >= points) texels: K = points / 256 clamped to 1..64; N the largest in 1..24 with
+///   points (4 + 2N) + K ((N + 1) channels sections bands^2 2 + 64)  <=  texels channels sections 25 4
+/// (both files also hold the W x H coverage mask, left out of both sides). The renderer shades each
+/// non-empty texel with N + 1 <= 25 products per channel, once per lighting change
+/// (render/pass_lightmap_cpca.cpp), where the 5-band lightmap takes 25 per pixel every frame.
+ShipCompression ship_texel_compression(std::uint64_t points, std::uint64_t texels, int channels, int sections, int bands);
 
 /// The lighting prior the compressed default is fitted to (CompressionRequest::metric_sky): zonal
 /// coefficients c_(l,0) = sqrt((2l+1) / (l+1)^2), the same in every colour, so that its rotation-averaged

@@ -16,7 +16,6 @@ namespace {
 constexpr GLuint kTransferUnit = 0;            // prt_lightmap.frag: transfer_layers
 constexpr GLuint kBounceUnit = 1;              // prt_lightmap.frag: bounce_layers
 constexpr GLuint kDiscLightingBinding = 2;     // prt_lightmap.frag: uniform DiscLighting
-constexpr GLuint kUvBinding = 10;
 
 class LightmapPass final : public TransferPass {
  public:
@@ -48,19 +47,7 @@ void LightmapPass::draw(FrameCore& core, const Frame& frame) {
   const bool bounce = frame.sun && textures_.bounce_texture() != 0;
   if (frame.sun && header().kind == transfer::Kind::interreflected && !bounce) warn_no_bounce("");
   const Program& p = program(core, frame.bands * frame.bands, frame.sun, bounce, frame.texel_space);
-  if (frame.texel_space) {
-    glDisable(GL_DEPTH_TEST);  // charts do not overlap (the bake's UV check)
-  } else {
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-  }
-  glUseProgram(p.id());
-  glBindVertexArray(core.empty_vao);
-  glUniformMatrix4fv(p.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(core.model_view_projection));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, core.indices);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, core.positions);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, core.normals);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUvBinding, core.lightmap_uv);
+  begin_lightmap_draw(core, p, frame.texel_space);
   glBindBufferBase(GL_UNIFORM_BUFFER, kObjectLightingBinding, core.object_lighting);
   glBindTextureUnit(kTransferUnit, textures_.transfer_texture());
   if (frame.sun) core.sun->bind(core, p, sun_surface_, false);  // also the albedo buffer the vertex stage reads

@@ -159,7 +159,8 @@ bool Renderer::is_compressed(int index) const {
 }
 
 bool Renderer::is_lightmap(int index) const {
-  return index >= 0 && index < transfer_count() && std::strcmp(pass(index).name(), "lightmap") == 0;
+  // "lightmap", or "lightmap_cpca" (a compressed lightmap, drawn compressed)
+  return index >= 0 && index < transfer_count() && std::strncmp(pass(index).name(), "lightmap", 8) == 0;
 }
 
 void Renderer::set_brdf(int transfer, const brdf::BrdfMatrix& matrix) {

@@ -233,10 +233,11 @@ class Renderer {
   /// the base colour at the pixel (with discs, their direct light too); glossy and lightmap transfer are
   /// drawn as before. Throws prt::Error for a wrong index, or `textured` on an untextured mesh.
   void set_textured(int transfer, bool textured);
-  /// Uploads a CPCA-compressed transfer (renderer_cpca.h) for the current mesh; returns its index in the
-  /// same list as add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs.
+  /// Uploads a CPCA-compressed transfer (renderer_cpca.h; a texel model: pass_lightmap_cpca.cpp, drawn
+  /// compressed, is_lightmap true) for the current mesh; returns its index in the same list as
+  /// add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs.
   int add_compressed(const compress::CompressedTransfer& compressed, const std::string& origin);
-  bool is_compressed(int transfer) const;
+  bool is_compressed(int transfer) const;  ///< a per-vertex CPCA transfer
   /// Uploads a texel (lightmap) transfer (transfer::Header::is_texel; diffuse kinds) for the current
   /// mesh, which must have lightmap UVs (renderer_lightmap.h); returns its index in the same list as
   /// add_transfer. Throws prt::Error("<origin>: ...") if its vertex count differs from the mesh's, the

@@ -95,6 +95,17 @@ void cpca_products(const compress::CompressedTransfer& c, const glm::vec3* light
   }
 }
 
+compress::CompressedTransfer cluster_vectors(const compress::CompressedTransfer& c) {
+  compress::CompressedTransfer out;
+  out.source = c.source;
+  out.clusters = c.clusters;
+  out.pca = c.pca;
+  out.bounce = c.bounce;
+  out.means = c.means;
+  out.bases = c.bases;
+  return out;
+}
+
 CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::string& origin) : header_(c.source) {
   header_.scalar = transfer::Scalar::float32;
   const std::size_t P = static_cast<std::size_t>(c.source.vertex_count), N = static_cast<std::size_t>(c.pca);
@@ -105,12 +116,7 @@ CpcaTransfer::CpcaTransfer(const compress::CompressedTransfer& c, const std::str
   radiance_ = storage(nullptr, P * sizeof(glm::vec4), 0);
   weights_ = storage(c.weights.data(), c.weights.size() * sizeof(float), 0);
   vertex_bytes_ = (c.cluster.size() + c.weights.size()) * 4 + P * sizeof(glm::vec4);
-  model_.source = c.source;
-  model_.clusters = c.clusters;
-  model_.pca = c.pca;
-  model_.bounce = c.bounce;
-  model_.means = c.means;
-  model_.bases = c.bases;
+  model_ = cluster_vectors(c);
   check_gl("uploading a compressed transfer");
 }
 
@@ -168,13 +174,7 @@ std::string cpca_label(const compress::CompressedTransfer& c) {
 
 std::string transfer_memory_label(const SceneInputs& scene, std::size_t i) {
   if (i < scene.compressed.size() && scene.compressed[i]) return cpca_label(*scene.compressed[i]);
-  if (scene.transfers[i].header.is_texel()) {
-    std::string label = lightmap_memory_label(scene.transfers[i].header);
-    // A compressed lightmap is decompressed on load (scene_inputs): the GPU holds its texels; the file, its model.
-    if (compress::is_cprt_file(scene.transfer_paths[i]))
-      label += cpca_label(compress::read_cprt_header(scene.transfer_paths[i])) + " on disk, decompressed on load";
-    return label;
-  }
+  if (scene.transfers[i].header.is_texel()) return lightmap_memory_label(scene.transfers[i].header);
   char text[160];
   std::snprintf(text, sizeof text, ", %.1f MB", compress::uncompressed_bytes(scene.transfers[i].header, transfer::Scalar::float32) * 1e-6);
   return text;

@@ -30,6 +30,10 @@ namespace prt::render {
 void cpca_products(const compress::CompressedTransfer& compressed, const glm::vec3* lighting, const glm::vec3* discs, int bands,
                    const brdf::BrdfMatrix* brdf, std::vector<glm::vec4>& out);
 
+/// The part of `compressed` the per-frame products need (cpca_products): its header, K, N, bounce flag,
+/// means and directions; the per-point arrays (clusters, weights, coverage) left empty.
+compress::CompressedTransfer cluster_vectors(const compress::CompressedTransfer& compressed);
+
 /// One compressed transfer on the GPU: cluster ids and weights uploaded once (storage buffers), the
 /// products re-uploaded every frame. Keeps the means and directions on the CPU for the products.
 class CpcaTransfer {
@@ -72,8 +76,7 @@ int add_scene_transfer(Renderer& renderer, const SceneInputs& scene, std::size_t
 
 /// For the viewer's transfer list: ", 25.0 MB" for a .prt transfer (float32 on the GPU), or
 /// ", CPCA K 128 N 8, 2.9 MB, error 1.23%" for a compressed one (its payload; the recorded relative
-/// transfer-space error, and the shaded-radiance error if recorded); a compressed lightmap (decompressed
-/// on load) gets the lightmap's label and then its file's CPCA label.
+/// transfer-space error, and the shaded-radiance error if recorded), per vertex or per texel.
 std::string transfer_memory_label(const SceneInputs& scene, std::size_t i);
 
 }  // namespace prt::render

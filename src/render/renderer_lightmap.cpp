@@ -8,14 +8,32 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "render/bindings.h"
 #include "render/lightmap_mips.h"
 
 namespace prt::render {
 
 namespace {
 
+constexpr GLuint kUvBinding = 10;  // prt_lightmap.vert: LightmapUv
 
 }  // namespace
+
+void begin_lightmap_draw(FrameCore& core, const Program& program, bool texel_space) {
+  if (texel_space) {
+    glDisable(GL_DEPTH_TEST);  // charts do not overlap (the bake's UV check)
+  } else {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+  }
+  glUseProgram(program.id());
+  glBindVertexArray(core.empty_vao);
+  glUniformMatrix4fv(program.uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(core.model_view_projection));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, core.indices);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, core.positions);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNormalsBinding, core.normals);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kUvBinding, core.lightmap_uv);
+}
 
 int lightmap_layers(std::uint64_t values_per_texel) { return static_cast<int>((values_per_texel + 3) / 4); }
 

@@ -28,6 +28,7 @@
 #include <tuple>
 #include <vector>
 
+#include "render/frame_core.h"
 #include "render/gl.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
@@ -63,6 +64,11 @@ class LightmapTextures {
 
 /// For the viewer's transfer list: ", lightmap 512x512, 100.7 MB" (both arrays and mip chains on the GPU).
 std::string lightmap_memory_label(const transfer::Header& header);
+
+/// What every lightmap pass's draw (prt_lightmap.vert) starts with: the depth test (off in texel space:
+/// charts do not overlap), `program` in use with the camera's matrix, the empty vertex array, and the
+/// mesh's indices, positions, normals and lightmap UVs bound as the vertex stage reads them.
+void begin_lightmap_draw(FrameCore& core, const Program& program, bool texel_space);
 
 /// Layers a texel block of `values_per_texel` values takes: ceil(values_per_texel / 4).
 int lightmap_layers(std::uint64_t values_per_texel);

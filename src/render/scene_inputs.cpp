@@ -44,9 +44,8 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
     transfer::check_mesh_match(path, header, scene.mesh.vertex_count(), scene.mesh.triangle_count(), fingerprint);
     transfer::check_uv_match(path, header, mesh::uv_fingerprint(scene.mesh));  // texel files only
     compress::use_baked_albedo(file, &scene.mesh);  // an engine glTF: the albedo its transfer was baked with
-    // A per-vertex model is drawn as it is (the CPCA pass); a compressed lightmap is decompressed on load
-    // (the lightmap pass samples texture arrays of the reconstructed texels, as for a .prt lightmap).
-    if (file.compressed() && !header.is_texel()) {
+    // A model is drawn as it is: per vertex by the CPCA pass, per texel by the compressed lightmap pass.
+    if (file.compressed()) {
       scene.compressed.push_back(std::make_shared<const compress::CompressedTransfer>(std::get<compress::CompressedTransfer>(std::move(file.contents))));
       scene.transfers.emplace_back().header = header;
     } else {

@@ -8,6 +8,7 @@
 // The transfer kinds the renderer draws, one line each: PASS(name) for make_<name>_pass (pass_<name>.cpp).
 // make_pass asks them in this order and takes the first that accepts the transfer.
 #define PRT_RENDER_PASSES(PASS) \
+  PASS(lightmap_cpca)           \
   PASS(cpca)                    \
   PASS(lightmap)                \
   PASS(glossy)                  \

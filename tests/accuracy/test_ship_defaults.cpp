@@ -5,6 +5,8 @@
 // vector more, what a rule that undercounts the bytes would choose, fails the first check.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "compress/cprt_file.h"
 #include "compress/ship_defaults.h"
 
@@ -59,4 +61,31 @@ TEST_CASE("ship default: the metric prior's rotation-averaged spectrum is (l+1)^
     for (int m = -l; m <= l; ++m) power += sky.values[static_cast<std::size_t>(l * (l + 1) + m)].y * sky.values[static_cast<std::size_t>(l * (l + 1) + m)].y;
     CHECK(power / (2 * l + 1) == Approx(1.0 / ((l + 1.0) * (l + 1.0))).epsilon(1e-12));
   }
+}
+
+TEST_CASE("texel ship default: the texel .cprt payload fits the 5-band texel .prt payload, with the largest N that fits",
+          "[accuracy][ship][lightmap]") {
+  // Lightmaps from 16^2 to 2048^2 texels, a third to all of them non-empty (covered or gutter).
+  for (std::uint64_t side : {16ull, 64ull, 512ull, 2048ull})
+    for (std::uint64_t fill : {3ull, 2ull, 1ull})  // points = texels / fill
+      for (bool bounce : {false, true}) {
+        const std::uint64_t texels = side * side, points = texels / fill;
+        CAPTURE(side, fill, bounce);
+        const compress::ShipCompression ship = compress::ship_texel_compression(points, texels, 1, bounce ? 2 : 1, compress::kHighBands);
+        CHECK(ship.clusters == static_cast<int>(std::clamp<std::uint64_t>(points / 256, 1, 64)));
+        REQUIRE(ship.pca >= 1);
+        REQUIRE(ship.pca <= 24);
+        compress::CompressedTransfer c;
+        c.source = header(0, 1, compress::kHighBands, transfer::Scalar::float16, bounce);
+        c.source.texel_width = c.source.texel_height = static_cast<std::uint32_t>(side);
+        c.clusters = ship.clusters;
+        c.bounce = bounce;
+        c.texel_points = points;
+        // The 5-band float32 texel .prt: the same coverage mask, then W x H x 25 floats per section.
+        const std::uint64_t mask = (texels + 7) / 8 * 8, budget = mask + texels * 25 * 4 * (bounce ? 2 : 1);
+        c.pca = ship.pca;
+        CHECK(compress::payload_bytes(c) <= budget);
+        c.pca = ship.pca + 1;
+        if (ship.pca < 24) CHECK(compress::payload_bytes(c) + 32 * ship.clusters > budget);
+      }
 }

@@ -140,24 +140,3 @@ TEST_CASE("prt render of a .cprt file equals the library's render of the model, 
   CHECK(total > 1.0);
   CHECK(worst <= 1e-6);
 }
-
-TEST_CASE("a compressed lightmap loads decompressed for the lightmap pass, and the viewer's label names its model", "[render][compress][lightmap]") {
-  const std::string dir = test::fresh_temp_dir("render_cpca_lightmap");
-  test::write_obj_with_uv(dir + "/s.obj", test::floor_and_box(true));
-  REQUIRE(test::run_prt("bake " + dir + "/s.obj --lightmap 24 --transfer shadowed --bands 3 --samples 32 --quiet -o " + dir + "/lm.prt")
-              .exit_code == 0);
-  REQUIRE(test::run_prt("compress " + dir + "/lm.prt --clusters 6 --pca 2 -q -o " + dir + "/lm.cprt").exit_code == 0);
-  const render::SceneInputs scene = render::load_scene(dir + "/s.obj", {dir + "/lm.cprt", dir + "/lm.prt"});
-  REQUIRE(scene.compressed.size() == 2);
-  CHECK(scene.compressed[0] == nullptr);  // no per-frame model: the lightmap pass's texture arrays
-  const transfer::TransferData& loaded = scene.transfers[0];
-  CHECK(loaded.header.is_texel());
-  CHECK(loaded.coverage == scene.transfers[1].coverage);
-  const transfer::TransferData expected = compress::decompress(compress::read_cprt(dir + "/lm.cprt"));
-  CHECK(loaded.values == expected.values);
-  const std::string label = render::transfer_memory_label(scene, 0);
-  INFO(label);
-  CHECK(label.rfind(render::transfer_memory_label(scene, 1), 0) == 0);  // the lightmap's GPU memory first
-  CHECK(label.find(", CPCA K 6 N 2, ") != std::string::npos);
-  CHECK(label.find("decompressed on load") != std::string::npos);
-}

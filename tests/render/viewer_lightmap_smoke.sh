@@ -2,7 +2,8 @@
 # GLFW smoke test for `prt view` with a texel (lightmap) transfer (run by ctest): bakes a lightmap and a
 # per-vertex transfer for a small OBJ with lightmap UVs (a floor of two triangles and a wall standing on
 # it), opens the viewer under a virtual X server with both and a disc (sun), saves an EXR screenshot of
-# the lightmap, and checks it against `prt render` of the same (the same renderer: rel_rms < 1e-5).
+# the lightmap, and checks it against `prt render` of the same (the same renderer: rel_rms < 1e-5); then
+# the same for the lightmap baked to a .cprt (the texel ship default, drawn compressed).
 # Usage: viewer_lightmap_smoke.sh PRT MAKE_FIXTURES. Fails if xvfb-run is not installed.
 set -eu
 prt="$1"
@@ -45,4 +46,13 @@ rel_rms_between "$dir/compare.txt" 0 1e-5
   --rotate 45,0,0 -q -o "$dir/vertex.exr"
 "$prt" compare "$dir/view.exr" "$dir/vertex.exr" | tee "$dir/compare_vertex.txt"
 rel_rms_between "$dir/compare_vertex.txt" 1e-3 0.5
+# A compressed lightmap (the texel ship default: 16 bands, CPCA), drawn compressed by the viewer as by
+# prt render (the same renderer): rel_rms < 1e-5.
+"$prt" bake "$dir/scene.obj" --transfer interreflected --bounces 1 --samples 64 --lightmap 48x48 -q -o "$dir/lightmap.cprt"
+xvfb-run -a -s "-screen 0 1024x768x24" "$prt" view "$dir/scene.obj" "$dir/lightmap.cprt" \
+  --env "$dir/env.exr" --sun "$sun" --size 160x120 --camera 30,35,auto --rotate 45,0,0 --frames 3 --screenshot "$dir/view_cprt.exr"
+"$prt" render "$dir/scene.obj" "$dir/lightmap.cprt" --env "$dir/env.exr" --sun "$sun" --size 160x120 --camera 30,35,auto \
+  --rotate 45,0,0 -q -o "$dir/headless_cprt.exr"
+"$prt" compare "$dir/view_cprt.exr" "$dir/headless_cprt.exr" | tee "$dir/compare_cprt.txt"
+rel_rms_between "$dir/compare_cprt.txt" 0 1e-5
 echo "viewer lightmap smoke test passed"
