@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include <glm/geometric.hpp>
@@ -139,9 +140,10 @@ void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<flo
 void weighted_sum(const std::vector<float>& in, std::vector<float>& out, std::size_t p, const float* w, long step, int width,
                   std::size_t stride) {
   float* d = out.data() + p * stride;
-  std::fill(d, d + stride, 0.0f);
+  const float* centre = in.data() + p * stride;
+  for (std::size_t c = 0; c < stride; ++c) d[c] = w[4] * centre[c];  // the centre is always a tap
   for (int slot = 0; slot < 9; ++slot) {
-    if (w[slot] == 0.0f) continue;
+    if (slot == 4 || w[slot] == 0.0f) continue;
     const long offset = ((slot % 3) - 1 + ((slot / 3) - 1) * long(width)) * step;
     const float* s = in.data() + std::size_t(long(p) + offset) * stride;
     const float ws = w[slot];
@@ -248,10 +250,10 @@ namespace {
 // Twicing (Tukey, "Exploratory Data Analysis", 1977): smooth += twicing x S (input - smooth), S the
 // levels whose weights are `stored`. `input` and `scratch` are overwritten.
 void twice(std::vector<float>& smooth, std::vector<float>& input, std::vector<float>& scratch, std::size_t stride,
-           const DenoiseGuides& g, const std::vector<float>& stored, const DenoiseOptions& o) {
+           const DenoiseGuides& g, const float* stored, const DenoiseOptions& o) {
   for (std::size_t k = 0; k < input.size(); ++k) input[k] -= smooth[k];
   for (int it = 0; it < o.iterations; ++it) {
-    apply_stored(g, stored.data() + std::size_t(it) * g.covered.size() * 9, 1L << it, input, scratch, stride, o.threads);
+    apply_stored(g, stored + std::size_t(it) * g.covered.size() * 9, 1L << it, input, scratch, stride, o.threads);
     input.swap(scratch);
   }
   for (std::size_t t = 0; t < g.covered.size(); ++t)
@@ -317,18 +319,19 @@ void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only,
                      residual_bounce = options.twicing > 0.0f ? bounce_only : std::vector<float>();
   std::vector<float> next_values(values), next_bounce(bounce_only);
   std::vector<float> variance = noise ? *noise : initial_variance(values, stride, guides, options.threads), next_variance = variance;
-  std::vector<float> stored(guides.covered.size() * 9 * std::size_t(options.iterations));
+  // Written at every covered texel by each level before it is read (uninitialised: no pass over it).
+  const std::unique_ptr<float[]> stored(new float[guides.covered.size() * 9 * std::size_t(options.iterations)]);
   for (int it = 0; it < options.iterations; ++it) {
     const Iteration iteration{guides, options, 1L << it, variance};
     iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance,
-                    stored.data() + std::size_t(it) * guides.covered.size() * 9);
+                    stored.get() + std::size_t(it) * guides.covered.size() * 9);
     values.swap(next_values);
     if (bounce) bounce_only.swap(next_bounce);
     variance.swap(next_variance);
   }
   if (options.twicing > 0.0f) {
-    twice(values, residual, next_values, stride, guides, stored, options);
-    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored, options);
+    twice(values, residual, next_values, stride, guides, stored.get(), options);
+    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored.get(), options);
   }
 }
 
