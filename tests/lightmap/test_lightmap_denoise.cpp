@@ -52,7 +52,7 @@ double stddev(const std::vector<float>& v, std::size_t stride, std::size_t offse
 
 }  // namespace
 
-TEST_CASE("denoise: a constant transfer stays exactly constant; zero iterations change nothing", "[lightmap][denoise]") {
+TEST_CASE("denoise: a constant transfer stays exactly constant, zero iterations change nothing", "[lightmap][denoise]") {
   const lightmap::DenoiseGuides g = plane_guides(32, 24);
   std::vector<float> values(32 * 24 * 4), none;
   for (std::size_t t = 0; t < 32 * 24; ++t)
@@ -88,7 +88,7 @@ TEST_CASE("denoise: a linear ramp stays exactly linear, up to the chart's border
   }
 }
 
-TEST_CASE("denoise: white noise on a plane falls below 1/6 of its level; bytes equal for 1 and 2 threads", "[lightmap][denoise]") {
+TEST_CASE("denoise: white noise on a plane falls below 1/6 of its level, bytes equal for 1 and 2 threads", "[lightmap][denoise]") {
   const int w = 96, h = 96;
   const lightmap::DenoiseGuides g = plane_guides(w, h);
   std::mt19937 rng(5);
@@ -238,8 +238,9 @@ double rel_rms(const Lit& a, const Lit& ref, const std::vector<bool>& select, in
 
 }  // namespace
 
-TEST_CASE("denoise: box on a floor vs 4096 samples under three HDRIs: 256 samples denoised no worse than 1024 undenoised; "
-          "128 denoised under half the 128-sample error; contact band and chart borders keep their edges", "[lightmap][denoise]") {
+// 256 samples denoised no worse than 1024 undenoised; 128 denoised under half the 128-sample error;
+// the contact band and the chart borders keep their edges.
+TEST_CASE("denoise: box on a floor vs 4096 samples, three HDRIs: 256 denoised beat 1024, edges kept", "[lightmap][denoise]") {
   const mesh::Mesh m = test::floor_and_box(true);
   const int size = 128;
   std::vector<sh::RgbCoefficients> envs;
@@ -300,7 +301,7 @@ TEST_CASE("denoise: box on a floor vs 4096 samples under three HDRIs: 256 sample
 
 namespace prt {
 
-TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same bytes for 1 and 2 threads; refused without "
+TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same bytes for 1 and 2 threads, refused without "
           "--lightmap", "[lightmap][denoise]") {
   const std::string dir = test::fresh_temp_dir("lightmap_denoise_cli"), mesh = dir + "/box.obj";
   test::write_obj_with_uv(mesh, test::floor_and_box(true));
