@@ -1,4 +1,4 @@
-// pass: texture (included with TEXTURED by surface.frag and prt_sun.frag); mirrors prt::mesh::sample_texture.
+// pass: texture (included with TEXTURED by surface.frag and prt_sun.frag, before base_fragment.glsl); mirrors prt::mesh::sample_texture.
 // The texture slots of a textured mesh (render/base_colour.h): TEXTURE_SLOTS (#defined, >= 1) units from
 // 16, each an image with its glTF sampler (wrap modes; bilinear, or nearest for magFilter NEAREST; no
 // mipmaps, so a lookup is the magnified texture's, as the conventions define it).

@@ -2,7 +2,7 @@
 #version 450 core
 
 #ifdef TEXTURED
-// A textured mesh (TEXTURE_SLOTS): drawn per triangle corner, albedo-free (textured_vertex.glsl).
+// A textured mesh (TEXTURE_SLOTS): drawn per draw vertex (vertex, UV, material), albedo-free (textured_vertex.glsl).
 #include "base_material.glsl"
 #include "textured_vertex.glsl"
 #else
@@ -23,10 +23,10 @@ out vec3 object_normal;
 
 void main() {
 #ifdef TEXTURED
-  uint vertex = indices[gl_VertexID];
+  uint vertex = indices[draw_corner];
   vec3 position = vertex_position(vertex);
   radiance = albedo_free(vertex_radiance[vertex].rgb, vertex);
-  emit_corner(gl_VertexID, vertex);
+  emit_corner(int(draw_corner), vertex);
 #else
   radiance = vertex_radiance[gl_VertexID].rgb;
 #endif

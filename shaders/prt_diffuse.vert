@@ -9,7 +9,7 @@
 //   CHUNKS             1..8 buffer-texture views the transfer is split into (see TransferBuffer)
 //   SUN                (defined only with discs) add the discs' bounce light (per-vertex, computed when the
 //                      lighting changes); their direct light is prt_sun.frag's deferred pass
-//   TEXTURED           (a textured mesh, with TEXTURE_SLOTS) drawn per triangle corner, the radiance divided
+//   TEXTURED           (a textured mesh, with TEXTURE_SLOTS) drawn per draw vertex (vertex, UV, material), the radiance divided
 //                      by the vertex's albedo, the base colour multiplied per pixel (textured_vertex.glsl)
 const int channels = CHANNELS;
 const int coefficient_count = COEFFICIENT_COUNT;
@@ -73,7 +73,7 @@ layout(std430, binding = 7) readonly buffer SunBounce { float sun_bounce[]; };
 
 void main() {
 #ifdef TEXTURED
-  int vertex = int(indices[gl_VertexID]);
+  int vertex = int(indices[draw_corner]);
   vec3 position = vertex_position(uint(vertex));
 #else
   int vertex = gl_VertexID;
@@ -125,7 +125,7 @@ void main() {
 #endif
 #ifdef TEXTURED
   sum = albedo_free(sum, uint(vertex));
-  emit_corner(gl_VertexID, uint(vertex));
+  emit_corner(int(draw_corner), uint(vertex));
 #endif
   radiance = sum;
   gl_Position = model_view_projection * vec4(position, 1.0);

@@ -4,17 +4,15 @@
 in vec3 radiance;  // interpolated perspective-correctly from the vertices
 #ifdef TEXTURED
 // A textured mesh (textured_vertex.glsl): the radiance is albedo-free; times the base colour here.
-in vec2 corner_uv;
-flat in int corner_slot;
-in vec3 corner_tint;
 #include "base_texture.glsl"
+#include "base_fragment.glsl"
 #endif
 layout(location = 0) out vec4 radiance_out;
 layout(location = 1) out uint triangle_out;
 
 void main() {
 #ifdef TEXTURED
-  radiance_out = vec4(radiance * clamp_colour(corner_tint * sample_slot(corner_slot, corner_uv)), 1.0);
+  radiance_out = vec4(radiance * pixel_base_colour(), 1.0);
 #else
   radiance_out = vec4(radiance, 1.0);
 #endif

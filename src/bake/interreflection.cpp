@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include "bake/passes.h"
+#include "core/parallel.h"
 #include "mesh/texture.h"
 
 namespace prt::bake {
@@ -96,21 +97,22 @@ void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, flo
 // the hit and the result stays albedo-free (interreflect folds the receiver's albedo in).
 class BounceWorker {
  public:
+  // `colours`: every triangle's base colour lookup (triangle_colours), empty unless albedo_at_hits.
   BounceWorker(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const std::vector<float>& prev,
-               std::vector<float>& next)
+               std::vector<float>& next, const std::vector<mesh::TriangleColour>& colours)
       : ctx_(ctx), albedo_(albedo), channels_(channels), prev_(prev), next_(next),
         n_(static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands), stride_(n_ * channels),
-        at_hits_(albedo_at_hits(*ctx.mesh)), weights_(4 * ctx.samples->directions.size()), gathered_(stride_) {}
+        at_hits_(albedo_at_hits(*ctx.mesh)), weights_(4 * ctx.samples->directions.size()), gathered_(stride_),
+        colours_(colours) {}
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
 
-  // The batch's front-face hits first, each textured one's lookup set up and its texels requested (the
-  // hits fall on the texture at random: requested together, their loads overlap); then their weights,
-  // in ray order.
+  // The batch's front-face hits first, each textured one's texels requested (the hits fall on the
+  // texture at random: requested together, their loads overlap); then their weights, in ray order.
   void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t) {
     const mesh::Mesh& mesh = *ctx_.mesh;
     front_.clear();
-    colours_.clear();
+    requests_.clear();
     for (std::size_t i = 0; i < batch.size(); ++i) {
       if (!batch.is_hit(i)) continue;
       const trace::HitResult hit = batch.hit(i);
@@ -119,13 +121,11 @@ class BounceWorker {
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
       front_.push_back(hit);
-      if (!at_hits_) continue;
-      colours_.emplace_back(mesh, hit.prim_id);
-      colours_.back().prefetch(hit.u, hit.v);
+      if (at_hits_) requests_.push_back(colours_[hit.prim_id].request(hit.u, hit.v));
     }
     for (std::size_t k = 0; k < front_.size(); ++k) {
       const trace::HitResult& hit = front_[k];
-      const glm::vec3 albedo = at_hits_ ? colours_[k].at(hit.u, hit.v) : glm::vec3(1.0f);
+      const glm::vec3 albedo = at_hits_ ? colours_[hit.prim_id].at(requests_[k]) : glm::vec3(1.0f);
       if (ctx_.grid) {
         add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, albedo, weights_);
         continue;
@@ -163,9 +163,22 @@ class BounceWorker {
   bool at_hits_;
   WeightMap weights_;
   std::vector<float> gathered_;
-  std::vector<trace::HitResult> front_;       // this batch's front-face hits
-  std::vector<mesh::TriangleColour> colours_;  // their base colour lookups (at_hits_ only)
+  const std::vector<mesh::TriangleColour>& colours_;  // per triangle (at_hits_ only)
+  std::vector<trace::HitResult> front_;               // this batch's front-face hits
+  std::vector<mesh::TriangleColour::Request> requests_;  // their base colour lookups (at_hits_ only)
 };
+
+// Every triangle's base colour lookup, set up once per pass rather than once per hit (at_hits only;
+// else empty). Triangles in parallel, each writing its own entry.
+std::vector<mesh::TriangleColour> triangle_colours(const PassContext& ctx) {
+  const mesh::Mesh& mesh = *ctx.mesh;
+  if (!albedo_at_hits(mesh)) return {};
+  std::vector<mesh::TriangleColour> colours(mesh.triangle_count());
+  parallel_for(colours.size(), 4096, ctx.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) colours[t] = mesh::TriangleColour(mesh, static_cast<std::uint32_t>(t));
+  });
+  return colours;
+}
 
 }  // namespace
 
@@ -175,9 +188,10 @@ std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& 
                           const std::vector<float>& prev, std::vector<float>& next, const char* label) {
   const std::size_t stride = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands * static_cast<std::size_t>(channels);
   next.assign(ctx.point_count() * stride, 0.0f);
+  const std::vector<mesh::TriangleColour> colours = triangle_colours(ctx);
   Progress progress(label, ctx.point_unit(), ctx.point_count(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::closest_hit), progress,
-                                  [&] { return BounceWorker(ctx, albedo, channels, prev, next); });
+                                  [&] { return BounceWorker(ctx, albedo, channels, prev, next, colours); });
 }
 
 }  // namespace prt::bake

@@ -60,19 +60,23 @@ Spot locate(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
   return {std::int64_t(fx0), std::int64_t(fy0), float(x - 0.5 - fx0), float(y - 0.5 - fy0)};
 }
 
-// sample_texture on texels read by `texels`.
+// sample_texture at the spot locate() found, on texels read by `texels`.
 template <class Texels>
-glm::vec3 sample(const Texture& texture, const TextureRef& ref, Texels texels, glm::vec2 uv) {
-  const Spot s = locate(texture, ref, uv);
+glm::vec3 sample(const Texture& texture, const TextureRef& ref, Texels texels, const Spot& s) {
   if (ref.filter == Filter::nearest) return texel(texture, ref, texels, s.x0, s.y0);
   return bilinear(texel(texture, ref, texels, s.x0, s.y0), texel(texture, ref, texels, s.x0 + 1, s.y0),
                   texel(texture, ref, texels, s.x0, s.y0 + 1), texel(texture, ref, texels, s.x0 + 1, s.y0 + 1), s.fx, s.fy);
 }
 
-// Asks the CPU to load the rows sample() will read for `uv` into the cache (the bakers' hits read
+// sample_texture at a located spot, from either form of the texture.
+glm::vec3 sample_spot(const Texture& texture, const TextureRef& ref, const Spot& s) {
+  if (texture.codes.empty()) return sample(texture, ref, FloatTexels{texture.rgb.data()}, s);
+  return sample(texture, ref, CodeTexels{texture.codes.data(), srgb8_decode().data()}, s);
+}
+
+// Asks the CPU to load the rows sample() will read at spot `s` into the cache (the bakers' hits read
 // textures at random: each lookup otherwise waits for memory in turn).
-void prefetch_texels(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
-  const Spot s = locate(texture, ref, uv);
+void prefetch_texels(const Texture& texture, const TextureRef& ref, const Spot& s) {
   const std::size_t column = std::size_t(wrap_texel(s.x0, texture.width, ref.wrap_s));
   const std::size_t rows[2] = {std::size_t(wrap_texel(s.y0, texture.height, ref.wrap_t)),
                                std::size_t(wrap_texel(s.y0 + 1, texture.height, ref.wrap_t))};
@@ -200,8 +204,7 @@ std::vector<float> texture_rgb(const Texture& texture) {
 }
 
 glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec2 uv) {
-  if (texture.codes.empty()) return sample(texture, ref, FloatTexels{texture.rgb.data()}, uv);
-  return sample(texture, ref, CodeTexels{texture.codes.data(), srgb8_decode().data()}, uv);
+  return sample_spot(texture, ref, locate(texture, ref, uv));
 }
 
 TriangleColour::TriangleColour(const Mesh& mesh, std::uint32_t triangle) {
@@ -220,17 +223,34 @@ TriangleColour::TriangleColour(const Mesh& mesh, std::uint32_t triangle) {
     for (int k = 0; k < 3; ++k) colours_[k] = &mesh.vertex_color[mesh.indices[3 * std::size_t(triangle) + std::size_t(k)]];
 }
 
+TriangleColour::Request TriangleColour::request(double b1, double b2) const {
+  Request r;
+  r.b1 = b1;
+  r.b2 = b2;
+  if (!texture_) return r;
+  const Spot s = locate(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
+  prefetch_texels(*texture_, *ref_, s);
+  r.x0 = s.x0;
+  r.y0 = s.y0;
+  r.fx = s.fx;
+  r.fy = s.fy;
+  return r;
+}
+
 glm::vec3 TriangleColour::at(double b1, double b2) const {
+  if (!texture_) return at(Request{b1, b2});
+  const Spot s = locate(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
+  return at(Request{b1, b2, s.x0, s.y0, s.fx, s.fy});
+}
+
+glm::vec3 TriangleColour::at(const Request& r) const {
+  const double b1 = r.b1, b2 = r.b2;
   glm::vec3 colour = factor_;
-  if (texture_) colour *= sample_texture(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
+  if (texture_) colour *= sample_spot(*texture_, *ref_, Spot{r.x0, r.y0, r.fx, r.fy});
   if (colours_[0])
     colour *= glm::vec3((1.0 - b1 - b2) * glm::dvec3(*colours_[0]) + b1 * glm::dvec3(*colours_[1]) + b2 * glm::dvec3(*colours_[2]));
   for (int c = 0; c < 3; ++c) colour[c] = std::isnan(colour[c]) ? 0.0f : std::clamp(colour[c], 0.0f, 1.0f);
   return colour;
-}
-
-void TriangleColour::prefetch(double b1, double b2) const {
-  if (texture_) prefetch_texels(*texture_, *ref_, glm::vec2(uv0_ + b1 * du1_ + b2 * du2_));
 }
 
 double TriangleColour::texel_length(const glm::dvec2& a, const glm::dvec2& b) const {

@@ -51,6 +51,8 @@ glm::vec3 sample_texture(const Texture& texture, const TextureRef& ref, glm::vec
 class TriangleColour {
  public:
   TriangleColour(const Mesh& mesh, std::uint32_t triangle);
+  /// A placeholder to assign to: at() is (1, 1, 1), as for a mesh without materials or colours.
+  TriangleColour() = default;
 
   /// The base colour at barycentrics (b1, b2), the point (1 - b1 - b2) p0 + b1 p1 + b2 p2: the texture
   /// at the transformed interpolated UV (1 if untextured) x the factor x the interpolated vertex colour
@@ -58,10 +60,17 @@ class TriangleColour {
   /// caller's default albedo applies there: albedo_source none).
   glm::vec3 at(double b1, double b2) const;
 
-  /// Starts loading into the CPU's cache the texels that at(b1, b2) reads; changes no result. A loop
-  /// over many lookups (a ray batch's hits) that prefetches them all first waits for memory once
-  /// rather than once per lookup.
-  void prefetch(double b1, double b2) const;
+  /// at(b1, b2) in two steps, for a loop over many lookups (a ray batch's hits): request() works out
+  /// where the lookup reads and starts loading those texels into the CPU's cache; at(request) finishes
+  /// it. Requesting every lookup first waits for memory once rather than once per lookup, and each
+  /// lookup is located once. at(request(b1, b2)) == at(b1, b2), bit for bit.
+  struct Request {
+    double b1 = 0.0, b2 = 0.0;
+    std::int64_t x0 = 0, y0 = 0;  // the texel (before wrapping) at or left-above the UV
+    float fx = 0.0f, fy = 0.0f;   // bilinear fractions (nearest: 0)
+  };
+  Request request(double b1, double b2) const;
+  glm::vec3 at(const Request& request) const;
 
   /// The length in texels of the transformed UV segment between the points with barycentrics a and b;
   /// 0 for an untextured triangle.

@@ -10,6 +10,7 @@
 #include "mesh/texture.h"
 #include "render/bindings.h"
 #include "render/frame_core.h"
+#include "render/textured_corners.h"
 
 namespace prt::render {
 
@@ -18,6 +19,7 @@ namespace {
 constexpr GLuint kMaterialsBinding = 12, kBaseUvBinding = 13, kTriangleMaterialBinding = 14, kVertexColourBinding = 15;
 constexpr GLuint kAlbedoBinding = 11;  // textured_vertex.glsl: VertexAlbedo
 constexpr GLuint kFirstSlotUnit = 16;
+constexpr GLuint kCornerLocation = 2;  // textured_vertex.glsl: in uint draw_corner
 
 // std430 layout of base_material.glsl's Material.
 struct GpuMaterial {
@@ -75,7 +77,11 @@ GLuint ref_sampler(const mesh::TextureRef& ref) {
 BaseColour::~BaseColour() { release(); }
 
 void BaseColour::release() {
-  for (GLuint* buffer : {&materials_, &uv_, &triangle_material_, &vertex_colour_}) delete_buffer(*buffer);
+  for (GLuint* buffer : {&materials_, &uv_, &triangle_material_, &vertex_colour_, &first_corner_, &draw_indices_})
+    delete_buffer(*buffer);
+  if (corner_vao_ != 0) glDeleteVertexArrays(1, &corner_vao_);
+  corner_vao_ = 0;
+  corner_count_ = 0;
   for (GLuint& texture : textures_) delete_texture(texture);
   if (!samplers_.empty()) glDeleteSamplers(static_cast<GLsizei>(samplers_.size()), samplers_.data());
   textures_.clear();
@@ -114,7 +120,23 @@ void BaseColour::set_mesh(const mesh::Mesh& mesh) {
                                    mesh.triangle_material.data(), 0);
   has_vertex_colour_ = !mesh.vertex_color.empty();
   vertex_colour_ = make_buffer(static_cast<GLsizeiptr>(mesh.vertex_color.size() * sizeof(glm::vec3)), mesh.vertex_color.data(), 0);
+  upload_corners(mesh);
   check_gl("uploading base colour textures");
+}
+
+void BaseColour::upload_corners(const mesh::Mesh& mesh) {
+  const TexturedCorners corners = textured_corners(mesh);
+  first_corner_ = make_buffer(static_cast<GLsizeiptr>(corners.first_corner.size() * sizeof(std::uint32_t)),
+                              corners.first_corner.data(), 0);
+  draw_indices_ = make_buffer(static_cast<GLsizeiptr>(corners.draw_vertex.size() * sizeof(std::uint32_t)),
+                              corners.draw_vertex.data(), 0);
+  corner_count_ = static_cast<GLsizei>(corners.draw_vertex.size());
+  glCreateVertexArrays(1, &corner_vao_);
+  glVertexArrayVertexBuffer(corner_vao_, 0, first_corner_, 0, sizeof(std::uint32_t));
+  glVertexArrayAttribIFormat(corner_vao_, kCornerLocation, 1, GL_UNSIGNED_INT, 0);
+  glVertexArrayAttribBinding(corner_vao_, kCornerLocation, 0);
+  glEnableVertexArrayAttrib(corner_vao_, kCornerLocation);
+  glVertexArrayElementBuffer(corner_vao_, draw_indices_);
 }
 
 std::string BaseColour::defines() const {
@@ -138,8 +160,8 @@ void BaseColour::draw_corners(const FrameCore& core, const Program& program) con
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, core.indices);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, core.positions);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kAlbedoBinding, core.albedo);
-  glBindVertexArray(core.empty_vao);
-  glDrawArrays(GL_TRIANGLES, 0, core.index_count);
+  glBindVertexArray(corner_vao_);
+  glDrawElements(GL_TRIANGLES, corner_count_, GL_UNSIGNED_INT, nullptr);
 }
 
 }  // namespace prt::render

@@ -5,9 +5,11 @@
 // materials is a texture slot, the image on texture unit 16 + slot with a sampler object of the glTF
 // sampler's wrap modes and filter (bilinear, or nearest; no mipmaps). The materials (factor,
 // KHR_texture_transform as an affine map, slot), the per-corner base-colour UVs, the per-triangle
-// material and the vertex colours are storage buffers (shaders/base_material.glsl). A textured draw
-// runs the vertex stage per triangle corner (draw_corners), so UVs follow the corners across seams and
-// the rasteriser interpolates them; the fragment stage picks its slot from a loop over the slots
+// material and the vertex colours are storage buffers (shaders/base_material.glsl). A textured draw is
+// one indexed draw over the mesh's draw vertices (textured_corners.h: one per distinct vertex, UV and
+// material), each with the first corner it stands for as attribute 2, so UVs follow the corners across
+// seams, the rasteriser interpolates them, and the vertex stage runs about once per mesh vertex, as the
+// untextured draw's; the fragment stage picks its slot from a loop over the slots
 // (shaders/base_texture.glsl: a sampler array may only be indexed uniformly).
 #include <cstddef>
 #include <string>
@@ -43,16 +45,21 @@ class BaseColour {
   /// indices (binding 3) are the caller's.
   void bind(const Program& program) const;
   /// A textured per-vertex draw with `program` (in use): binds the above and the mesh's indices (3),
-  /// positions (4) and albedo (11), and draws every triangle corner unindexed (textured_vertex.glsl).
+  /// positions (4) and albedo (11), and draws the triangles indexed over the draw vertices, whose
+  /// attribute 2 is the corner 3 t + k each stands for (textured_vertex.glsl); gl_PrimitiveID is the
+  /// mesh's triangle index.
   void draw_corners(const FrameCore& core, const Program& program) const;
 
  private:
   GLuint materials_ = 0, uv_ = 0, triangle_material_ = 0, vertex_colour_ = 0;
+  GLuint corner_vao_ = 0, first_corner_ = 0, draw_indices_ = 0;  // the indexed draw (textured_corners.h)
+  GLsizei corner_count_ = 0;
   std::vector<GLuint> textures_;  // per image
   std::vector<GLuint> samplers_;  // per slot
   std::vector<int> slot_image_;   // per slot: its image
   bool has_vertex_colour_ = false;
   void release();
+  void upload_corners(const mesh::Mesh& mesh);
 };
 
 }  // namespace prt::render

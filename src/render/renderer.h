@@ -59,8 +59,8 @@
 //               exactly) after a depth-only prepass (shadow.vert). Without discs (or
 //               FrameSettings::sun false) the passes are exactly those above.
 //   texture     for a textured mesh (set_textured), prt_diffuse and prt_cpca of diffuse transfer with
-//               TEXTURED (base_colour.h): the mesh drawn unindexed, the vertex stage once per triangle
-//               corner, each vertex's radiance divided by its albedo (textured_vertex.glsl) and the
+//               TEXTURED (base_colour.h): the mesh drawn indexed over its draw vertices (one per
+//               vertex, base-colour UV and material: textured_corners.h), each vertex's radiance divided by its albedo (textured_vertex.glsl) and the
 //               corner's transformed base-colour UV, texture slot and factor x COLOR_0 passed on;
 //               surface.frag multiplies the interpolated radiance by the base colour at the pixel
 //               (base_texture.glsl); with discs, prt_sun.frag with TEXTURED takes the base colour at the

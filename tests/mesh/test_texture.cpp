@@ -204,3 +204,34 @@ TEST_CASE("base colour is texture x factor x interpolated vertex colour", "[mesh
   check_close(base_color(m, 0, 0.2, 0.3), want, 1e-6);
   check_close(TriangleColour(m, 0).at(0.2, 0.3), want, 0.0);
 }
+
+// The two-step lookup of the bakers' hit loops (TriangleColour::request, then at(request)) against the
+// bilinear closed form of a checker, over every wrap mode and beyond the image (UVs to 2.5), and bit for
+// bit against the one-step at(): it must change no baked byte.
+TEST_CASE("a requested lookup is the bilinear closed form and the one-step lookup's bits", "[mesh][texture]") {
+  for (Wrap wrap : {Wrap::repeat, Wrap::clamp_to_edge, Wrap::mirrored_repeat}) {
+    Mesh m = quad(checker(4, 4), linear_ref(wrap));
+    for (glm::vec2& uv : m.base_color_uv) uv *= 2.5f;  // UV 0 .. 2.5: ten texels across a 4-texel image
+    const TriangleColour colour(m, 0);
+    for (int i = 0; i <= 40; ++i) {
+      // Triangle 0 at uv = 2.5 (u, v) with v = u / 2: (b1, b2) = (u - v, v).
+      const double u = i / 40.0, v = u / 2, b1 = u - v, b2 = v;
+      const glm::vec3 stepped = colour.at(colour.request(b1, b2));
+      const glm::vec3 direct = colour.at(b1, b2);
+      CHECK(std::memcmp(&stepped, &direct, sizeof stepped) == 0);
+      // Closed form: the four texel centres around (x, y) = 4 * 2.5 (u, v) - 1/2, each wrapped by hand.
+      const double x = 10.0 * u - 0.5, y = 10.0 * v - 0.5, x0 = std::floor(x), y0 = std::floor(y);
+      auto wrapped = [wrap](long k) {
+        if (wrap == Wrap::clamp_to_edge) return k < 0 ? 0L : (k > 3 ? 3L : k);
+        const long m8 = ((k % 8) + 8) % 8, m4 = ((k % 4) + 4) % 4;
+        return wrap == Wrap::repeat ? m4 : (m8 < 4 ? m8 : 7 - m8);
+      };
+      auto at = [&](long tx, long ty) { return (wrapped(tx) + wrapped(ty)) % 2 == 0 ? kA : kB; };
+      const double fx = x - x0, fy = y - y0;
+      const long ix = long(x0), iy = long(y0);
+      const glm::dvec3 want = (1 - fy) * ((1 - fx) * glm::dvec3(at(ix, iy)) + fx * glm::dvec3(at(ix + 1, iy))) +
+                              fy * ((1 - fx) * glm::dvec3(at(ix, iy + 1)) + fx * glm::dvec3(at(ix + 1, iy + 1)));
+      check_close(stepped, glm::vec3(want), 1e-5);
+    }
+  }
+}
