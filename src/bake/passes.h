@@ -52,13 +52,14 @@ struct PassContext {
   const TexelGrid* grid = nullptr;  ///< null: bounce passes gather per vertex (barycentric)
   const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
   const mesh::VertexFootprints* footprints = nullptr;  ///< null: rays leave from the vertices themselves
+  const std::vector<double>* frame_angles = nullptr;  ///< per point: its sample frame's turn (trace::VertexRays); null: hashed
 
   /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`, over this
   /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
     return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
-                             share.begin, share.end, footprints, points.geometric_normals};
+                             share.begin, share.end, footprints, points.geometric_normals, frame_angles};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
   std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }

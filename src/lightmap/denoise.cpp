@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include <glm/geometric.hpp>
 
+#include "core/constants.h"
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/parallel.h"
 #include "lightmap/charts.h"
 
@@ -132,6 +135,22 @@ void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<flo
   for (int k = 0; k < n; ++k) w[std::size_t(k)] = float(out[std::size_t(k)] / sum);
 }
 
+// out[p] = sum over the 9 slots of w[slot] in[p + step (di + dj width)] (slot 3 (dj + 1) + di + 1; a zero
+// weight reads nothing), in slot order: the same float operations whichever thread runs p.
+void weighted_sum(const std::vector<float>& in, std::vector<float>& out, std::size_t p, const float* w, long step, int width,
+                  std::size_t stride) {
+  float* d = out.data() + p * stride;
+  const float* centre = in.data() + p * stride;
+  for (std::size_t c = 0; c < stride; ++c) d[c] = w[4] * centre[c];  // the centre is always a tap
+  for (int slot = 0; slot < 9; ++slot) {
+    if (slot == 4 || w[slot] == 0.0f) continue;
+    const long offset = ((slot % 3) - 1 + ((slot / 3) - 1) * long(width)) * step;
+    const float* s = in.data() + std::size_t(long(p) + offset) * stride;
+    const float ws = w[slot];
+    for (std::size_t c = 0; c < stride; ++c) d[c] += ws * s[c];
+  }
+}
+
 struct Iteration {
   const DenoiseGuides& g;
   const DenoiseOptions& o;
@@ -141,7 +160,7 @@ struct Iteration {
   // The taps' weights of covered texel p at (i, j), from `in` (the previous iteration); returns how
   // many taps (q indices in `taps`).
   int weights(const std::vector<float>& in, std::size_t stride, std::size_t p, long i, long j, std::array<std::size_t, 9>& taps,
-              std::array<float, 9>& w) const {
+              std::array<float, 9>& w, std::array<int, 9>& slots) const {
     std::array<glm::vec2, 9> offsets;
     static constexpr float h[3] = {0.25f, 0.5f, 0.25f};
     constexpr long r = 1;
@@ -158,6 +177,7 @@ struct Iteration {
         if (!grid.same_chart(p, i + di * step, j + dj * step)) continue;
         const std::size_t q = std::size_t(long(p) + (di + dj * long(g.width)) * step);
         if (q == p) {
+          slots[std::size_t(n)] = int(3 * (dj + r) + di + r);
           taps[std::size_t(n)] = q;
           offsets[std::size_t(n)] = {0.0f, 0.0f};
           w[std::size_t(n++)] = h[r] * h[r];  // the centre always counts fully
@@ -173,6 +193,7 @@ struct Iteration {
         const float wq = h[di + r] * h[dj + r] * power01(glm::dot(g.normal[p], g.normal[q]), o.normal_power, integer) *
                          std::exp(-exponent);
         if (!(wq > 0.0f)) continue;
+        slots[std::size_t(n)] = int(3 * (dj + r) + di + r);
         taps[std::size_t(n)] = q;
         offsets[std::size_t(n)] = {float(di), float(dj)};
         w[std::size_t(n++)] = wq;
@@ -181,28 +202,20 @@ struct Iteration {
     return n;
   }
 
+  // One level: out = the filtered `in` (and bounce_out of bounce_in), next_variance, and each covered
+  // texel's normalised weights in `stored` (9 per texel by slot 3 (dj + 1) + di + 1, 0 for no tap).
   void apply(const std::vector<float>& in, std::vector<float>& out, const std::vector<float>* bounce_in,
-             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance) const {
+             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance, float* stored) const {
     const std::size_t width = std::size_t(g.width);
     parallel_for(std::size_t(g.height), kRowGrain, o.threads, [&](std::size_t begin, std::size_t end) {
       std::array<std::size_t, 9> taps{};
       std::array<float, 9> w{};
-      std::vector<float> acc(stride);
-      auto filter = [&](const std::vector<float>& src, std::vector<float>& dst, std::size_t p, int n, float inv_sum) {
-        std::fill(acc.begin(), acc.end(), 0.0f);
-        for (int k = 0; k < n; ++k) {
-          const float* s = src.data() + taps[std::size_t(k)] * stride;
-          const float wk = w[std::size_t(k)];
-          for (std::size_t c = 0; c < stride; ++c) acc[c] += wk * s[c];
-        }
-        float* d = dst.data() + p * stride;
-        for (std::size_t c = 0; c < stride; ++c) d[c] = acc[c] * inv_sum;
-      };
+      std::array<int, 9> slots{};
       for (std::size_t j = begin; j < end; ++j)
         for (std::size_t i = 0; i < width; ++i) {
           const std::size_t p = i + j * width;
           if (!g.covered[p]) continue;
-          const int n = weights(in, stride, p, long(i), long(j), taps, w);
+          const int n = weights(in, stride, p, long(i), long(j), taps, w, slots);
           float sum = 0.0f, var = 0.0f;
           for (int k = 0; k < n; ++k) {
             sum += w[std::size_t(k)];
@@ -210,12 +223,43 @@ struct Iteration {
           }
           const float inv_sum = 1.0f / sum;
           next_variance[p] = var * inv_sum * inv_sum;
-          filter(in, out, p, n, inv_sum);
-          if (bounce_in) filter(*bounce_in, *bounce_out, p, n, inv_sum);
+          float* slot_w = stored + p * 9;
+          std::fill(slot_w, slot_w + 9, 0.0f);
+          for (int k = 0; k < n; ++k) slot_w[slots[std::size_t(k)]] = w[std::size_t(k)] * inv_sum;
+          weighted_sum(in, out, p, slot_w, step, g.width, stride);
+          if (bounce_in) weighted_sum(*bounce_in, *bounce_out, p, slot_w, step, g.width, stride);
         }
     });
   }
 };
+
+// Applies the stored weights of one level (Iteration::apply) to `in`, into `out`.
+void apply_stored(const DenoiseGuides& g, const float* stored, long step, const std::vector<float>& in, std::vector<float>& out,
+                  std::size_t stride, int threads) {
+  const std::size_t width = std::size_t(g.width);
+  parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin * width; p < end * width; ++p)
+      if (g.covered[p]) weighted_sum(in, out, p, stored + p * 9, step, g.width, stride);
+  });
+}
+
+}  // namespace
+
+namespace {
+
+// Twicing (Tukey, "Exploratory Data Analysis", 1977): smooth += twicing x S (input - smooth), S the
+// levels whose weights are `stored`. `input` and `scratch` are overwritten.
+void twice(std::vector<float>& smooth, std::vector<float>& input, std::vector<float>& scratch, std::size_t stride,
+           const DenoiseGuides& g, const float* stored, const DenoiseOptions& o) {
+  for (std::size_t k = 0; k < input.size(); ++k) input[k] -= smooth[k];
+  for (int it = 0; it < o.iterations; ++it) {
+    apply_stored(g, stored + std::size_t(it) * g.covered.size() * 9, 1L << it, input, scratch, stride, o.threads);
+    input.swap(scratch);
+  }
+  for (std::size_t t = 0; t < g.covered.size(); ++t)
+    if (g.covered[t])
+      for (std::size_t c = 0; c < stride; ++c) smooth[t * stride + c] += o.twicing * input[t * stride + c];
+}
 
 }  // namespace
 
@@ -241,12 +285,26 @@ DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples
   return g;
 }
 
+std::vector<double> interleaved_frame_angles(const TexelSamples& samples, std::uint32_t seed) {
+  static constexpr int kBayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), tiles_across = (width + 3) / 4;
+  std::vector<double> angles;
+  angles.reserve(samples.samples.size());
+  for (const TexelSample& s : samples.samples) {
+    const std::uint32_t i = s.texel % width, j = s.texel / width;
+    const double tile = hash_to_unit(seed, std::uint64_t(i / 4) + std::uint64_t(j / 4) * tiles_across, 0x1ea5e);
+    angles.push_back(2.0 * kPi * (tile + kBayer[j % 4][i % 4] / 16.0));
+  }
+  return angles;
+}
+
 void validate_denoise_options(const DenoiseOptions& o) {
   if (o.iterations < 0 || o.iterations > 12) fail_option("iterations", " " + std::to_string(o.iterations) + " is out of range 0..12");
   if (!(o.plane_sigma > 0.0f)) fail_option("plane_sigma", " " + std::to_string(o.plane_sigma) + " must be > 0");
   if (!(o.normal_power >= 0.0f) || std::isinf(o.normal_power))
     fail_option("normal_power", " " + std::to_string(o.normal_power) + " must be finite and >= 0");
   if (!(o.value_sigma > 0.0f)) fail_option("value_sigma", " " + std::to_string(o.value_sigma) + " must be > 0");
+  if (!(o.twicing >= 0.0f && o.twicing <= 1.0f)) fail_option("twicing", " " + std::to_string(o.twicing) + " is out of range 0..1");
   if (!(o.value_floor >= 0.0f) || std::isinf(o.value_floor))
     fail_option("value_floor", " " + std::to_string(o.value_floor) + " must be finite and >= 0");
 }
@@ -256,14 +314,24 @@ void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only,
   validate_denoise_options(options);
   if (options.iterations == 0 || stride == 0) return;
   const bool bounce = !bounce_only.empty();
+  // Twicing keeps the input: the residual input - S input is filtered by the same levels S.
+  std::vector<float> residual = options.twicing > 0.0f ? values : std::vector<float>(),
+                     residual_bounce = options.twicing > 0.0f ? bounce_only : std::vector<float>();
   std::vector<float> next_values(values), next_bounce(bounce_only);
   std::vector<float> variance = noise ? *noise : initial_variance(values, stride, guides, options.threads), next_variance = variance;
+  // Written at every covered texel by each level before it is read (uninitialised: no pass over it).
+  const std::unique_ptr<float[]> stored(new float[guides.covered.size() * 9 * std::size_t(options.iterations)]);
   for (int it = 0; it < options.iterations; ++it) {
     const Iteration iteration{guides, options, 1L << it, variance};
-    iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance);
+    iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance,
+                    stored.get() + std::size_t(it) * guides.covered.size() * 9);
     values.swap(next_values);
     if (bounce) bounce_only.swap(next_bounce);
     variance.swap(next_variance);
+  }
+  if (options.twicing > 0.0f) {
+    twice(values, residual, next_values, stride, guides, stored.get(), options);
+    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored.get(), options);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "lightmap/texel_bake.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <memory>
@@ -46,9 +47,12 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
   const std::uint64_t stride_bytes = 4ull * std::uint64_t(o.bands) * std::uint64_t(o.bands) * std::uint64_t(channels);
   // Per texel: raster state and coverage (~40 bytes), the sample (~80), and transfer buffers: values;
   // with bounces also bounce-only, prev grid, next and the per-sample sums (5 more).
-  // --denoise: a second copy of each section and the variances; --stitch: the seams' system, small.
-  const std::uint64_t buffers = (o.kind == transfer::Kind::interreflected ? 6 : 2) + (l.denoise ? 2 : 0);
-  return texels * (120 + buffers * stride_bytes);
+  // --denoise: per section a second copy and the twicing residual, then the variances (2 floats) and the
+  // stored weights (9 floats per level); --stitch: the seams' system, small.
+  const std::uint64_t sections = o.kind == transfer::Kind::interreflected ? 2 : 1;
+  const std::uint64_t buffers = (o.kind == transfer::Kind::interreflected ? 6 : 2) + (l.denoise ? 2 * sections : 0);
+  const std::uint64_t denoise_bytes = l.denoise ? 8 + 36ull * std::uint64_t(std::max(0, l.denoise_options.iterations)) : 0;
+  return texels * (120 + denoise_bytes + buffers * stride_bytes);
 }
 
 void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t available) {
@@ -148,7 +152,7 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
   if (l.denoise) {
     const DenoiseOptions& d = l.denoise_options;
     j["lightmap"]["denoise"] = {{"iterations", d.iterations}, {"plane_sigma", d.plane_sigma}, {"normal_power", d.normal_power},
-                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}};
+                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"twicing", d.twicing}, {"interleave", d.interleave}};
   }
   return j.dump();
 }
@@ -228,6 +232,9 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height};
   bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress, {&positions, &normals, &geometric_normals}, &grid};
   ctx.dist = options.dist;
+  const std::vector<double> angles =
+      lightmap.denoise && lightmap.denoise_options.interleave ? interleaved_frame_angles(samples, options.seed) : std::vector<double>();
+  if (!angles.empty()) ctx.frame_angles = &angles;
   const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();
   std::vector<float> geometric;

@@ -93,6 +93,9 @@ struct VertexRays {
   /// With `positions`: the unit geometric normal of each sample point's triangle (the true-surface
   /// rule's; a zero entry: none). Null: no rule at the sample points.
   const std::vector<glm::vec3>* geometric_normals = nullptr;
+  /// Per point (indexed like `positions`): the angle in radians that turns its sample frame about the
+  /// normal, sh::turned_frame(n, angle), instead of sh::vertex_frame's hashed one. Null: hashed.
+  const std::vector<double>* frame_angles = nullptr;
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
@@ -139,7 +142,7 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     }
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
-      const glm::mat3 frame = sh::vertex_frame(normals[v], r.seed, v);
+      const glm::mat3 frame = r.frame_angles ? sh::turned_frame(normals[v], (*r.frame_angles)[v]) : sh::vertex_frame(normals[v], r.seed, v);
       const SpawnPoint& spawn = spawns[k - begin];
       rules[0] = TrueSurface{};
       if (spread) {

@@ -52,7 +52,7 @@ double stddev(const std::vector<float>& v, std::size_t stride, std::size_t offse
 
 }  // namespace
 
-TEST_CASE("denoise: a constant transfer stays exactly constant; zero iterations change nothing", "[lightmap][denoise]") {
+TEST_CASE("denoise: a constant transfer stays exactly constant, zero iterations change nothing", "[lightmap][denoise]") {
   const lightmap::DenoiseGuides g = plane_guides(32, 24);
   std::vector<float> values(32 * 24 * 4), none;
   for (std::size_t t = 0; t < 32 * 24; ++t)
@@ -88,7 +88,7 @@ TEST_CASE("denoise: a linear ramp stays exactly linear, up to the chart's border
   }
 }
 
-TEST_CASE("denoise: white noise on a plane falls below 1/6 of its level; bytes equal for 1 and 2 threads", "[lightmap][denoise]") {
+TEST_CASE("denoise: white noise on a plane falls below 1/6 of its level, bytes equal for 1 and 2 threads", "[lightmap][denoise]") {
   const int w = 96, h = 96;
   const lightmap::DenoiseGuides g = plane_guides(w, h);
   std::mt19937 rng(5);
@@ -136,6 +136,64 @@ TEST_CASE("denoise: two charts side by side never mix, and texels off the tangen
   for (std::size_t t = 0; t < values.size(); ++t) REQUIRE(filtered[t] == Approx(values[t]).epsilon(1e-5));
 }
 
+TEST_CASE("denoise: twicing halves the curvature bias of a smooth bowl (and stays exact on a linear ramp)", "[lightmap][denoise]") {
+  // T = ((i - 20)^2 + (j - 16)^2) / 400 on a 40 x 32 plane, no noise: a local linear fit is biased by
+  // the curvature (by sum w d^2 / 400 for the taps' weights w at offsets d); twicing, S + S (I - S),
+  // cancels the first order of that bias.
+  const int w = 40, h = 32;
+  const lightmap::DenoiseGuides g = plane_guides(w, h);
+  std::vector<float> bowl(std::size_t(w * h)), none;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) bowl[std::size_t(i + j * w)] = float((i - 20) * (i - 20) + (j - 16) * (j - 16)) / 400.0f;
+  auto rms_bias = [&](float twicing) {
+    lightmap::DenoiseOptions o;
+    o.twicing = twicing;
+    o.value_sigma = std::numeric_limits<float>::infinity();  // the spatial kernel alone
+    std::vector<float> f = bowl;
+    lightmap::denoise_texels(f, none, 1, g, o);
+    double sum = 0.0;
+    int n = 0;
+    for (int j = 8; j < h - 8; ++j)  // away from the borders
+      for (int i = 8; i < w - 8; ++i, ++n) sum += (double(f[std::size_t(i + j * w)]) - bowl[std::size_t(i + j * w)]) *
+                                                 (double(f[std::size_t(i + j * w)]) - bowl[std::size_t(i + j * w)]);
+    return std::sqrt(sum / n);
+  };
+  const double once = rms_bias(0.0f), twice = rms_bias(1.0f);
+  INFO("rms bias in the interior: without twicing " << once << ", with " << twice);
+  CHECK(once > 0.1);    // 2 x (sum of the kernel's second moment) / 400: about 0.2 for 4 levels
+  CHECK(twice < 0.5 * once);
+}
+
+TEST_CASE("denoise: interleaved frame turns: every 2 x 2 block a quarter turn apart, every 4 x 4 tile a sixteenth",
+          "[lightmap][denoise]") {
+  lightmap::TexelSamples samples;
+  samples.width = samples.height = 12;
+  for (std::uint32_t t = 0; t < 144; ++t) samples.samples.push_back(lightmap::TexelSample{}), samples.samples.back().texel = t;
+  const std::vector<double> angles = lightmap::interleaved_frame_angles(samples, 3);
+  REQUIRE(angles.size() == 144);
+  CHECK(angles == lightmap::interleaved_frame_angles(samples, 3));
+  CHECK(angles != lightmap::interleaved_frame_angles(samples, 4));
+  // The turns of a block, as fractions of a full turn sorted in [0, 1): evenly spaced by 1 / count.
+  auto evenly_spaced = [&](int i0, int j0, int side) {
+    std::vector<double> turns;
+    for (int j = j0; j < j0 + side; ++j)
+      for (int i = i0; i < i0 + side; ++i) {
+        const double turn = angles[std::size_t(i + 12 * j)] / (2.0 * 3.14159265358979323846);
+        turns.push_back(turn - std::floor(turn));
+      }
+    std::sort(turns.begin(), turns.end());
+    const double spacing = 1.0 / double(turns.size());
+    for (std::size_t k = 1; k < turns.size(); ++k)
+      if (std::abs(turns[k] - turns[k - 1] - spacing) > 1e-9) return false;
+    return turns.front() + 1.0 - turns.back() - spacing < 1e-9;
+  };
+  for (int j = 0; j < 12; j += 2)
+    for (int i = 0; i < 12; i += 2) CHECK(evenly_spaced(i, j, 2));
+  for (int j = 0; j < 12; j += 4)
+    for (int i = 0; i < 12; i += 4) CHECK(evenly_spaced(i, j, 4));
+  CHECK(angles[0] != angles[4]);  // tiles turn by their own hashed offsets
+}
+
 namespace {
 
 struct Lit {
@@ -180,8 +238,9 @@ double rel_rms(const Lit& a, const Lit& ref, const std::vector<bool>& select, in
 
 }  // namespace
 
-TEST_CASE("denoise: box on a floor, 128 samples denoised vs 4096 under three HDRIs: under half the 128-sample error, "
-          "contact band and chart borders no worse than undenoised", "[lightmap][denoise]") {
+// 256 samples denoised no worse than 1024 undenoised; 128 denoised under half the 128-sample error;
+// the contact band and the chart borders keep their edges.
+TEST_CASE("denoise: box on a floor vs 4096 samples, three HDRIs: 256 denoised beat 1024, edges kept", "[lightmap][denoise]") {
   const mesh::Mesh m = test::floor_and_box(true);
   const int size = 128;
   std::vector<sh::RgbCoefficients> envs;
@@ -200,7 +259,8 @@ TEST_CASE("denoise: box on a floor, 128 samples denoised vs 4096 under three HDR
     return light_transfer(lightmap::bake_lightmap(m, o, l), envs);
   };
   // The reference has another seed: its Sobol points are not a superset of the others'.
-  const Lit ref = bake(4096, 7, false), raw128 = bake(128, 1, false), raw1024 = bake(1024, 1, false), dn128 = bake(128, 1, true);
+  const Lit ref = bake(4096, 7, false), raw128 = bake(128, 1, false), raw1024 = bake(1024, 1, false), dn128 = bake(128, 1, true),
+            dn256 = bake(256, 1, true);
   // Texel classes, from the grid and the scene's geometry alone (not from the denoiser's guides).
   const lightmap::TexelSamples samples = lightmap::rasterize(m, std::vector<glm::vec3>(m.positions.size(), glm::vec3(0.8f)), size, size);
   std::vector<bool> all, contact, border, covered(std::size_t(size * size), false);
@@ -219,23 +279,29 @@ TEST_CASE("denoise: box on a floor, 128 samples denoised vs 4096 under three HDR
     border.push_back(at_border);
   }
   for (int e = 0; e < 3; ++e) {
-    const double r128 = rel_rms(raw128, ref, all, e), r1024 = rel_rms(raw1024, ref, all, e), rdn = rel_rms(dn128, ref, all, e);
-    INFO("environment " << e << ": rel_rms 128 raw " << r128 << ", 1024 raw " << r1024 << ", 128 denoised " << rdn);
+    const double r128 = rel_rms(raw128, ref, all, e), r1024 = rel_rms(raw1024, ref, all, e), rdn = rel_rms(dn128, ref, all, e),
+                 rdn256 = rel_rms(dn256, ref, all, e);
+    INFO("environment " << e << ": rel_rms 128 raw " << r128 << ", 1024 raw " << r1024 << ", 128 denoised " << rdn
+                        << ", 256 denoised " << rdn256);
+    CHECK(rdn256 <= r1024);  // the issue's figure, met at 256 samples (measured 0.96x, 0.93x, 0.91x)
     CHECK(rdn <= 0.5 * r128);
-    CHECK(rdn <= 2.2 * r1024);  // the issue's goal is <= 1x: not met at this texel density (see docs/conventions.md)
+    CHECK(rdn <= 1.5 * r1024);  // at 128 samples: 1.42x, 1.38x, 1.39x (docs/conventions.md)
   }
+  // Edges: the contact band and the chart borders at 128 samples, no worse than the filter before
+  // interleaving and twicing (1.55% and 0.71%, i.e. 0.6x and 0.45x the undenoised 2.6% and 1.57%).
   const double c_raw = rel_rms(raw128, ref, contact, -1), c_dn = rel_rms(dn128, ref, contact, -1);
   const double b_raw = rel_rms(raw128, ref, border, -1), b_dn = rel_rms(dn128, ref, border, -1);
-  INFO("contact band: 128 raw " << c_raw << ", denoised " << c_dn << "; chart borders: " << b_raw << ", " << b_dn);
-  CHECK(c_dn <= 0.7 * c_raw);
-  CHECK(b_dn <= 0.7 * b_raw);
+  INFO("contact band: 128 raw " << c_raw << ", denoised " << c_dn << ", 256 denoised " << rel_rms(dn256, ref, contact, -1)
+                                << "; chart borders: " << b_raw << ", " << b_dn << ", " << rel_rms(dn256, ref, border, -1));
+  CHECK(c_dn <= 0.6 * c_raw);
+  CHECK(b_dn <= 0.45 * b_raw);
 }
 
 }  // namespace prt
 
 namespace prt {
 
-TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same bytes for 1 and 2 threads; refused without "
+TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same bytes for 1 and 2 threads, refused without "
           "--lightmap", "[lightmap][denoise]") {
   const std::string dir = test::fresh_temp_dir("lightmap_denoise_cli"), mesh = dir + "/box.obj";
   test::write_obj_with_uv(mesh, test::floor_and_box(true));
@@ -247,6 +313,8 @@ TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same b
   const transfer::TransferData a = transfer::read_transfer(dir + "/one.prt"), b = transfer::read_transfer(dir + "/two.prt");
   CHECK(a.values == b.values);
   CHECK(a.header.parameters_json.find("\"denoise\":{\"iterations\":4") != std::string::npos);
+  CHECK(a.header.parameters_json.find("\"twicing\":1") != std::string::npos);
+  CHECK(a.header.parameters_json.find("\"interleave\":true") != std::string::npos);
   CHECK(a.header.parameters_json.find("\"stitch\":{") != std::string::npos);
   const test::RunResult bad = test::run_prt("bake " + mesh + " --quiet --denoise -o " + dir + "/bad.prt");
   CHECK(bad.exit_code != 0);
@@ -256,3 +324,4 @@ TEST_CASE("denoise: prt bake --lightmap --denoise --stitch: recorded, the same b
 }
 
 }  // namespace prt
+
