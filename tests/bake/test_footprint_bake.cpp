@@ -252,7 +252,7 @@ TEST_CASE("disc shading of an area bake: the sun's shadow rays leave from the fo
   CHECK(truth_sum / 5 > 0.9);  // against 0 at the vertex itself
 }
 
-TEST_CASE("prt shade reads the footprint a transfer was baked with; a bad entry is an error naming the file", "[bake][footprint]") {
+TEST_CASE("prt shade reads the footprint a transfer was baked with - a bad entry is an error naming the file", "[bake][footprint]") {
   transfer::Header h;
   h.parameters_json = "{}";
   CHECK(shade::baked_footprint(h, "t.prt") == mesh::Footprint::vertex);

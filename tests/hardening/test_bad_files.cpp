@@ -171,7 +171,7 @@ TEST_CASE("NaN or Inf in a .prt payload with valid checksums is refused", "[hard
   REQUIRE_THROWS_WITH(transfer::read_transfer(inf), Contains("not finite"));
 }
 
-TEST_CASE("a BRDF of 300 lobes is refused at once; 16 are accepted", "[hardening][brdf]") {
+TEST_CASE("a BRDF of 300 lobes is refused at once - 16 are accepted", "[hardening][brdf]") {
   std::string spec = "phong:exponent=8,ks=0.001";
   for (int i = 1; i < 300; ++i) spec += "+phong:exponent=8,ks=0.001";
   REQUIRE_THROWS_WITH(brdf::parse_brdf(spec), Contains("300 lobes, more than 16"));

@@ -120,7 +120,7 @@ TEST_CASE("vertices beyond +-1e12 (3.4e38 reached Embree) are refused", "[harden
               .triangle_count() == 1);
 }
 
-TEST_CASE("a mesh scaled by 1e-20 is refused; 1e-8 is accepted", "[hardening][range]") {
+TEST_CASE("a mesh scaled by 1e-20 is refused - 1e-8 is accepted", "[hardening][range]") {
   REQUIRE_THROWS_WITH(
       mesh::load_mesh(put("tiny.obj", triangle_obj("0 0 0", "1e-20 0 0", "0 1e-20 0")), nullptr, true),
       Contains("below 1e-9"));

@@ -49,7 +49,7 @@ TEST_CASE("auto window leaves non-negative lighting alone", "[light][window]") {
   CHECK(windowed.values == c.values);
 }
 
-TEST_CASE("auto window leaves ringing lighting alone; the Laplacian window of the non-negative lambda removes the ringing", "[light][window]") {
+TEST_CASE("auto window leaves ringing lighting alone - the Laplacian window of the non-negative lambda removes the ringing", "[light][window]") {
   light::WindowRequest glossy;
   glossy.radiance = true;
   // A small bright disc plus a dim sky, 5 bands: its band-limited radiance rings far below zero.

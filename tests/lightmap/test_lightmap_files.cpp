@@ -170,7 +170,7 @@ TEST_CASE("lightmap UVs from OBJ vt (v flipped), glTF TEXCOORD_1 before TEXCOORD
   CHECK(m.lightmap_uv[1] == glm::vec2(0.4f, 0.3f));
 }
 
-TEST_CASE("prt bake --lightmap: byte-identical for 1 and 2 threads; prt info reads it", "[lightmap][cli]") {
+TEST_CASE("prt bake --lightmap: byte-identical for 1 and 2 threads - prt info reads it", "[lightmap][cli]") {
   const std::string dir = test::fresh_temp_dir("lightmap_threads");
   test::write_obj_with_uv(dir + "/s.obj", test::floor_and_box(true, -0.1f));
   const std::string common = "bake " + dir + "/s.obj --lightmap 40x24 --transfer interreflected --bounces 2 --samples 64 --quiet ";

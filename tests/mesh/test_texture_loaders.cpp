@@ -133,7 +133,7 @@ TEST_CASE("glTF baseColorTexture from a file, a buffer view and a data: URI", "[
   }
 }
 
-TEST_CASE("glTF images that cannot be decoded are a note; the factor alone is used", "[mesh][texture][gltf]") {
+TEST_CASE("glTF images that cannot be decoded are a note - the factor alone is used", "[mesh][texture][gltf]") {
   const std::string ktx2 = std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) + std::string(64, '\0');
   const std::string corrupt = std::string("\x89PNG\r\n\x1A\n", 8) + std::string(40, 'x');
   for (const std::string& bytes : {ktx2, corrupt}) {

@@ -87,7 +87,7 @@ TEST_CASE("vertex footprint: hat-weighted points of the one-ring (triangle share
   CHECK(glm::length(mean - centroid) < 0.01);
 }
 
-TEST_CASE("vertex footprint: a vertex on no triangle is its own footprint; Beta(2,2) quantile", "[footprint]") {
+TEST_CASE("vertex footprint: a vertex on no triangle is its own footprint - Beta(2,2) quantile", "[footprint]") {
   const mesh::Mesh m = fan();
   const mesh::VertexFootprints footprints(m);
   CHECK(footprints.ring_area(5) == 0.0);
@@ -99,7 +99,7 @@ TEST_CASE("vertex footprint: a vertex on no triangle is its own footprint; Beta(
   }
 }
 
-TEST_CASE("vertex footprint: copies of a smooth vertex (a UV seam) share one one-ring; a hard edge does not", "[footprint]") {
+TEST_CASE("vertex footprint: copies of a smooth vertex (a UV seam) share one one-ring - a hard edge does not", "[footprint]") {
   // The fan's vertex 0 split in two along a seam: triangle 0 keeps vertex 0, triangles 1 and 2 use its
   // copy 6 (same position, same normal). Copy 7 has the position but another normal (a hard edge) and
   // one triangle of its own.
