@@ -33,10 +33,18 @@ struct SamplePoints {
 /// Where a bounce pass reads the previous pass's transfer at a hit: a texel grid over the mesh's
 /// lightmap UVs, filtered bilinearly (texel centres at ((i + 0.5)/W, (j + 0.5)/H), clamped to the
 /// edge; texels of weight-0 coverage (kTexelEmpty) are left out and the other weights renormalised).
+/// Mixed scenes (lightmap/part_choice.h): hits on a triangle that `vertex_triangle` marks 1 read the
+/// previous pass per vertex instead (barycentrically, as without a grid), the block of vertex v at
+/// width x height + v, after the grid's blocks.
 struct TexelGrid {
   const std::vector<glm::vec2>* corner_uv = nullptr;     ///< mesh.lightmap_uv
   const std::vector<std::uint8_t>* coverage = nullptr;   ///< width x height, transfer::Coverage
   int width = 0, height = 0;
+  const std::vector<std::uint8_t>* vertex_triangle = nullptr;  ///< per triangle, 1: read per vertex; null: none
+  /// True if a hit on `triangle` reads the previous pass per vertex.
+  bool per_vertex(std::size_t triangle) const { return vertex_triangle && (*vertex_triangle)[triangle]; }
+  /// The first vertex block's index: width x height.
+  std::uint32_t vertex_base() const { return static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height); }
 };
 
 /// What every ray-tracing pass shares.

@@ -1,0 +1,140 @@
+// Mixed scenes (`prt bake --lightmap N --texel-parts ...`, lightmap/part_choice.h): which parts go per
+// texel (names, and the auto rule against its closed form), the .prt pair a mixed bake writes
+// (byte-identical for any thread count, each file naming the other), and bad input: one line, exit 1,
+// no file. The rendered pair against `prt reference --image` is tests/render/test_render_mixed.cpp.
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "lightmap/lightmap_scenes.h"
+#include "lightmap/mixed_scenes.h"
+#include "lightmap/part_choice.h"
+#include "mesh/mesh.h"
+#include "support/run_prt.h"
+#include "transfer/mixed_parts.h"
+#include "transfer/transfer_file.h"
+
+namespace prt {
+
+namespace {
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The room (floor, box, wall) as a .gltf of three named nodes in `dir`; returns its path.
+std::string write_room(const std::string& dir, bool with_box = true) {
+  std::vector<test::NamedPart> parts;
+  const mesh::Mesh room = test::room_with_box(with_box, parts);
+  const std::string path = dir + "/room.gltf";
+  test::write_gltf_parts(path, room, parts);
+  return path;
+}
+
+// Per triangle of the loaded room, the name of its node.
+std::vector<std::string> triangle_nodes(const mesh::Mesh& m) {
+  std::vector<std::string> out;
+  for (const mesh::TriangleSource& s : m.triangle_source) out.push_back(lightmap::part_node_name(m.parts[s.part]));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("--texel-parts: names pick their nodes' triangles; auto gives texels where W x H x UV area exceeds the vertices",
+          "[lightmap][mixed]") {
+  const std::string dir = test::fresh_temp_dir("mixed_parts");
+  const mesh::Mesh room = mesh::load_mesh(write_room(dir));
+  REQUIRE(room.triangle_count() == 16);
+  const std::vector<std::string> node = triangle_nodes(room);
+
+  const lightmap::PartChoice named = lightmap::choose_parts(room, "Floor,Wall", 32, 32, "room.gltf");
+  CHECK(named.mixed());
+  for (std::size_t t = 0; t < node.size(); ++t) CHECK(int(named.vertex_triangle[t]) == int(node[t] == "Box"));
+  CHECK(named.texel_parts.size() == 2);
+  CHECK(named.vertex_parts.size() == 1);
+
+  // The closed form of the auto rule: texels = UV area x W x H against distinct vertices.
+  //   8 x 8:   floor 0.58^2 x 64 = 21.5 > 4; box 6 x 0.18^2 x 64 = 12.4 < 24; wall 0.58 x 0.18 x 64 = 6.7 > 4.
+  //   32 x 32: the box gets 199 texels > 24 vertices: every part per texel, nothing mixed.
+  const lightmap::PartChoice small = lightmap::choose_parts(room, "auto", 8, 8, "room.gltf");
+  for (std::size_t t = 0; t < node.size(); ++t) CHECK(int(small.vertex_triangle[t]) == int(node[t] == "Box"));
+  CHECK_FALSE(lightmap::choose_parts(room, "auto", 32, 32, "room.gltf").mixed());
+  CHECK_FALSE(lightmap::choose_parts(room, "all", 8, 8, "room.gltf").mixed());
+  CHECK(lightmap::part_node_name("node 3 \"Gear \\\"x\\\"\" mesh 2 primitive 0") == "Gear \\\"x\\\"");
+  CHECK(lightmap::part_node_name("node 3 mesh 2 primitive 0").empty());
+}
+
+TEST_CASE("prt bake --texel-parts: a .prt pair, byte-identical for 1 and 2 threads, each file naming the other",
+          "[lightmap][mixed][cli]") {
+  const std::string dir = test::fresh_temp_dir("mixed_pair");
+  const std::string room = write_room(dir);
+  const std::string bake = "bake " + room + " --transfer interreflected --bounces 1 --bands 3 --samples 64 --lightmap 32 "
+                                             "--texel-parts Floor,Wall -q";
+  for (const char* threads : {"1", "2"}) {
+    const test::RunResult r = test::run_prt(bake + " --threads " + threads + " -o " + dir + "/t" + threads + ".prt");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+  }
+  CHECK(read_bytes(dir + "/t1.prt") == read_bytes(dir + "/t2.prt"));
+  CHECK(read_bytes(dir + "/t1.vertices.prt") == read_bytes(dir + "/t2.vertices.prt"));
+
+  const transfer::TransferData texels = transfer::read_transfer(dir + "/t1.prt");
+  const transfer::TransferData vertices = transfer::read_transfer(dir + "/t1.vertices.prt");
+  CHECK(texels.header.is_texel());
+  CHECK_FALSE(vertices.header.is_texel());
+  CHECK(vertices.header.vertex_count == 32);
+  CHECK(vertices.header.mesh_fingerprint == texels.header.mesh_fingerprint);
+  CHECK(vertices.bounce_only.size() == vertices.values.size());
+  const auto t = transfer::read_mixed_entry(texels.header, "t1.prt");
+  const auto v = transfer::read_mixed_entry(vertices.header, "t1.vertices.prt");
+  REQUIRE(t);
+  REQUIRE(v);
+  CHECK(t->partner == "t1.vertices.prt");
+  CHECK(v->partner == "t1.prt");
+  // The box: triangles 2..13 of the file (Floor first, then Box, then Wall).
+  CHECK(t->vertex_runs == std::vector<std::pair<std::uint64_t, std::uint64_t>>{{2, 12}});
+  CHECK(v->vertex_runs == t->vertex_runs);
+  // No texel of the lightmap belongs to the box: the box's slots stay empty.
+  const int w = 32;
+  const int slot_texel = int(0.70f * w) + int(0.10f * w) * w;  // inside the box's top-face slot (0.61..0.79, 0.01..0.19)
+  CHECK(int(texels.coverage[std::size_t(slot_texel)]) == int(transfer::kTexelEmpty));
+  // Every vertex got transfer: the DC term of an upward floor vertex is positive.
+  CHECK(vertices.values[0] > 0.0f);
+}
+
+TEST_CASE("prt bake --texel-parts: bad input gives one line, exit 1 and no file", "[lightmap][mixed][cli]") {
+  const std::string dir = test::fresh_temp_dir("mixed_bad");
+  const std::string room = write_room(dir);
+  // A texel part without usable UVs: the floor's UVs collapsed to a point; and the room as an OBJ (one part).
+  std::vector<test::NamedPart> parts;
+  mesh::Mesh broken = test::room_with_box(true, parts);
+  test::write_obj_with_uv(dir + "/room.obj", broken);
+  for (int k = 0; k < 6; ++k) broken.lightmap_uv[std::size_t(k)] = glm::vec2(0.3f);
+  test::write_gltf_parts(dir + "/broken.gltf", broken, parts);
+  const std::size_t inputs = test::entries_in(dir);
+  auto bake = [&](const std::string& scene) {
+    return "bake " + scene + " --transfer shadowed --bands 2 --samples 16 --lightmap 16 ";
+  };
+  auto refused = [&](const std::string& arguments, const std::string& expected) {
+    const test::RunResult r = test::run_prt(arguments);
+    INFO("prt " << arguments << "\n" << r.output);
+    CHECK(test::fails_in_one_line(r, expected));
+    CHECK(test::entries_in(dir) == inputs);
+  };
+  refused(bake(room) + "--texel-parts Floor,Chair -o " + dir + "/o.prt", "no part named \"Chair\"");
+  refused(bake(room) + "--texel-parts Floor, -o " + dir + "/o.prt", "empty name");
+  refused(bake(room) + "--texel-parts Floor --gltf " + dir + "/o.glb -o " + dir + "/o.prt", "mixed scene");
+  refused(bake(room) + "--texel-parts Floor -o " + dir + "/o.cprt", "mixed scene");
+  refused("bake " + room + " --texel-parts Floor -o " + dir + "/o.prt", "--texel-parts applies to texel bakes only");
+  refused(bake(dir + "/broken.gltf") + "--texel-parts Floor,Wall -o " + dir + "/o.prt",
+          "\"Floor\" mesh 0 primitive 0 has no usable lightmap UVs");
+  refused(bake(dir + "/room.obj") + "--texel-parts Floor -o " + dir + "/o.prt", "names need a glTF scene");
+}
+
+}  // namespace prt
