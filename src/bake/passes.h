@@ -60,13 +60,16 @@ struct PassContext {
   const TexelGrid* grid = nullptr;  ///< null: bounce passes gather per vertex (barycentric)
   const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
   const mesh::VertexFootprints* footprints = nullptr;  ///< null: rays leave from the vertices themselves
+  /// With `points` and `footprints`: points from this one on are the mesh's vertices (a mixed scene's,
+  /// trace::VertexRays::footprint_first); their rays leave from their footprints.
+  std::size_t footprint_first = static_cast<std::size_t>(-1);
 
   /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`, over this
   /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
     return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
-                             share.begin, share.end, footprints, points.geometric_normals};
+                             share.begin, share.end, footprints, points.geometric_normals, footprint_first};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
   std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }

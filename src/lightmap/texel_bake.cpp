@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,7 @@
 #include "lightmap/uv_validation.h"
 #include "trace/scene.h"
 #include "trace/true_surface.h"
+#include "transfer/mixed_parts.h"
 
 namespace prt::lightmap {
 
@@ -99,6 +101,9 @@ BakedLightmap baked_lightmap(const transfer::Header& header, const std::string& 
   out.options.repair = l["sample_repair"].get<bool>();
   out.options.mesh_path = path;
   if (l.contains("seed") && l["seed"].is_number_unsigned()) out.seed = l["seed"].get<std::uint32_t>();
+  // A mixed scene's texel file: its per-vertex triangles have no texels (transfer/mixed_parts.h).
+  if (const std::optional<transfer::MixedParts> mixed = transfer::read_mixed_entry(header, path))
+    out.options.vertex_triangles = transfer::vertex_triangle_mask(*mixed, header.triangle_count, path);
   return out;
 }
 
@@ -166,8 +171,8 @@ void split_vertex_tail(std::vector<float>& grid, std::size_t texel_floats, std::
   grid.resize(texel_floats);
 }
 
-// The per-vertex file's data of a mixed bake: the header of a vertex bake (footprint vertex) and the
-// vertex blocks split off the texel grids.
+// The per-vertex file's data of a mixed bake: the header of a vertex bake and the vertex blocks split
+// off the texel grids.
 transfer::TransferData vertex_transfer(const mesh::Mesh& mesh, const bake::BakeOptions& options, transfer::TransferData& texels,
                                        std::size_t texel_floats, int bounces_done, float ray_offset) {
   transfer::TransferData v;
@@ -178,9 +183,7 @@ transfer::TransferData vertex_transfer(const mesh::Mesh& mesh, const bake::BakeO
   v.header.triangle_count = mesh.triangle_count();
   v.header.mesh_fingerprint = texels.header.mesh_fingerprint;
   v.header.bounce_only_section = texels.header.bounce_only_section;
-  bake::BakeOptions vertex_options = options;
-  vertex_options.footprint = mesh::Footprint::vertex;
-  v.header.parameters_json = bake::parameters_json(vertex_options, mesh, bounces_done, ray_offset);
+  v.header.parameters_json = bake::parameters_json(options, mesh, bounces_done, ray_offset);
   split_vertex_tail(texels.values, texel_floats, v.values);
   if (!texels.bounce_only.empty()) split_vertex_tail(texels.bounce_only, texel_floats, v.bounce_only);
   return v;
@@ -283,6 +286,10 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress,
                         {&points.positions, &points.normals, &points.geometric_normals}, &grid};
   ctx.dist = options.dist;
+  // Mixed: the vertices' rays leave from their footprints (--footprint), as in a vertex bake.
+  const std::unique_ptr<mesh::VertexFootprints> footprints = mixed ? mesh::footprints_for(mesh, options.footprint) : nullptr;
+  ctx.footprints = footprints.get();
+  ctx.footprint_first = samples.samples.size();
   const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();
   std::vector<float> geometric;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 
+#include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
 #include "lightmap/lightmap_scenes.h"
@@ -67,7 +68,8 @@ void write_gltf_parts(const std::string& path, const mesh::Mesh& m, const std::v
     const std::size_t n = accessor(view(append(bin, normals), normals.size() * 12, 34962), 5126, normals.size(), "VEC3");
     const std::size_t u = accessor(view(append(bin, uvs), uvs.size() * 8, 34962), 5126, uvs.size(), "VEC2");
     const std::size_t i = accessor(view(append(bin, indices), indices.size() * 4, 34963), 5125, indices.size(), "SCALAR");
-    j["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", u}}}, {"indices", i}}}}}});
+    const json primitive = {{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", u}}}, {"indices", i}};
+    j["meshes"].push_back({{"primitives", json::array({primitive})}});
     j["nodes"].push_back({{"name", part.name}, {"mesh", j["meshes"].size() - 1}});
     j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
   }

@@ -147,7 +147,7 @@ TEST_CASE("prt render of a mixed bake (floor and wall per texel, box per vertex)
   const std::string bake = " --transfer interreflected --bounces 1 --bands 5 --samples 256 -q -o " + dir;
   run("bake " + scene + " --lightmap 128 --texel-parts Floor,Wall" + bake + "/mixed.prt");
   run("bake " + scene + " --lightmap 128" + bake + "/texel.prt");
-  run("bake " + scene + " --footprint vertex" + bake + "/vertex.prt");
+  run("bake " + scene + bake + "/vertex.prt");
   run("bake " + bare + " --lightmap 128" + bake + "/bare.prt");
   const std::string view = std::string(" --env ") + sky + " --sun none --window none --background black --camera " + kCamera +
                            " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " -q -o ";
