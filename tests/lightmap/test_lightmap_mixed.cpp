@@ -2,13 +2,13 @@
 // texel (names, and the auto rule against its closed form), the .prt pair a mixed bake writes
 // (byte-identical for any thread count, each file naming the other), and bad input: one line, exit 1,
 // no file. The rendered pair against `prt reference --image` is tests/render/test_render_mixed.cpp.
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "core/atomic_file.h"
 #include "lightmap/lightmap_scenes.h"
 #include "lightmap/mixed_scenes.h"
 #include "lightmap/part_choice.h"
@@ -20,13 +20,6 @@
 namespace prt {
 
 namespace {
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The room (floor, box, wall) as a .gltf of three named nodes in `dir`; returns its path.
 std::string write_room(const std::string& dir, bool with_box = true) {
@@ -76,16 +69,18 @@ TEST_CASE("prt bake --texel-parts: a .prt pair, byte-identical for 1 and 2 threa
   const std::string room = write_room(dir);
   const std::string bake = "bake " + room + " --transfer interreflected --bounces 1 --bands 3 --samples 64 --lightmap 32 "
                                              "--texel-parts Floor,Wall -q";
+  // The same file names in two folders: each file of the pair names the other.
   for (const char* threads : {"1", "2"}) {
-    const test::RunResult r = test::run_prt(bake + " --threads " + threads + " -o " + dir + "/t" + threads + ".prt");
+    std::filesystem::create_directory(dir + "/" + threads);
+    const test::RunResult r = test::run_prt(bake + " --threads " + threads + " -o " + dir + "/" + threads + "/t1.prt");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
   }
-  CHECK(read_bytes(dir + "/t1.prt") == read_bytes(dir + "/t2.prt"));
-  CHECK(read_bytes(dir + "/t1.vertices.prt") == read_bytes(dir + "/t2.vertices.prt"));
+  CHECK(read_file(dir + "/1/t1.prt") == read_file(dir + "/2/t1.prt"));
+  CHECK(read_file(dir + "/1/t1.vertices.prt") == read_file(dir + "/2/t1.vertices.prt"));
 
-  const transfer::TransferData texels = transfer::read_transfer(dir + "/t1.prt");
-  const transfer::TransferData vertices = transfer::read_transfer(dir + "/t1.vertices.prt");
+  const transfer::TransferData texels = transfer::read_transfer(dir + "/1/t1.prt");
+  const transfer::TransferData vertices = transfer::read_transfer(dir + "/1/t1.vertices.prt");
   CHECK(texels.header.is_texel());
   CHECK_FALSE(vertices.header.is_texel());
   CHECK(vertices.header.vertex_count == 32);
@@ -135,6 +130,44 @@ TEST_CASE("prt bake --texel-parts: bad input gives one line, exit 1 and no file"
   refused(bake(dir + "/broken.gltf") + "--texel-parts Floor,Wall -o " + dir + "/o.prt",
           "\"Floor\" mesh 0 primitive 0 has no usable lightmap UVs");
   refused(bake(dir + "/room.obj") + "--texel-parts Floor -o " + dir + "/o.prt", "names need a glTF scene");
+}
+
+
+// One bounce, both halves of the pair against the path tracer (which shares no transfer code): the
+// per-vertex file shaded at the vertices against `prt reference` per vertex (footprint area, as the bake
+// stores), the texel file shaded per texel against `prt reference --texels` (gutter 0: only covered
+// texels hold values in both). The box's vertices gather the floor's texels (with the box's shadow in
+// them); an all-vertex bake gathers four floor vertices that cannot hold that shadow, so the mixed
+// vertices must be closer to the truth than the all-vertex bake's.
+TEST_CASE("mixed bake, one bounce: the vertex file against prt reference per vertex, the texel file against prt reference --texels",
+          "[lightmap][mixed][cli][slow]") {
+  const std::string dir = test::fresh_temp_dir("mixed_reference");
+  const std::string room = write_room(dir), sky = dir + "/sky.exr";
+  auto run = [](const std::string& arguments) {
+    const test::RunResult r = test::run_prt(arguments);
+    INFO("prt " << arguments << "\n" << r.output);
+    REQUIRE(r.exit_code == 0);
+  };
+  run("light 'cone:0.6,0.55,0.45:30:6,5.5,5+constant:0.25,0.3,0.4' --bands 5 -o " + dir + "/sky.json --preview " + sky);
+  const std::string bake = "bake " + room + " --transfer interreflected --bounces 1 --bands 5 --samples 512 -q";
+  const std::string shade = " --env " + sky + " --sun none --window none -q -o " + dir;
+  const std::string reference = "reference " + room + " --env " + sky + " --band-limit 5 --bounces 1 -q";
+  run(bake + " --lightmap 64 --gutter 0 --texel-parts Floor,Wall -o " + dir + "/mixed.prt");
+  run(bake + " -o " + dir + "/vertex.prt");
+  run("shade " + room + " " + dir + "/mixed.vertices.prt" + shade + "/mixed_vertices.ply");
+  run("shade " + room + " " + dir + "/vertex.prt" + shade + "/vertex.ply");
+  run("shade " + room + " " + dir + "/mixed.prt --lightmap" + shade + "/mixed_texels.exr");
+  run(reference + " --spp 4096 -o " + dir + "/reference.ply");
+  run(reference + " --spp 1024 --texels " + dir + "/mixed.prt -o " + dir + "/reference_texels.exr");
+  const double mixed_vertices = test::compare_rel_rms(dir + "/mixed_vertices.ply", dir + "/reference.ply");
+  const double all_vertices = test::compare_rel_rms(dir + "/vertex.ply", dir + "/reference.ply");
+  const double mixed_texels = test::compare_rel_rms(dir + "/mixed_texels.exr", dir + "/reference_texels.exr");
+  std::printf("mixed bake, 1 bounce, rel_rms against prt reference: vertices %.4f (all-vertex bake %.4f), texels %.4f\n",
+              mixed_vertices, all_vertices, mixed_texels);
+  INFO("vertices " << mixed_vertices << " (all-vertex " << all_vertices << "), texels " << mixed_texels);
+  CHECK(mixed_vertices < 0.025);  // measured 0.012 (512 bake samples, 4096 reference paths)
+  CHECK(mixed_vertices < 0.5 * all_vertices);  // measured 0.045
+  CHECK(mixed_texels < 0.025);  // measured 0.016 (1024 reference paths per texel)
 }
 
 }  // namespace prt

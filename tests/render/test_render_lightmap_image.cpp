@@ -44,6 +44,21 @@ double luminance_at(const image::Image& image, const mesh::Mesh& mesh, const glm
   return sum / 25.0;
 }
 
+// Runs prt; the test case stops unless it succeeds.
+void run_ok(const std::string& arguments) {
+  const test::RunResult r = test::run_prt(arguments);
+  INFO("prt " << arguments << "\n" << r.output);
+  REQUIRE(r.exit_code == 0);
+}
+
+// The sky of these tests: a bright 30-degree lobe toward kLight over a dim constant, 5 bands, as an
+// equirect image `sky` (256 wide) and `dir`/sky.json.
+void write_lobe_sky(const std::string& dir, const std::string& sky) {
+  char spec[160];
+  std::snprintf(spec, sizeof spec, "cone:%.4f,%.4f,%.4f:30:6,5.5,5+constant:0.25,0.3,0.4", kLight.x, kLight.y, kLight.z);
+  run_ok("light '" + std::string(spec) + "' --bands 5 -o " + dir + "/sky.json --preview " + sky + " --preview-width 256");
+}
+
 }  // namespace
 
 TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle floor that a per-vertex bake cannot",
@@ -52,14 +67,8 @@ TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle flo
   const std::string scene = dir + "/scene.obj", sky = dir + "/sky.exr";
   const mesh::Mesh mesh = test::floor_and_box(true, 0.0f);
   test::write_obj_with_uv(scene, mesh);
-  char spec[160];
-  std::snprintf(spec, sizeof spec, "cone:%.4f,%.4f,%.4f:30:6,5.5,5+constant:0.25,0.3,0.4", kLight.x, kLight.y, kLight.z);
-  auto run = [](const std::string& arguments) {
-    const test::RunResult r = test::run_prt(arguments);
-    INFO("prt " << arguments << "\n" << r.output);
-    REQUIRE(r.exit_code == 0);
-  };
-  run("light '" + std::string(spec) + "' --bands 5 -o " + dir + "/sky.json --preview " + sky + " --preview-width 256");
+  const auto run = run_ok;
+  write_lobe_sky(dir, sky);
   run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 --lightmap 128x128 -q -o " + dir + "/lightmap.prt");
   run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 --footprint vertex -q -o " + dir + "/vertex.prt");
   const std::string view = std::string(" --env ") + sky + " --sun none --window none --background black --camera " + kCamera +
@@ -136,14 +145,8 @@ TEST_CASE("prt render of a mixed bake (floor and wall per texel, box per vertex)
   test::write_gltf_parts(scene, mesh, parts);
   std::vector<test::NamedPart> bare_parts;
   test::write_gltf_parts(bare, test::room_with_box(false, bare_parts), bare_parts);
-  char spec[160];
-  std::snprintf(spec, sizeof spec, "cone:%.4f,%.4f,%.4f:30:6,5.5,5+constant:0.25,0.3,0.4", kLight.x, kLight.y, kLight.z);
-  auto run = [](const std::string& arguments) {
-    const test::RunResult r = test::run_prt(arguments);
-    INFO("prt " << arguments << "\n" << r.output);
-    REQUIRE(r.exit_code == 0);
-  };
-  run("light '" + std::string(spec) + "' --bands 5 -o " + dir + "/sky.json --preview " + sky + " --preview-width 256");
+  const auto run = run_ok;
+  write_lobe_sky(dir, sky);
   const std::string bake = " --transfer interreflected --bounces 1 --bands 5 --samples 256 -q -o " + dir;
   run("bake " + scene + " --lightmap 128 --texel-parts Floor,Wall" + bake + "/mixed.prt");
   run("bake " + scene + " --lightmap 128" + bake + "/texel.prt");
