@@ -90,7 +90,8 @@ PartChoice choose_parts(const mesh::Mesh& mesh, const std::string& spec, int wid
     fail_file(mesh_path, "--texel-parts " + spec + ": no part is baked per texel; bake per vertex without --lightmap");
   std::vector<double> texel_uv_area(parts.size(), 0.0);
   for (std::size_t t = 0; t < part.size(); ++t) texel_uv_area[part[t]] += uv_area(mesh, t);
-  for (std::size_t p = 0; p < parts.size(); ++p)
+  // `all` is a plain lightmap bake: its UV checks (uv_validation.h) name the problem in full.
+  for (std::size_t p = 0; p < parts.size() && spec != "all"; ++p)
     if (texel[p] && !(texel_uv_area[p] > 0.0))
       fail_file(mesh_path, "--texel-parts " + spec + ": part " + parts[p] +
                                " has no usable lightmap UVs (every triangle has zero UV area or UVs outside [0,1]); bake it per vertex");

@@ -33,8 +33,8 @@ std::string part_node_name(const std::string& part);
 /// Chooses per texel or per vertex for every part of `mesh` (which has lightmap UVs) by `spec` and the
 /// lightmap size. Throws prt::Error("<mesh_path>: --texel-parts: ...") in one line for a NAME no
 /// part has (listing the names there are), names given for a file without named parts, an empty
-/// NAME, a choice that leaves no part per texel, or a texel part without usable UVs (no triangle of
-/// nonzero UV area inside [0, 1]).
+/// NAME, a choice that leaves no part per texel, or (auto, names) a texel part without usable UVs (no
+/// triangle of nonzero UV area inside [0, 1]).
 PartChoice choose_parts(const mesh::Mesh& mesh, const std::string& spec, int width, int height, const std::string& mesh_path);
 
 }  // namespace prt::lightmap
