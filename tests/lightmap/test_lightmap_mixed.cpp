@@ -39,7 +39,7 @@ std::vector<std::string> triangle_nodes(const mesh::Mesh& m) {
 
 }  // namespace
 
-TEST_CASE("--texel-parts: names pick their nodes' triangles; auto gives texels where W x H x UV area exceeds the vertices",
+TEST_CASE("mixed scenes: --texel-parts names pick their nodes' triangles and auto gives texels where W x H x UV area exceeds the vertices",
           "[lightmap][mixed]") {
   const std::string dir = test::fresh_temp_dir("mixed_parts");
   const mesh::Mesh room = mesh::load_mesh(write_room(dir));
