@@ -150,10 +150,16 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
 }
 
 // --texel-parts: which parts are baked per texel (lightmap/part_choice.h); for a mixed scene sets
-// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair: no --gltf, no --compress).
-lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap) {
+// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair: no --gltf, no --compress,
+// the file's own UVs: only a mesh that carries generated UVs could draw the texel file, and the glTF
+// that would carry them is not written for mixed scenes yet).
+lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap,
+                                        bool uv_generated) {
   lightmap::PartChoice parts = lightmap::choose_parts(mesh, o.texel_parts, lightmap.width, lightmap.height, o.mesh_path);
   if (!parts.mixed()) return parts;
+  if (uv_generated)
+    fail_file(o.mesh_path, "--texel-parts: a mixed scene needs the file's own lightmap UVs (these were generated: --uv " + o.uv +
+                               "); give the texel parts TEXCOORD_1 or bake them all per texel");
   if (!o.gltf_output.empty()) fail("--gltf: the engine glTF of a mixed scene (--texel-parts) is not supported yet; write the .prt pair");
   if (!o.compress.empty() || lower_extension(o.output) != ".prt")
     fail("-o " + o.output + ": a mixed scene (--texel-parts) is written as a .prt pair (no --compress, no .cprt)");
@@ -179,13 +185,13 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::UvSourceReport uv_source;
   lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, options.threads, &uv_source);
+  const lightmap::PartChoice parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
   if (uv_source.generated && !o.quiet && job().is_root())
     std::fprintf(stderr,
                  "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; shade and render with "
                  "a mesh that carries them (the --gltf output, or prt unwrap's)\n",
                  o.mesh_path.c_str(), uv_source.reason.c_str(), uv_source.unwrap.charts, 100.0 * uv_source.unwrap.fill,
                  uv_source.unwrap.seconds);
-  const lightmap::PartChoice parts = choose_mixed_parts(o, mesh, lightmap);
   lightmap::check_lightmap(mesh, options, lightmap);
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();

@@ -130,6 +130,7 @@ TEST_CASE("prt bake --texel-parts: bad input gives one line, exit 1 and no file"
   refused(bake(dir + "/broken.gltf") + "--texel-parts Floor,Wall -o " + dir + "/o.prt",
           "\"Floor\" mesh 0 primitive 0 has no usable lightmap UVs");
   refused(bake(dir + "/room.obj") + "--texel-parts Floor -o " + dir + "/o.prt", "names need a glTF scene");
+  refused(bake(room) + "--texel-parts Floor --uv generate -o " + dir + "/o.prt", "needs the file's own lightmap UVs");
 }
 
 
