@@ -182,3 +182,29 @@ TEST_CASE("prt render of a mixed bake (floor and wall per texel, box per vertex)
   CHECK(mixed_error < vertex_error);
   CHECK(mixed_error <= 1.25 * texel_error);
 }
+
+TEST_CASE("prt render of a mixed pair: either file draws both, a missing or foreign partner is refused in one line, writing nothing",
+          "[render][gl][lightmap][mixed][cli]") {
+  const std::string dir = test::fresh_temp_dir("render_mixed_bad");
+  std::vector<test::NamedPart> parts;
+  test::write_gltf_parts(dir + "/room.gltf", test::room_with_box(true, parts), parts);
+  REQUIRE(test::run_prt("light 'constant:1,1,1' --bands 2 -o " + dir + "/white.json").exit_code == 0);
+  const std::string bake = "bake " + dir + "/room.gltf --transfer shadowed --bands 2 --samples 16 --lightmap 16 -q ";
+  run_ok(bake + "--texel-parts Floor,Wall -o " + dir + "/a.prt");
+  run_ok(bake + "--texel-parts Floor -o " + dir + "/b.prt");
+  const std::string render = "render " + dir + "/room.gltf ";
+  const std::string view = " --env " + dir + "/white.json --size 32x32 -q -o " + dir + "/out.png";
+  run_ok(render + dir + "/a.prt" + view);
+  run_ok(render + dir + "/a.vertices.prt" + view);
+  std::filesystem::remove(dir + "/out.png");
+  // b's vertex file lists other per-vertex triangles (the wall too): not a's partner.
+  std::filesystem::rename(dir + "/b.vertices.prt", dir + "/a.vertices.prt");
+  const test::RunResult foreign = test::run_prt(render + dir + "/a.prt" + view);
+  INFO(foreign.output);
+  CHECK(test::fails_in_one_line(foreign, "(not baked together)"));
+  std::filesystem::remove(dir + "/a.vertices.prt");
+  const test::RunResult missing = test::run_prt(render + dir + "/a.prt" + view);
+  INFO(missing.output);
+  CHECK(test::fails_in_one_line(missing, "a.vertices.prt"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/out.png"));
+}
