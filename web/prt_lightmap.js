@@ -3,13 +3,11 @@
 // and, on the primitive, {model, texCoord, width, height, cluster, weights}; `cluster` a KTX2 RGBA16F 2D
 // texture of R = cluster k, G = coverage code (0 empty, 1 covered, 2 gutter); `weights` a KTX2 RGBA16F
 // array of ceil(N / 4) layers, w_{4a+1..4a+4} in layer a), shaded per pixel as `prt render` shades the
-// decompressed lightmap (docs/conventions.md, "Lightmap rendering"): the pixel fetches the 4 texels a
-// bilinear lookup of level 0 at its lightmap UV reads (clamp to edge; clusters and weights fetched, never
-// filtered), reconstructs each texel's radiance s_k0 + sum_j w_j s_kj from the per-cluster shaded values
-// of the model (prt_transfer.js, clusterProducts: sky and the discs' bounce, one texture shared with the
-// per-vertex materials), an empty texel 0 (prt's level 0 holds 0 there), blends the 4 bilinearly and adds
-// the discs' direct light with the material's base colour as albedo. Level 0 only: this runtime builds no
-// mip chain, so a lightmap seen minified aliases where prt's coverage-aware mips would not.
+// decompressed lightmap (docs/conventions.md, "Lightmap rendering"): each texel's radiance
+// s_k0 + sum_j w_j s_kj and prt's coverage-aware mip chain of it are rebuilt on the GPU when the lighting
+// changes (prt_lightmap_mips.js, LightmapRadiance), the pixel samples that chain trilinearly at its
+// lightmap UV (clamp to edge) and adds the discs' direct light with the bake's albedo (_PRT_ALBEDO per
+// vertex, interpolated).
 import { ClampToEdgeWrapping, Color, DataArrayTexture, HalfFloatType, NearestFilter, RGBAFormat, ShaderMaterial, UniformsUtils } from 'three';
 import { SUN_GLSL, SURFACE_VERTEX_GLSL } from './prt_sun.js';
 
@@ -70,82 +68,62 @@ const VERTEX = /* glsl */ `
 in vec2 uv1;
 #endif
 out vec2 prt_lightmap_uv;
+#ifdef PRT_VERTEX_ALBEDO
+in vec3 _prt_albedo;
+out vec3 prt_vertex_albedo;
+#endif
 ${SURFACE_VERTEX_GLSL}
 void main() {
   prt_lightmap_uv = PRT_LIGHTMAP_UV;
+#ifdef PRT_VERTEX_ALBEDO
+  prt_vertex_albedo = _prt_albedo;
+#endif
   gl_Position = prt_surface();
 }`;
 
-function fragmentShader(terms) {
-  const blend = [];
-  for (let j = 1; j <= terms; j++) blend.push(`  r += w${(j - 1) >> 2}[${(j - 1) & 3}] * prt_product(base + ${j});`);
-  const fetches = [];
-  for (let a = 0; a < Math.ceil(terms / 4); a++) fetches.push(`  vec4 w${a} = texelFetch(prt_weights, ivec3(texel, ${a}), 0);`);
-  return /* glsl */ `
-precision highp sampler2DArray;
+const FRAGMENT = /* glsl */ `
 ${SUN_GLSL}
-uniform highp sampler2D prt_products;
-uniform sampler2DArray prt_cluster;
-#if TERMS > 0
-uniform sampler2DArray prt_weights;
-#endif
+uniform sampler2D prt_radiance;  // LightmapRadiance: the radiance per texel and its mip chain
 uniform vec3 prt_albedo;
 in vec2 prt_lightmap_uv;
+#ifdef PRT_VERTEX_ALBEDO
+in vec3 prt_vertex_albedo;  // the bake's albedo (_PRT_ALBEDO), interpolated as prt render interpolates it
+#define PRT_DIRECT_ALBEDO prt_vertex_albedo
+#else
+#define PRT_DIRECT_ALBEDO prt_albedo
+#endif
 in vec3 prt_world_position;
 in vec3 prt_world_normal;
 
-vec3 prt_product(int t) {
-  int width = textureSize(prt_products, 0).x;
-  return texelFetch(prt_products, ivec2(t % width, t / width), 0).rgb;
-}
-
-// The radiance of texel (x, y) of level 0: its cluster's values blended with its weights; 0 when empty.
-vec3 prt_texel(ivec2 texel) {
-  vec4 c = texelFetch(prt_cluster, ivec3(texel, 0), 0);
-  if (c.g < 0.5) return vec3(0.0);
-  int base = int(c.r + 0.5) * ${terms + 1};
-  vec3 r = prt_product(base);
-${fetches.join('\n')}
-${blend.join('\n')}
-  return r;
-}
-
 void main() {
-  // Bilinear filtering of level 0 done by hand (clamp to edge), as the GPU samples prt's lightmap.
-  ivec2 size = textureSize(prt_cluster, 0).xy;
+  // Trilinear over the coverage-aware mip chain, clamp to edge, as prt render samples its lightmap.
   vec2 uv = prt_lightmap_uv;
   if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
-  vec2 p = uv * vec2(size) - 0.5;
-  vec2 f = fract(p);
-  ivec2 i0 = ivec2(floor(p));
-  ivec2 lo = clamp(i0, ivec2(0), size - 1), hi = clamp(i0 + 1, ivec2(0), size - 1);
-  vec3 radiance = mix(mix(prt_texel(lo), prt_texel(ivec2(hi.x, lo.y)), f.x),
-                      mix(prt_texel(ivec2(lo.x, hi.y)), prt_texel(hi), f.x), f.y);
-  if (prt_disc_count > 0) {
-    radiance = max(radiance + prt_albedo * 0.31830988618379067 * prt_disc_light(prt_world_position, normalize(prt_world_normal)), vec3(0.0));
+  vec3 radiance = texture(prt_radiance, uv).rgb;
+  if (disc_count > 0) {
+    radiance = max(radiance + PRT_DIRECT_ALBEDO * 0.31830988618379067 * prt_disc_light(prt_world_position, normalize(prt_world_normal)), vec3(0.0));
   }
   gl_FragColor = vec4(radiance, 1.0);
   #include <tonemapping_fragment>
   #include <colorspace_fragment>
 }`;
-}
 
-/// The lightmap material of `mesh` (mesh.userData.prtLightmap from the plugin) shading `model` (its
-/// products texture, shared and updated per frame by PrtRelighting). The discs' direct light takes the
-/// old material's colour as albedo (prt: the mesh's albedo; set it to the bake's).
-export function createLightmapMaterial(mesh, lightmap, model, sun) {
+/// The lightmap material of `mesh` (mesh.userData.prtLightmap from the plugin) of `model` drawing
+/// `radiance` (its LightmapRadiance, rebuilt by PrtRelighting when the lighting changes). The discs' direct light takes the
+/// bake's albedo, the primitive's _PRT_ALBEDO interpolated (as prt render does); a file without it (an
+/// older export) falls back to the old material's colour (set it to the bake's albedo).
+export function createLightmapMaterial(mesh, lightmap, model, radiance, sun) {
   const uv1 = lightmap.texCoord === 1;
+  const vertexAlbedo = !!mesh.geometry.attributes._prt_albedo;
   const material = new ShaderMaterial({
-    defines: { TERMS: model.terms, PRT_LIGHTMAP_UV: uv1 ? 'uv1' : 'uv', ...(uv1 ? { PRT_UV1: '' } : {}) },
+    defines: { PRT_LIGHTMAP_UV: uv1 ? 'uv1' : 'uv', ...(uv1 ? { PRT_UV1: '' } : {}), ...(vertexAlbedo ? { PRT_VERTEX_ALBEDO: '' } : {}) },
     uniforms: UniformsUtils.merge([{ prt_albedo: { value: new Color(1, 1, 1).copy(mesh.material.color || new Color(1, 1, 1)) },
-                                     prt_disc_shadows: { value: model.kind !== 'unshadowed' } }]),
+                                     disc_shadows: { value: model.kind !== 'unshadowed' } }]),
     vertexShader: VERTEX,
-    fragmentShader: fragmentShader(model.terms),
+    fragmentShader: FRAGMENT,
   });
-  // Shared, not copied: the products and the discs change every frame for every material.
-  Object.assign(material.uniforms, sun.uniforms, {
-    prt_products: { value: model.products }, prt_cluster: { value: lightmap.cluster }, prt_weights: { value: lightmap.weights },
-  });
+  // Shared, not copied: the discs change every frame for every material.
+  Object.assign(material.uniforms, sun.uniforms, { prt_radiance: { value: radiance.texture } });
   material.name = `prt-lightmap:${mesh.material.name || ''}`;
   material.side = mesh.material.side;
   return material;

@@ -81,7 +81,7 @@ void main() {
   vec3 radiance = prt_radiance;
   vec3 albedo = prt_albedo;
 #endif
-  if (prt_disc_count > 0) {
+  if (disc_count > 0) {
     vec3 n = normalize(prt_world_normal);
     radiance = max(radiance + albedo * 0.31830988618379067 * prt_disc_light(prt_world_position, n), vec3(0.0));
   }
@@ -116,7 +116,7 @@ export function createPrtMaterial(mesh, model, { textured, sun }) {
       prt_factor: { value: new Color(1, 1, 1) },
       prt_map: { value: null },
       prt_map_transform: { value: new Matrix3() },
-      prt_disc_shadows: { value: model.kind !== 'unshadowed' },
+      disc_shadows: { value: model.kind !== 'unshadowed' },
     }]),
     vertexShader: vertexShader(model.terms, attributes, map && map.channel === 1 ? 'uv1' : 'uv'),
     fragmentShader: FRAGMENT,

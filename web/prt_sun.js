@@ -1,89 +1,66 @@
-// The discs (suns) of prt's split lighting in three.js: one orthographic depth map per disc (at most 4),
-// fitted as `prt render` fits it (src/render/sun_light.cpp: looking along -d, its square fitted to the
-// baked meshes' world bounds across d, its depth range to their extent along d, depth 0 nearest the
-// light, both sides of every triangle occluding), and the GLSL that filters it for the disc's size
-// (PCSS, docs/conventions.md "Sun shadow maps": normal offset, slope-scaled receiver-plane bias, an
-// 8-sample blocker search and a 12-sample filter over golden-angle spirals, radii clamped to [0.75, 12]
-// texels, nearest texels, depth 1 outside the map).
-import { Box3, DataTexture, DepthTexture, DoubleSide, FloatType, Matrix4, NearestFilter, OrthographicCamera, RGBAFormat, ShaderMaterial,
-         Vector3, WebGLRenderTarget } from 'three';
+// The discs (suns) of prt's split lighting in three.js: one orthographic depth map per disc (at most 4,
+// the layers of one array texture), fitted as `prt render` fits it (src/render/sun_light.cpp: looking
+// along -d, its square fitted to the baked meshes' world bounds across d, its depth range to their extent
+// along d, depth 0 nearest the light, both sides of every triangle occluding), filtered for the disc's
+// size by prt's own PCSS filter: shaders/sun_pcss.glsl, the GLSL that prt's GL renderer includes,
+// loaded from the repository beside web/ (docs/conventions.md, "Sun shadow maps").
+import { Box3, Color, DoubleSide, FloatType, Matrix4, NearestFilter, OrthographicCamera, RedFormat, ShaderMaterial, Vector3,
+         WebGLArrayRenderTarget } from 'three';
 
 export const MAX_DISCS = 4;
-export const SHADOW_MAP_SIZE = 2048;
+export const SHADOW_MAP_SIZE = 2048;  // texels per side, as prt render's maps (src/render/sun_light.cpp)
+const FILTER_COUNT = 12;  // the PCSS filter's samples, as Renderer::bind_sun sets them (src/render/sun_light.cpp)
 const SHADOW_LAYER = 31;  // the baked meshes' layer: what the depth maps see
 
-/// GLSL (ES 3.00) of the discs' uniforms and prt_disc_visibility(map, k, p, n): the fraction of disc k
-/// visible from world point p with unit normal n (0 below the horizon). Mirrors shaders/sun_light.glsl
-/// without its tile early-outs (exact: the same visibility either way).
+/// shaders/sun_pcss.glsl, read relative to this module when it is imported (serve the repository's
+/// shaders/ folder beside web/; in node, as the tests import the runtime, from the file system). The
+/// import fails naming the file when it cannot be read.
+export const PCSS_URL = new URL('../shaders/sun_pcss.glsl', import.meta.url);
+const PCSS_GLSL = await readText(PCSS_URL);
+
+async function readText(url) {
+  if (url.protocol === 'file:') {
+    const fs = 'node:fs/promises';  // a variable: bundlers for the browser leave it alone
+    return (await import(fs)).readFile(url, 'utf8');
+  }
+  const response = await fetch(url).catch((e) => { throw new Error(`prt_sun: ${url}: ${e.message}`); });
+  if (!response.ok) throw new Error(`prt_sun: ${url}: HTTP ${response.status}`);
+  return response.text();
+}
+
+/// GLSL (ES 3.00) of the discs' uniforms (the names of shaders/sun_light.glsl), disc_visibility(k, p, n)
+/// (the fraction of disc k visible from world point p with unit normal n, 0 below the horizon: sun_pcss.glsl
+/// without its tile early-outs, which WebGL's lack of compute shaders leaves without their min/max tiles;
+/// they are exact, so the visibility is the same) and prt_disc_light(p, n).
 export const SUN_GLSL = /* glsl */ `
-const int prt_max_discs = ${MAX_DISCS};
-uniform int prt_disc_count;
-uniform vec3 prt_disc_direction[prt_max_discs];
-uniform vec3 prt_disc_irradiance[prt_max_discs];
-uniform float prt_disc_tan_radius[prt_max_discs];
-uniform mat4 prt_shadow_matrix[prt_max_discs];
-uniform float prt_shadow_depth_scale[prt_max_discs];
-uniform float prt_shadow_texel[prt_max_discs];
-uniform bool prt_disc_shadows;
-uniform sampler2D prt_shadow_map0, prt_shadow_map1, prt_shadow_map2, prt_shadow_map3;
-const float prt_normal_offset = 0.5, prt_constant_bias = 0.5, prt_slope_bias = 0.5, prt_max_slope = 8.0;
-const float prt_min_filter = 0.75, prt_max_filter = 12.0;
-const int prt_filter_count = 12;
-const float prt_golden_angle = 2.39996322972865332;
-const vec2 prt_search_spiral[8] = vec2[8](
-    vec2(0.2500, 0.0000), vec2(-0.3193, 0.2925), vec2(0.0489, -0.5569), vec2(0.4024, 0.5249),
-    vec2(-0.7385, -0.1306), vec2(0.6996, -0.4450), vec2(-0.2340, 0.8705), vec2(-0.4463, -0.8593));
+precision highp sampler2DArray;
+#define SUN_TILE_EARLY_OUTS 0
+const int max_discs = ${MAX_DISCS};
+uniform int disc_count;
+uniform vec3 disc_direction[max_discs];
+uniform vec3 disc_irradiance[max_discs];
+uniform float disc_tan_radius[max_discs];
+uniform mat4 shadow_matrix[max_discs];
+uniform float shadow_depth_scale[max_discs];
+uniform float shadow_texel[max_discs];
+uniform bool disc_shadows;
+uniform int filter_count;
+uniform sampler2DArray shadow_maps;
 
-float prt_map_depth(sampler2D map, vec2 uv) {
+// The stored depth of map k at uv (nearest texel), 1 outside the map: WebGL has no border colour.
+float map_depth(int k, vec2 uv) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return 1.0;
-  return textureLod(map, uv, 0.0).r;
+  return textureLod(shadow_maps, vec3(uv, float(k)), 0.0).r;
 }
-
-float prt_disc_visibility(sampler2D map, int k, vec3 p, vec3 n) {
-  vec3 l = prt_disc_direction[k];
-  float cos_theta = dot(n, l);
-  if (cos_theta <= 0.0) return 0.0;
-  if (!prt_disc_shadows) return 1.0;
-  float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
-  float texel = prt_shadow_texel[k], depth_scale = prt_shadow_depth_scale[k];
-  vec3 s = (prt_shadow_matrix[k] * vec4(p + n * (prt_normal_offset * texel * sin_theta), 1.0)).xyz;
-  float receiver = s.z * depth_scale;
-  float slope = min(sin_theta / cos_theta, prt_max_slope);
-  float bias = texel * (prt_constant_bias + prt_slope_bias * slope), bias_per_texel = texel * slope;
-  float texel_uv = 1.0 / float(textureSize(map, 0).x), texels_per_unit = 1.0 / texel;
-  float search = clamp(receiver * prt_disc_tan_radius[k] * texels_per_unit, prt_min_filter, prt_max_filter);
-  float blocker_sum = 0.0, blockers = 0.0;
-  for (int i = 0; i < 8; ++i) {
-    float d = prt_map_depth(map, s.xy + prt_search_spiral[i] * (search * texel_uv)) * depth_scale;
-    if (d < receiver - bias - bias_per_texel * length(prt_search_spiral[i]) * search) {
-      blocker_sum += d;
-      blockers += 1.0;
-    }
-  }
-  if (blockers == 0.0) return 1.0;
-  float penumbra = clamp((receiver - blocker_sum / blockers) * prt_disc_tan_radius[k] * texels_per_unit, prt_min_filter, prt_max_filter);
-  float lit = 0.0;
-  vec2 along = vec2(1.0, 0.0);
-  vec2 turn = vec2(cos(prt_golden_angle), sin(prt_golden_angle));
-  for (int i = 0; i < prt_filter_count; ++i) {
-    float r = sqrt((float(i) + 0.5) / float(prt_filter_count));
-    float d = prt_map_depth(map, s.xy + along * (r * penumbra * texel_uv)) * depth_scale;
-    lit += d < receiver - bias - bias_per_texel * r * penumbra ? 0.0 : 1.0;
-    along = vec2(along.x * turn.x - along.y * turn.y, along.x * turn.y + along.y * turn.x);
-  }
-  return lit / float(prt_filter_count);
-}
-
+${PCSS_GLSL}
 // sum over the discs of E_k max(n.d_k, 0) V_k (the direct light before albedo / pi).
 vec3 prt_disc_light(vec3 p, vec3 n) {
   vec3 sum = vec3(0.0);
-  for (int k = 0; k < prt_max_discs; ++k) {
-    if (k >= prt_disc_count) break;
-    float cos_theta = dot(n, prt_disc_direction[k]);
+  for (int k = 0; k < max_discs; ++k) {
+    if (k >= disc_count) break;
+    float cos_theta = dot(n, disc_direction[k]);
     if (cos_theta <= 0.0) continue;
-    float v = k == 0 ? prt_disc_visibility(prt_shadow_map0, 0, p, n) : k == 1 ? prt_disc_visibility(prt_shadow_map1, 1, p, n)
-            : k == 2 ? prt_disc_visibility(prt_shadow_map2, 2, p, n) : prt_disc_visibility(prt_shadow_map3, 3, p, n);
-    sum += prt_disc_irradiance[k] * (cos_theta * v);
+    sum += disc_irradiance[k] * (cos_theta * disc_visibility(k, p, n));
   }
   return sum;
 }
@@ -109,33 +86,35 @@ function perpendicular(n) {
   return new Vector3(1 + sign * n.x * n.x * a, sign * n.x * n.y * a, -sign * n.x).normalize();
 }
 
-/// The discs' uniforms (shared by every PRT material) and depth maps.
+/// The discs' uniforms (shared by every PRT material) and depth maps of mapSize^2 texels (default
+/// SHADOW_MAP_SIZE, prt render's; a smaller map draws faster and blurs the penumbrae's clamped radii less
+/// finely than prt render does).
 export class PrtSun {
-  constructor(scene, meshes) {
+  constructor(scene, meshes, { mapSize = SHADOW_MAP_SIZE } = {}) {
+    if (!(Number.isInteger(mapSize) && mapSize >= 16 && mapSize <= 8192)) throw new Error(`prt_sun: shadow map size ${mapSize} is not an integer in 16..8192`);
+    this.mapSize = mapSize;
     this.scene = scene;
     this.meshes = meshes;
     for (const mesh of meshes) mesh.layers.enable(SHADOW_LAYER);
-    this.targets = [];
+    this.maps = null;  // a WebGLArrayRenderTarget of one R32F layer per disc (the window depth) and a depth buffer
     this.camera = new OrthographicCamera();
     this.camera.matrixAutoUpdate = false;
     this.camera.layers.set(SHADOW_LAYER);
     this.depthMaterial = new ShaderMaterial({
       vertexShader: 'void main() { gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0); }',
-      fragmentShader: 'void main() { gl_FragColor = vec4(1.0); }',
+      fragmentShader: 'void main() { gl_FragColor = vec4(gl_FragCoord.z, 0.0, 0.0, 1.0); }',
       side: DoubleSide,
     });
-    const dummy = new DataTexture(new Float32Array([1, 1, 1, 1]), 1, 1, RGBAFormat, FloatType);
-    dummy.needsUpdate = true;
     this.uniforms = {
-      prt_disc_count: { value: 0 },
-      prt_disc_direction: { value: Array.from({ length: MAX_DISCS }, () => new Vector3()) },
-      prt_disc_irradiance: { value: Array.from({ length: MAX_DISCS }, () => new Vector3()) },
-      prt_disc_tan_radius: { value: new Array(MAX_DISCS).fill(0) },
-      prt_shadow_matrix: { value: Array.from({ length: MAX_DISCS }, () => new Matrix4()) },
-      prt_shadow_depth_scale: { value: new Array(MAX_DISCS).fill(1) },
-      prt_shadow_texel: { value: new Array(MAX_DISCS).fill(1) },
-      prt_shadow_map0: { value: dummy }, prt_shadow_map1: { value: dummy },
-      prt_shadow_map2: { value: dummy }, prt_shadow_map3: { value: dummy },
+      disc_count: { value: 0 },
+      disc_direction: { value: Array.from({ length: MAX_DISCS }, () => new Vector3()) },
+      disc_irradiance: { value: Array.from({ length: MAX_DISCS }, () => new Vector3()) },
+      disc_tan_radius: { value: new Array(MAX_DISCS).fill(0) },
+      shadow_matrix: { value: Array.from({ length: MAX_DISCS }, () => new Matrix4()) },
+      shadow_depth_scale: { value: new Array(MAX_DISCS).fill(1) },
+      shadow_texel: { value: new Array(MAX_DISCS).fill(1) },
+      filter_count: { value: FILTER_COUNT },
+      shadow_maps: { value: this.target(1).texture },
     };
     this.discs = [];
   }
@@ -145,21 +124,23 @@ export class PrtSun {
     if (discs.length > MAX_DISCS) throw new Error(`prt_sun: ${discs.length} discs; at most ${MAX_DISCS}`);
     this.discs = discs;
     const u = this.uniforms;
-    u.prt_disc_count.value = discs.length;
+    u.disc_count.value = discs.length;
     discs.forEach((d, k) => {
-      u.prt_disc_direction.value[k].fromArray(d.direction).normalize();
-      u.prt_disc_irradiance.value[k].fromArray(d.irradiance);
-      u.prt_disc_tan_radius.value[k] = Math.tan(d.radius);
+      u.disc_direction.value[k].fromArray(d.direction).normalize();
+      u.disc_irradiance.value[k].fromArray(d.irradiance);
+      u.disc_tan_radius.value[k] = Math.tan(d.radius);
     });
   }
 
-  target(k) {
-    while (this.targets.length <= k) {
-      const depthTexture = new DepthTexture(SHADOW_MAP_SIZE, SHADOW_MAP_SIZE, FloatType);
-      depthTexture.minFilter = depthTexture.magFilter = NearestFilter;
-      this.targets.push(new WebGLRenderTarget(SHADOW_MAP_SIZE, SHADOW_MAP_SIZE, { depthTexture, depthBuffer: true }));
+  // The depth maps' target with at least `layers` layers.
+  target(layers) {
+    if (!this.maps || this.maps.depth < layers) {
+      if (this.maps) this.maps.dispose();
+      this.maps = new WebGLArrayRenderTarget(this.mapSize, this.mapSize, layers, { depthBuffer: true });
+      Object.assign(this.maps.texture, { format: RedFormat, type: FloatType, minFilter: NearestFilter, magFilter: NearestFilter, generateMipmaps: false });
+      if (this.uniforms) this.uniforms.shadow_maps.value = this.maps.texture;
     }
-    return this.targets[k];
+    return this.maps;
   }
 
   /// Fits and draws each disc's depth map (call when the discs or the meshes' placement changed).
@@ -172,25 +153,28 @@ export class PrtSun {
     const previous = renderer.getRenderTarget();
     const materials = this.meshes.map((mesh) => mesh.material);
     for (const mesh of this.meshes) mesh.material = this.depthMaterial;
+    const target = this.target(this.discs.length);
+    const clear = renderer.getClearColor(new Color()), alpha = renderer.getClearAlpha();
+    renderer.setClearColor(0xffffff, 1);  // depth 1 (nothing in the way) where no mesh is
     this.discs.forEach((disc, k) => {
-      const fit = fitMap(bounds, new Vector3().fromArray(disc.direction).normalize());
+      const fit = fitMap(bounds, new Vector3().fromArray(disc.direction).normalize(), this.mapSize);
       this.camera.projectionMatrix.copy(fit.projection);
       this.camera.projectionMatrixInverse.copy(fit.projection).invert();
-      this.uniforms.prt_shadow_matrix.value[k].copy(fit.shadowMatrix);
-      this.uniforms.prt_shadow_texel.value[k] = fit.texel;
-      this.uniforms.prt_shadow_depth_scale.value[k] = fit.depthRange;
-      renderer.setRenderTarget(this.target(k));
+      this.uniforms.shadow_matrix.value[k].copy(fit.shadowMatrix);
+      this.uniforms.shadow_texel.value[k] = fit.texel;
+      this.uniforms.shadow_depth_scale.value[k] = fit.depthRange;
+      renderer.setRenderTarget(target, k);
       renderer.clear(true, true, false);
       renderer.render(this.scene, this.camera);
-      this.uniforms[`prt_shadow_map${k}`].value = this.target(k).depthTexture;
     });
+    renderer.setClearColor(clear, alpha);
     this.meshes.forEach((mesh, i) => { mesh.material = materials[i]; });
     renderer.setRenderTarget(previous);
   }
 }
 
-// The orthographic view of sun_light.cpp's draw_maps for unit direction d over `bounds`.
-function fitMap(bounds, d) {
+// The orthographic view of sun_light.cpp's draw_maps for unit direction d over `bounds`, size^2 texels.
+function fitMap(bounds, d, size) {
   const u = perpendicular(d), v = new Vector3().crossVectors(d, u);
   const { min: lo, max: hi } = bounds;
   const margin = 1e-3 * Math.max(1e-12, new Vector3().subVectors(hi, lo).length());
@@ -209,5 +193,5 @@ function fitMap(bounds, d) {
     -2 * d.x / depthRange, -2 * d.y / depthRange, -2 * d.z / depthRange, 2 * top / depthRange - 1,
     0, 0, 0, 1);
   const toUnit = new Matrix4().set(0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1);
-  return { projection, shadowMatrix: toUnit.multiply(projection), texel: 2 * half / SHADOW_MAP_SIZE, depthRange };
+  return { projection, shadowMatrix: toUnit.multiply(projection), texel: 2 * half / size, depthRange };
 }

@@ -13,16 +13,18 @@
 // Per frame on the CPU (one dot product per cluster, term and channel: K (N+1) C B^2 multiply-adds):
 // s_kj[c] = sum_i T_kj[c][i] L_c[i] + sum_i Tb_kj[c][i] D_c[i] with the rotated sky L and the discs'
 // SH D (bounce models only); in the vertex shader a vertex of cluster k with weights w gets
-// s_k0 + sum_j w_j s_kj (per texel: the fragment shader does so for the 4 texels of a bilinear lookup,
-// web/prt_lightmap.js). Textured scenes: the vertex radiance is divided by _PRT_ALBEDO per channel (0 where
-// it is 0) and the pixel multiplies by its base colour (factor x texture x COLOR_0); the discs add
-// (albedo / pi) E max(n.d, 0) V per pixel, V from an orthographic depth map per disc filtered
-// PCSS-style for the disc's size (web/prt_sun.js); with discs every channel is clamped at 0.
+// s_k0 + sum_j w_j s_kj (per texel: a GPU pass does so for every texel and builds prt's mip chain of the
+// result, web/prt_lightmap_mips.js, which the lightmap material samples trilinearly). Textured scenes:
+// the vertex radiance is divided by _PRT_ALBEDO per channel (0 where it is 0) and the pixel multiplies
+// by its base colour (factor x texture x COLOR_0); the discs add (albedo / pi) E max(n.d, 0) V per pixel,
+// V from an orthographic depth map per disc filtered PCSS-style for the disc's size (web/prt_sun.js);
+// with discs every channel is clamped at 0.
 import { DataTexture, FloatType, NearestFilter, RGBAFormat } from 'three';
 import { discCoefficients, rotateRgb, shRotation } from './sh.js';
 import { createPrtMaterial } from './prt_material.js';
 import { PrtSun } from './prt_sun.js';
 import { createLightmapMaterial, loadLightmap } from './prt_lightmap.js';
+import { LightmapRadiance } from './prt_lightmap_mips.js';
 
 const EXTENSION = 'PRT_transfer';
 
@@ -129,6 +131,7 @@ export function clusterProducts(model, sky, discs, out) {
 /// transfer by a PRT material that keeps its base colour (factor, texture, vertex colours).
 /// options.textured: apply the albedo split (docs/conventions.md "Albedo and textures"); default: when
 /// any baked mesh's material has a base colour texture (what `prt render` calls a textured mesh).
+/// options.shadowMapSize: the discs' depth maps' texels per side (default 2048, prt render's).
 export class PrtRelighting {
   constructor(gltf, options = {}) {
     const info = gltf.userData.prtTransfer;
@@ -137,10 +140,14 @@ export class PrtRelighting {
     this.meshes = [];
     gltf.scene.traverse((o) => { if (o.isMesh && (o.userData.prtTransfer || o.userData.prtLightmap)) this.meshes.push(o); });
     const textured = options.textured ?? this.meshes.some((m) => m.userData.prtTransfer && !!m.material.map);
-    this.sun = new PrtSun(gltf.scene, this.meshes);
+    this.sun = new PrtSun(gltf.scene, this.meshes, { mapSize: options.shadowMapSize });
+    this.lightmaps = [];  // LightmapRadiance of each per-texel mesh
     for (const mesh of this.meshes) {
       if (mesh.userData.prtLightmap) {
-        mesh.material = createLightmapMaterial(mesh, mesh.userData.prtLightmap, this.models[mesh.userData.prtLightmap.model], this.sun);
+        const lightmap = mesh.userData.prtLightmap, model = this.models[lightmap.model];
+        const radiance = new LightmapRadiance(lightmap, model);
+        this.lightmaps.push(radiance);
+        mesh.material = createLightmapMaterial(mesh, lightmap, model, radiance, this.sun);
         continue;
       }
       const model = this.models[mesh.userData.prtTransfer.model];
@@ -190,6 +197,7 @@ export class PrtRelighting {
       clusterProducts(model, sky, discSh, model.products.image.data);
       model.products.needsUpdate = true;
     }
+    for (const lightmap of this.lightmaps) lightmap.update(renderer);
     this.sun.setDiscs(discs);
     this.sun.update(renderer);
     this.dirty = false;

@@ -43,6 +43,9 @@ function backgroundMesh(texture) {
   return mesh;
 }
 
+// The file name a URL or path ends with (the status line names files, not the folders they came from).
+const fileName = (url) => decodeURIComponent(String(url).split(/[?#]/)[0].split('/').pop()) || String(url);
+
 export class PrtViewer {
   constructor(container, params) {
     this.params = params;
@@ -69,8 +72,8 @@ export class PrtViewer {
 
   describe() {
     const what = [];
-    if (this.relighting) what.push(`${this.bakeName}: ${this.relighting.meshes.length} meshes, ${this.relighting.models.map((m) => `${m.kind} ${m.bands} bands ${m.clusters}x${m.terms}`).join(', ')}`);
-    if (this.lighting) what.push(`${this.lightingName}: ${this.lighting.bands} bands, ${(this.lighting.discs || []).length} disc(s)`);
+    if (this.relighting) what.push(`${fileName(this.bakeName)}: ${this.relighting.meshes.length} meshes, ${this.relighting.models.map((m) => `${m.kind} ${m.bands} bands ${m.clusters}x${m.terms}`).join(', ')}`);
+    if (this.lighting) what.push(`${fileName(this.lightingName)}: ${this.lighting.bands} bands, ${(this.lighting.discs || []).length} disc(s)`);
     return what.join('\n');
   }
 

@@ -86,7 +86,7 @@ void run_shade(const ShadeCommandOptions& o) {
   if (!o.quiet && (!lighting.discs.empty() || lighting.window.window != sh::Window::none))
     std::fprintf(stderr, "prt shade: %s\n", light::describe_lighting(lighting).c_str());
   if (glb)
-    mesh::write_glb(o.output, mesh, {}, radiance);
+    mesh::write_glb(o.output, mesh, radiance);
   else
     mesh::write_ply(o.output, mesh.positions, radiance, mesh.indices);
 }

@@ -1,4 +1,4 @@
-// prt unwrap: generates lightmap UVs (src/unwrap) and writes the mesh with them as TEXCOORD_1 (.glb).
+// prt unwrap: generates lightmap UVs (src/unwrap) and writes the mesh with its materials and them as TEXCOORD_1 (.glb).
 #include <cstdio>
 #include <memory>
 
@@ -7,8 +7,8 @@
 #include "cli/output_paths.h"
 #include "core/error.h"
 #include "lightmap/texel_bake.h"
+#include "mesh/engine_gltf.h"
 #include "mesh/mesh.h"
-#include "mesh/writers.h"
 #include "unwrap/unwrap.h"
 
 namespace prt::cli {
@@ -38,8 +38,11 @@ void run_unwrap(const UnwrapCommandOptions& o) {
   unwrap::UnwrapReport report;
   mesh.lightmap_uv = unwrap::unwrap(mesh, options, &report);
   mesh.lightmap_uv_set = 1;
-  // The one place prt writes an unwrapped mesh (docs/conventions.md, "Generated lightmap UVs").
-  mesh::write_glb_lightmap_uv(o.output, mesh);
+  // The mesh as loaded with its materials, the generated UVs as TEXCOORD_1 (docs/formats.md, "Unwrapped mesh").
+  mesh::EngineExtras extras;
+  extras.lightmap_set = 1;
+  extras.as_loaded = true;
+  mesh::write_engine_glb(o.output, o.mesh_path, mesh, extras);
   if (o.quiet) return;
   std::fprintf(stderr,
                "prt unwrap: %zu triangles, %zu charts (%zu grown, %zu cut, %zu planar), %dx%d texels, padding %d, "
@@ -55,7 +58,7 @@ void add_unwrap_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("unwrap", "Generate lightmap UVs (charts, conformal maps, packing) and write the mesh as .glb with them as TEXCOORD_1");
   cmd->add_option("MESH", options->mesh_path, "Input mesh (.obj, .ply, .gltf, .glb)")->required();
   add_scene_option(cmd, options->scene);
-  cmd->add_option("-o,--output", options->output, "Output mesh (.glb): POSITION, NORMAL, TEXCOORD_1")->required();
+  cmd->add_option("-o,--output", options->output, "Output mesh (.glb): the mesh as loaded with its materials, the lightmap UVs as TEXCOORD_1")->required();
   cmd->add_option("--size", options->size, "WxH or SIZE: the lightmap the charts are packed for, in texels")->capture_default_str();
   cmd->add_option("--padding", options->padding, "Empty texels around every chart (0..64; two charts are at least twice that apart)")
       ->capture_default_str();

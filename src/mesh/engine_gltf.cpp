@@ -69,7 +69,8 @@ void write_engine_glb(const std::string& path, const std::string& source_path, c
       fail_file(path, "cannot write glTF: attribute " + a.name + " has " + std::to_string(a.values.size()) + " values for " +
                           std::to_string(mesh.vertex_count()) + " vertices");
   }
-  if (extras.extension.empty() || !extras.root || !extras.primitive) fail_file(path, "cannot write glTF: no extension given");
+  if (!extras.extension.empty() && (!extras.root || !extras.primitive))
+    fail_file(path, "cannot write glTF: extension " + extras.extension + " has no root or primitive object");
   const std::string ext = lower_extension(source_path);
   const bool gltf = (ext == ".gltf" || ext == ".glb") && !extras.as_loaded;
   if (gltf && mesh.source_primitives.empty()) fail_file(path, "cannot write glTF: the mesh does not say which glTF primitives it came from");

@@ -38,7 +38,7 @@ struct EngineExtras {
   std::vector<EngineAttribute> attributes;
   std::vector<std::vector<float>> arrays;  ///< each a SCALAR float accessor (no buffer view target)
   std::vector<GlbImage> images;            ///< appended after the source's images
-  std::string extension;                   ///< vendor extension name: in extensionsUsed, not extensionsRequired
+  std::string extension;                   ///< vendor extension name: in extensionsUsed, not extensionsRequired; empty: none (root and primitive unused)
   std::function<nlohmann::json(const EngineIndices&)> root;       ///< the document's extension object
   std::function<nlohmann::json(const EngineIndices&)> primitive;  ///< each baked primitive's extension object
   /// Per texel: the baked primitives' lightmap UVs are written as TEXCOORD_<lightmap_set> (an OBJ/PLY
@@ -60,8 +60,9 @@ struct EngineExtras {
 /// its triangle primitives get the attributes' slices and extras.primitive.
 /// OBJ/PLY source (or extras.as_loaded): one scene, one node, one mesh, one primitive per material
 /// (triangles in mesh order; a vertex per distinct (mesh vertex, UVs) in order of first use), POSITION,
-/// NORMAL, TEXCOORD_0 (the base colour UVs, else the lightmap UVs), TEXCOORD_1 (the lightmap UVs when
-/// they are others; the primitive extension's "texCoord" is then set to 1), COLOR_0 (vertex colours), materials as
+/// NORMAL, TEXCOORD_0 (the base colour UVs, else the lightmap UVs unless they are of set 1), TEXCOORD_1 (the
+/// lightmap UVs when they are of set 1, as generated ones are, or other than the base colour UVs; the primitive
+/// extension's "texCoord" is then set to 1), COLOR_0 (vertex colours), materials as
 /// pbrMetallicRoughness factors and base colour textures (PNG or JPEG files embedded; others dropped
 /// with a note on stderr).
 /// Throws prt::Error naming `path` when a primitive would have more than kMaxVertexAttributes attributes,

@@ -28,8 +28,10 @@ struct Part {
   std::vector<std::uint32_t> indices;
 };
 
-// The corner UVs of TEXCOORD_0 and TEXCOORD_1: the base colour UVs, else the lightmap UVs (OBJ and PLY
-// take both from the same "vt" / u, v); and the lightmap UVs as TEXCOORD_1 when they are others (generated).
+// The corner UVs of TEXCOORD_0 and TEXCOORD_1 (null: not written). Lightmap UVs of set 1 (generated, or
+// a glTF's TEXCOORD_1): TEXCOORD_0 the base colour UVs, TEXCOORD_1 the lightmap UVs. Otherwise TEXCOORD_0
+// the base colour UVs, else the lightmap UVs (OBJ and PLY take both from the same "vt" / u, v), and the
+// lightmap UVs as TEXCOORD_1 when they are others.
 struct CornerUvs {
   const std::vector<glm::vec2>* uv0 = nullptr;
   const std::vector<glm::vec2>* uv1 = nullptr;
@@ -37,6 +39,11 @@ struct CornerUvs {
 
 CornerUvs corner_uvs(const Mesh& mesh) {
   CornerUvs out;
+  if (mesh.has_lightmap_uv() && mesh.lightmap_uv_set == 1) {
+    if (mesh.textured()) out.uv0 = &mesh.base_color_uv;
+    out.uv1 = &mesh.lightmap_uv;
+    return out;
+  }
   out.uv0 = mesh.textured() ? &mesh.base_color_uv : &mesh.lightmap_uv;
   if (mesh.textured() && mesh.has_lightmap_uv() && mesh.lightmap_uv != mesh.base_color_uv) out.uv1 = &mesh.lightmap_uv;
   return out;
@@ -51,12 +58,12 @@ std::vector<Part> split(const Mesh& mesh) {
   for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
     const std::size_t m = mesh.materials.empty() ? 0 : mesh.triangle_material[corner / 3];
     std::uint64_t key0 = 0, key1 = 0;
-    if (!uvs.uv0->empty()) std::memcpy(&key0, &(*uvs.uv0)[corner], sizeof key0);
+    if (uvs.uv0 && !uvs.uv0->empty()) std::memcpy(&key0, &(*uvs.uv0)[corner], sizeof key0);
     if (uvs.uv1) std::memcpy(&key1, &(*uvs.uv1)[corner], sizeof key1);
     const auto found = seen[m].emplace(std::make_tuple(mesh.indices[corner], key0, key1), std::uint32_t(parts[m].source.size()));
     if (found.second) {
       parts[m].source.push_back(mesh.indices[corner]);
-      if (!uvs.uv0->empty()) parts[m].uv0.push_back((*uvs.uv0)[corner]);
+      if (uvs.uv0 && !uvs.uv0->empty()) parts[m].uv0.push_back((*uvs.uv0)[corner]);
       if (uvs.uv1) parts[m].uv1.push_back((*uvs.uv1)[corner]);
     }
     parts[m].indices.push_back(found.first->second);
@@ -134,6 +141,7 @@ json primitive(glb::Builder& glb, const Mesh& mesh, const Part& part, const Engi
   if (!colours.empty()) attributes["COLOR_0"] = glb.add_floats(&colours[0].x, colours.size(), 3, "VEC3");
   for (const EngineAttribute& a : extras.attributes) attributes[a.name] = add_attribute_gather(glb, a, part.source);
   json out = {{"attributes", attributes}, {"indices", glb.add_indices(part.indices)}, {"mode", 4}};
+  if (extras.extension.empty()) return out;
   json ext = extras.primitive(added);
   if (extras.lightmap_set >= 0) ext["texCoord"] = part.uv1.empty() ? 0 : 1;  // the set the lightmap UVs are written as
   out["extensions"][extras.extension] = ext;
@@ -166,8 +174,11 @@ std::string engine_glb_from_mesh(const std::string& path, const std::string& sou
     primitives.push_back(p);
   }
   out["meshes"] = {{{"primitives", primitives}}};
-  out["extensionsUsed"].push_back(extras.extension);
-  out["extensions"][extras.extension] = extras.root(added);
+  if (!extras.extension.empty()) {
+    out["extensionsUsed"].push_back(extras.extension);
+    out["extensions"][extras.extension] = extras.root(added);
+  }
+  if (out["extensionsUsed"].empty()) out.erase("extensionsUsed");
   out["bufferViews"] = glb.buffer_views;
   out["accessors"] = glb.accessors;
   return glb::container(path, out, glb.bin);

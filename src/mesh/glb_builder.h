@@ -1,5 +1,5 @@
 #pragma once
-// Internal to src/mesh (glb_writer.cpp, glb_textured_writer.cpp): the BIN chunk of a glTF binary with
+// Internal to src/mesh (glb_writer.cpp and the engine glTF writers): the BIN chunk of a glTF binary with
 // the buffer views and accessors that describe it, and the GLB container (layout in writers.h).
 #include <cstdint>
 #include <string>

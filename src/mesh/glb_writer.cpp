@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <set>
 #include <string>
 
 #include <glm/common.hpp>
@@ -132,23 +131,11 @@ std::string container(const std::string& path, nlohmann::json document, std::str
 
 }  // namespace glb
 
-void write_glb(const std::string& path, const Mesh& mesh, const std::vector<VertexAttribute>& extra_attributes,
-               const std::vector<glm::vec3>& colour_0) {
+void write_glb(const std::string& path, const Mesh& mesh, const std::vector<glm::vec3>& colour_0) {
   glb::check_mesh(path, mesh);
   const std::size_t n = mesh.positions.size();
   if (!colour_0.empty() && colour_0.size() != n)
     fail_file(path, "cannot write glTF: COLOR_0 length differs from vertex count");
-  std::set<std::string> names;
-  for (const VertexAttribute& attribute : extra_attributes) {
-    if (!glb::valid_semantic(attribute.name))
-      fail_file(path, "cannot write glTF: \"" + attribute.name +
-                          "\" is not an application-specific attribute name ('_' then A-Z, 0-9, '_')");
-    if (!names.insert(attribute.name).second)
-      fail_file(path, "cannot write glTF: attribute \"" + attribute.name + "\" repeated");
-    if (attribute.values.size() != n)
-      fail_file(path, "cannot write glTF: attribute " + attribute.name + " has " +
-                          std::to_string(attribute.values.size()) + " values for " + std::to_string(n) + " vertices");
-  }
 
   glb::Builder glb;
   nlohmann::json attributes = nlohmann::json::object();
@@ -159,8 +146,6 @@ void write_glb(const std::string& path, const Mesh& mesh, const std::vector<Vert
     attributes["COLOR_0"] = glb.add_floats(&display[0].x, n, 3, "VEC3");
     attributes["_PRT_RADIANCE"] = glb.add_floats(&colour_0[0].x, n, 3, "VEC3");
   }
-  for (const VertexAttribute& attribute : extra_attributes)
-    attributes[attribute.name] = glb.add_floats(&attribute.values[0].x, n, 4, "VEC4");
   const int indices = glb.add_indices(mesh.indices);
 
   const nlohmann::json document = {

@@ -168,7 +168,7 @@ class SourceWriter {
     if (baked) {
       for (const EngineAttribute& a : extras_.attributes)
         attributes[a.name] = add_attribute_slice(glb_, a, baked->first_vertex, baked->vertex_count);
-      out["extensions"][extras_.extension] = extras_.primitive(added_);
+      if (!extras_.extension.empty()) out["extensions"][extras_.extension] = extras_.primitive(added_);
     }
     check_attribute_count(path_, attributes.size(), what);
     out["attributes"] = attributes;
@@ -236,13 +236,13 @@ class SourceWriter {
 
   void finish_extensions(json* out) const {
     json root = without_extensions(doc_, kDroppedExtensions).value("extensions", json::object());
-    root[extras_.extension] = extras_.root(added_);
-    (*out)["extensions"] = root;
+    if (!extras_.extension.empty()) root[extras_.extension] = extras_.root(added_);
+    if (!root.empty()) (*out)["extensions"] = root;
     for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
       json names = json::array();
       for (const json& name : doc_.value(list, json::array()))
         if (name.is_string() && !kDroppedExtensions.count(name.get<std::string>())) names.push_back(name);
-      if (std::string(list) == "extensionsUsed") names.push_back(extras_.extension);
+      if (std::string(list) == "extensionsUsed" && !extras_.extension.empty()) names.push_back(extras_.extension);
       if (!names.empty()) (*out)[list] = names;
     }
   }

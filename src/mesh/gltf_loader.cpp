@@ -75,20 +75,16 @@ struct Loader {
         reader.bad("node " + std::to_string(node_index) + ": mesh does not exist");
       const tinygltf::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
       if (node.skin >= 0) any_skin_or_morph = true;
-      const std::string node_name = "node " + std::to_string(node_index) + (node.name.empty() ? "" : " \"" + node.name + "\"");
-      for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-        const std::size_t first = raw.positions.size();
-        add_primitive(mesh.primitives[p], world,
-                      "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p), node_name);
-        if (raw.positions.size() > first)
-          raw.source_primitives.push_back({node_index, node.mesh, int(p), std::uint32_t(first),
-                                           std::uint32_t(raw.positions.size() - first)});
-      }
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+        add_primitive(mesh.primitives[p], world, SourcePrimitive{node_index, node.mesh, int(p), 0, 0, node.name});
     }
     for (int child : node.children) visit(child, world, depth + 1);
   }
 
-  void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& what, const std::string& node_name) {
+  // Adds the triangles of `prim` (drawn by node source.node) and, when it has vertices, its entry in
+  // source_primitives, which its triangles' triangle_source refer to.
+  void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, SourcePrimitive source) {
+    const std::string what = "mesh " + std::to_string(source.mesh) + " primitive " + std::to_string(source.primitive);
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode > TINYGLTF_MODE_TRIANGLE_FAN) reader.bad(what + ": invalid mode " + std::to_string(mode));
     const auto position_it = prim.attributes.find("POSITION");
@@ -141,12 +137,14 @@ struct Loader {
     const std::vector<glm::vec2> uv = read_uv(prim, count, what);
     std::vector<glm::vec2> colour_uv;
     const std::uint32_t material = primitive_material(prim, count, what, &colour_uv);
-    const std::uint32_t part = std::uint32_t(raw.parts.size());
-    raw.parts.push_back(node_name + " " + what);
+    const std::uint32_t source_index = std::uint32_t(raw.source_primitives.size());
+    source.first_vertex = std::uint32_t(base);
+    source.vertex_count = std::uint32_t(count);
+    if (count > 0) raw.source_primitives.push_back(std::move(source));
     std::uint32_t local_triangle = 0;
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       if (mirrored) std::swap(b, c);
-      raw.triangle_source.push_back({part, local_triangle++});
+      raw.triangle_source.push_back({source_index, local_triangle++});
       raw.indices.insert(raw.indices.end(),
                          {std::uint32_t(base + a), std::uint32_t(base + b), std::uint32_t(base + c)});
       if (!uv.empty()) raw.corner_uv.insert(raw.corner_uv.end(), {uv[a], uv[b], uv[c]});

@@ -41,7 +41,6 @@ struct RawMesh {
   std::vector<glm::vec2> base_color_uv;
   std::vector<Texture> textures;
   std::vector<glm::vec3> vertex_color;
-  std::vector<std::string> parts;              ///< Mesh::parts (glTF)
   std::vector<TriangleSource> triangle_source; ///< empty, or one per triangle of `indices`
   std::size_t skipped_polygons = 0;    ///< faces of fewer than 3 vertices, counted as degenerate
   LoadReport notes_only;               ///< loader-specific notes and skipped_primitives

@@ -241,7 +241,6 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
   mesh.lightmap_uv = std::move(raw.corner_uv);
   mesh.lightmap_uv_set = raw.uv_set;
   mesh.source_primitives = std::move(raw.source_primitives);
-  mesh.parts = std::move(raw.parts);
   mesh.triangle_source = std::move(raw.triangle_source);
   result.missing_uv_reason = mesh.lightmap_uv.empty()
                                  ? (raw.missing_uv_reason.empty() ? "the file has no texture coordinates" : raw.missing_uv_reason)
@@ -263,7 +262,9 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
 std::string describe_triangle(const Mesh& mesh, std::size_t t) {
   if (t >= mesh.triangle_source.size()) return "triangle " + std::to_string(t);
   const TriangleSource& source = mesh.triangle_source[t];
-  return mesh.parts[source.part] + " triangle " + std::to_string(source.triangle);
+  const SourcePrimitive& p = mesh.source_primitives[source.primitive];
+  return "node " + std::to_string(p.node) + (p.node_name.empty() ? "" : " \"" + p.node_name + "\"") + " mesh " +
+         std::to_string(p.mesh) + " primitive " + std::to_string(p.primitive) + " triangle " + std::to_string(source.triangle);
 }
 
 Mesh load_mesh(const std::string& path, LoadReport* report, bool quiet) {

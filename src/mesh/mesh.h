@@ -109,12 +109,13 @@ inline constexpr std::uint32_t kNoMaterial = 0xffffffffu;
 struct SourcePrimitive {
   int node = 0, mesh = 0, primitive = 0;
   std::uint32_t first_vertex = 0, vertex_count = 0;
+  std::string node_name;  ///< the node's name in the file; may be empty
 };
 
 /// A triangle's origin in a glTF file (Mesh::triangle_source).
 struct TriangleSource {
-  std::uint32_t part = 0;      ///< index into Mesh::parts
-  std::uint32_t triangle = 0;  ///< triangle index within that primitive
+  std::uint32_t primitive = 0;  ///< index into Mesh::source_primitives
+  std::uint32_t triangle = 0;   ///< triangle index within that primitive
 };
 
 struct Mesh {
@@ -146,11 +147,10 @@ struct Mesh {
   /// Linear RGB vertex colour per vertex (glTF COLOR_0, PLY colours); empty when the file has none (1).
   std::vector<glm::vec3> vertex_color;
   AlbedoSource albedo_source = AlbedoSource::none;
-  /// Where each triangle came from, for messages (glTF only; empty for OBJ and PLY):
-  /// triangle_source[t] = {part, triangle}, `part` indexing `parts` (one per triangle primitive visited,
-  /// in VERTEX ORDER, e.g. "node 3 \"Gear\" mesh 2 primitive 0"), `triangle` the triangle's index among
-  /// that primitive's triangles (after strip and fan conversion, before degenerate ones are dropped).
-  std::vector<std::string> parts;
+  /// Where each triangle came from (glTF only; empty for OBJ and PLY): triangle_source[t] = {primitive,
+  /// triangle}, `primitive` indexing source_primitives, `triangle` the triangle's index among that
+  /// primitive's triangles (after strip and fan conversion, before degenerate ones are dropped).
+  /// describe_triangle names it for messages.
   std::vector<TriangleSource> triangle_source;
 
   std::size_t vertex_count() const { return positions.size(); }

@@ -48,42 +48,16 @@ struct ColourPly {
 /// colours (8-bit colours are refused: they are not radiance).
 ColourPly read_ply_colours(const std::string& path);
 
-/// An application-specific vec4 float vertex attribute for write_glb.
-struct VertexAttribute {
-  std::string name;               ///< e.g. "_PRT_T0": '_' then A-Z, 0-9, '_'
-  std::vector<glm::vec4> values;  ///< one per vertex
-};
-
 /// Writes `mesh` (positions, normals if any, indices) as a glTF 2.0 binary with the layout above, plus
-/// COLOR_0 = x / (1 + x) and _PRT_RADIANCE = x from the linear radiance `colour_0` (empty for none) and `extra_attributes`. Albedo is not written.
-/// Throws prt::Error naming `path` if an attribute's length differs from the vertex count, a name is
-/// not a valid application-specific semantic (or repeats), the mesh is empty, or writing fails.
-void write_glb(const std::string& path, const Mesh& mesh, const std::vector<VertexAttribute>& extra_attributes,
-               const std::vector<glm::vec3>& colour_0 = {});
+/// COLOR_0 = x / (1 + x) and _PRT_RADIANCE = x from the linear radiance `colour_0` (empty for none).
+/// Albedo is not written. Throws prt::Error naming `path` if `colour_0`'s length differs from the vertex
+/// count, the mesh is empty, or writing fails.
+void write_glb(const std::string& path, const Mesh& mesh, const std::vector<glm::vec3>& colour_0 = {});
 
 /// An image stored in a GLB's BIN chunk: a glTF "images" entry with a bufferView and mimeType.
 struct GlbImage {
   std::string bytes;
   std::string mime_type;  ///< e.g. "image/ktx2"
 };
-
-/// Writes `mesh` with its lightmap UVs (Mesh::lightmap_uv, one per corner) as a glTF 2.0 binary: the
-/// GLB layout above without COLOR_0 and extra attributes, except that the vertices are split by UV:
-/// one vertex per distinct (mesh vertex, corner UV) pair, in order of first use by the corners, with
-/// POSITION, NORMAL (if the mesh has normals) and TEXCOORD_0 = the lightmap UV as Mesh keeps it (glTF's
-/// convention), then the indices, then each of `images` as a buffer view and a glTF image (in order:
-/// image i is `images[i]`). The primitive gets extensions[extension_name] = `extension_json` (a JSON
-/// object, which refers to the images by index); extension_name is listed in extensionsUsed, not in
-/// extensionsRequired (an engine without it still loads the mesh). Throws prt::Error naming `path` for
-/// a mesh write_glb refuses, a mesh without lightmap UVs or with a non-finite one, an extension that is
-/// not a JSON object, or a failed write.
-void write_glb_textured(const std::string& path, const Mesh& mesh, const std::vector<GlbImage>& images,
-                        const std::string& extension_name, const std::string& extension_json);
-
-/// Writes `mesh` with its lightmap UVs as a glTF 2.0 binary for engines and for prt (`prt unwrap`):
-/// the layout of write_glb_textured (vertices split by UV, POSITION, NORMAL if any) with the UVs as
-/// TEXCOORD_1 (the set load_mesh reads as lightmap UVs first), no images, no extension, no materials.
-/// Throws prt::Error naming `path` as write_glb_textured does.
-void write_glb_lightmap_uv(const std::string& path, const Mesh& mesh);
 
 }  // namespace prt::mesh

@@ -13,6 +13,17 @@ namespace {
 
 using nlohmann::json;
 
+// _PRT_ALBEDO: per vertex the albedo baked into the transfer (shade::surface_albedo), which the discs'
+// direct light takes as `prt render` does (per vertex and per texel).
+mesh::EngineAttribute albedo_attribute(const mesh::Mesh& mesh, const compress::CompressedTransfer& model, const std::string& path) {
+  const std::size_t n = mesh.vertex_count();
+  mesh::EngineAttribute albedo{"_PRT_ALBEDO", 3, std::vector<float>(3 * n)};
+  const std::vector<glm::vec3> baked = shade::surface_albedo(mesh, model.source, path);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int c = 0; c < 3; ++c) albedo.values[3 * v + std::size_t(c)] = baked[v][c];
+  return albedo;
+}
+
 // The per-vertex attributes of `model`: the cluster index, the weights four per VEC4, the albedo.
 std::vector<mesh::EngineAttribute> transfer_attributes(const mesh::Mesh& mesh, const compress::CompressedTransfer& model,
                                                        const std::string& path) {
@@ -27,11 +38,7 @@ std::vector<mesh::EngineAttribute> transfer_attributes(const mesh::Mesh& mesh, c
       for (std::size_t j = 0; j < 4 && 4 * a + j < terms; ++j) weights.values[4 * v + j] = model.weights[v * terms + 4 * a + j];
     out.push_back(std::move(weights));
   }
-  mesh::EngineAttribute albedo{"_PRT_ALBEDO", 3, std::vector<float>(3 * n)};
-  const std::vector<glm::vec3> baked = shade::surface_albedo(mesh, model.source, path);
-  for (std::size_t v = 0; v < n; ++v)
-    for (int c = 0; c < 3; ++c) albedo.values[3 * v + std::size_t(c)] = baked[v][c];
-  out.push_back(std::move(albedo));
+  out.push_back(albedo_attribute(mesh, model, path));
   return out;
 }
 
@@ -89,6 +96,7 @@ void write_engine_gltf(const std::string& path, const std::string& source_path, 
   };
   if (h.is_texel()) {
     extras.images = texel_images(model);
+    extras.attributes = {albedo_attribute(mesh, model, path)};
     extras.lightmap_set = int(h.uv_set);
     extras.primitive = [&](const mesh::EngineIndices& added) {
       json ext = {{"model", 0}, {"texCoord", h.uv_set}, {"width", h.texel_width}, {"height", h.texel_height},

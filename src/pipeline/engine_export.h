@@ -2,7 +2,8 @@
 // The engine glTF of a bake (docs/formats.md, "The engine glTF: PRT_transfer"): the source mesh file as
 // authored with the transfer in clustered-PCA form: per vertex _PRT_CLUSTER (SCALAR float),
 // _PRT_WEIGHTS0.. (VEC4 float, the PCA weights zero-padded), _PRT_ALBEDO (VEC3, the albedo baked into the
-// vertex's transfer); per texel a KTX2 cluster texture (cluster, coverage) and weights texture array;
+// vertex's transfer, which the discs' direct light takes); per texel a KTX2 cluster texture (cluster,
+// coverage) and weights texture array, and _PRT_ALBEDO per vertex as well;
 // per model the cluster means and directions as float accessors under the root extension PRT_transfer.
 #include <string>
 

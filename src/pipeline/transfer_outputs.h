@@ -31,9 +31,4 @@ struct TransferOutputs {
 /// Throws prt::Error naming the file, or OptionError for clusters or pca out of range.
 void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData transfer, const TransferOutputs& outputs);
 
-/// Writes `path` (atomically): the mesh the texel transfer was baked for (with its lightmap UVs) and
-/// the transfer as KTX2 float16 textures under the PRT_lightmap_transfer extension (docs/formats.md,
-/// "Lightmap transfer in glTF"). Throws prt::Error naming the file or the problem.
-void write_lightmap_glb(const std::string& path, const mesh::Mesh& mesh, const transfer::TransferData& transfer);
-
 }  // namespace prt::pipeline

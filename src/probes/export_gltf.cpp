@@ -130,7 +130,7 @@ GltfDocument load_scene(const std::string& path, const std::string& out_path) {
     // OBJ, PLY: the mesh as prt loads it, through the GLB writer.
     const mesh::Mesh mesh = mesh::load_mesh(path, nullptr, true);
     AtomicFile staging(out_path + ".scene.glb");
-    mesh::write_glb(staging.temp_path(), mesh, {});
+    mesh::write_glb(staging.temp_path(), mesh);
     doc = parse_glb(read_file(staging.temp_path()), path);
     std::filesystem::remove(staging.temp_path());
   }

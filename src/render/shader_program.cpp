@@ -50,9 +50,11 @@ std::string with_defines(const std::string& text, const std::string& defines) {
          text.substr(end_of_line + 1);
 }
 
-// The source with each line `#include "<name>"` replaced by shaders/<name> (one level: included files
-// include nothing), followed by a #line directive restoring the numbering.
-std::string with_includes(const std::string& text) {
+// The source with each line `#include "<name>"` replaced by shaders/<name> (itself with its includes,
+// nested at most kMaxIncludeDepth deep: sun_light.glsl includes sun_pcss.glsl), followed by a #line
+// directive restoring the numbering.
+constexpr int kMaxIncludeDepth = 4;
+std::string with_includes(const std::string& text, int depth = 0) {
   const std::string directive = "#include \"";
   if (text.find(directive) == std::string::npos) return text;
   std::string out;
@@ -63,7 +65,9 @@ std::string with_includes(const std::string& text) {
     const std::string line = text.substr(start, end - start);
     const std::size_t close = line.rfind('"');
     if (line.compare(0, directive.size(), directive) == 0 && close > directive.size()) {
-      out += shader_source(line.substr(directive.size(), close - directive.size())).text;
+      const std::string name = line.substr(directive.size(), close - directive.size());
+      if (depth >= kMaxIncludeDepth) fail("shaders/" + name + ": includes nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
+      out += with_includes(shader_source(name).text, depth + 1);
       out += "\n#line " + std::to_string(line_number + 1) + "\n";
     } else {
       out += line + "\n";

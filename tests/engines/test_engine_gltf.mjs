@@ -4,7 +4,8 @@
 // with the same node, material and texture counts, the same meshes at the same world matrices, and every
 // primitive of the export with at most 16 vertex attributes (WebGL2's MAX_VERTEX_ATTRIBS), its
 // _PRT_CLUSTER values integers in [0, K) and its weights attributes as many as the model's terms need.
-// A per-texel export (prt bake --lightmap --gltf) carries no vertex attributes but KTX2 textures, read
+// A per-texel export (prt bake --lightmap --gltf) carries one vertex attribute, _PRT_ALBEDO (values in
+// [0, 1]: the discs' direct light's albedo), and KTX2 textures, read
 // here with ktx-parse: RGBA16F of the stated size, the cluster texture's R an integer in [0, K) and G a
 // coverage code (0, 1, 2), the weights texture an array of ceil(N / 4) layers; the validator's only
 // warnings are about the KTX2 images it does not know (it predates KHR_texture_basisu).
@@ -112,7 +113,12 @@ async function checkPair(out, source) {
                 mesh.geometry.attributes.position.count === other.geometry.attributes.position.count);
     const names = Object.keys(mesh.geometry.attributes);
     check.check(`${out}: mesh ${i} has at most 16 attributes`, names.length <= 16, names.join(' '));
-    if (texel) return;
+    const albedo = mesh.geometry.attributes._prt_albedo;
+    check.check(`${out}: mesh ${i} has _PRT_ALBEDO in [0, 1]`, !!albedo && Array.from(albedo.array).every((v) => v >= 0 && v <= 1));
+    if (texel) {
+      check.check(`${out}: mesh ${i} (per texel) has no other _PRT_ attribute`, names.filter((n) => n.startsWith('_prt_')).length === 1, names.join(' '));
+      return;
+    }
     const cluster = mesh.geometry.attributes._prt_cluster;
     check.check(`${out}: mesh ${i} has _PRT_CLUSTER`, !!cluster);
     if (cluster)
@@ -120,7 +126,6 @@ async function checkPair(out, source) {
                   Array.from(cluster.array).every((k) => Number.isInteger(k) && k >= 0 && k < model.clusters));
     const weights = names.filter((n) => n.startsWith('_prt_weights')).length;
     check.check(`${out}: mesh ${i} has ceil(N / 4) weight attributes`, weights === Math.ceil(model.terms / 4), `${weights}`);
-    check.check(`${out}: mesh ${i} has _PRT_ALBEDO`, !!mesh.geometry.attributes._prt_albedo);
   });
 }
 

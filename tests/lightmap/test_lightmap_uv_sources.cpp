@@ -13,8 +13,8 @@
 
 #include "image/image.h"
 #include "lightmap/lightmap_scenes.h"
+#include "mesh/engine_gltf.h"
 #include "mesh/mesh.h"
-#include "mesh/writers.h"
 #include "support/run_prt.h"
 #include "transfer/transfer_file.h"
 
@@ -56,6 +56,20 @@ image::Image bake_and_shade(const std::string& dir, const std::string& mesh_path
 std::string bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A user's file with the lightmap UVs of `m` as TEXCOORD_1: one node, one primitive (materials dropped, so
+// that its triangles keep the mesh's order and numbers).
+void write_user_uvs(const std::string& path, mesh::Mesh m) {
+  m.materials.clear();
+  m.triangle_material.clear();
+  m.textures.clear();
+  m.base_color_uv.clear();
+  m.lightmap_uv_set = 1;
+  mesh::EngineExtras as_loaded;
+  as_loaded.lightmap_set = 1;
+  as_loaded.as_loaded = true;
+  mesh::write_engine_glb(path, path, m, as_loaded);
 }
 
 }  // namespace
@@ -105,7 +119,7 @@ TEST_CASE("tolerant UVs: 11 zero-area triangles in 110k bake and the summary nam
     m.lightmap_uv[3 * t + 1] = m.lightmap_uv[3 * t + 2] = m.lightmap_uv[3 * t];
     collapsed.push_back(t);
   }
-  mesh::write_glb_lightmap_uv(dir + "/user.glb", m);
+  write_user_uvs(dir + "/user.glb", m);
   const test::RunResult r =
       test::run_prt("bake " + dir + "/user.glb --lightmap 512 --transfer unshadowed --no-sample-repair -o " + dir + "/user.prt");
   INFO(r.output);
@@ -115,7 +129,7 @@ TEST_CASE("tolerant UVs: 11 zero-area triangles in 110k bake and the summary nam
   // Before tolerance the same file was refused; the same UVs with far more defects still are.
   mesh::Mesh many = m;
   for (std::size_t t = 0; t < many.triangle_count(); t += 20) many.lightmap_uv[3 * t + 1] = many.lightmap_uv[3 * t + 2] = many.lightmap_uv[3 * t];
-  mesh::write_glb_lightmap_uv(dir + "/many.glb", many);
+  write_user_uvs(dir + "/many.glb", many);
   const test::RunResult refused =
       test::run_prt("bake " + dir + "/many.glb --lightmap 512 --transfer unshadowed -q -o " + dir + "/many.prt");
   CHECK(test::fails_in_one_line(refused, "collapsed to zero UV area"));
@@ -128,7 +142,7 @@ TEST_CASE("tolerant UVs: triangles with UVs far outside the unit square are skip
   REQUIRE(test::run_prt("unwrap " + lion + " -o " + dir + "/lion.glb --size 256 -q").exit_code == 0);
   mesh::Mesh m = mesh::load_mesh(dir + "/lion.glb", nullptr, true);
   for (std::size_t t : {100, 5000, 9000, 15000, 19000}) m.lightmap_uv[3 * t + 1] = glm::vec2(1e9f, -3e9f);
-  mesh::write_glb_lightmap_uv(dir + "/user.glb", m);
+  write_user_uvs(dir + "/user.glb", m);
   const test::RunResult r = test::run_prt("bake " + dir + "/user.glb --lightmap 256 --transfer interreflected --samples 16 --bounces 1 -o " +
                                           dir + "/user.prt");
   INFO(r.output);
@@ -176,10 +190,10 @@ TEST_CASE("glTF triangle sources: node and mesh and primitive and triangle of ev
   mesh::LoadReport report;
   const mesh::Mesh m = mesh::load_mesh(kEngine, &report, true);
   REQUIRE(m.triangle_source.size() == m.triangle_count());
-  CHECK(m.parts.size() > 20);
-  // Triangles of one part are consecutive and their indices increase (degenerate ones dropped between).
+  CHECK(m.source_primitives.size() > 20);
+  // Triangles of one primitive are consecutive and their indices increase (degenerate ones dropped between).
   for (std::size_t t = 1; t < m.triangle_count(); ++t)
-    if (m.triangle_source[t].part == m.triangle_source[t - 1].part) CHECK(m.triangle_source[t].triangle > m.triangle_source[t - 1].triangle);
+    if (m.triangle_source[t].primitive == m.triangle_source[t - 1].primitive) CHECK(m.triangle_source[t].triangle > m.triangle_source[t - 1].triangle);
   CHECK(mesh::describe_triangle(m, 0).rfind("node ", 0) == 0);
   CHECK(mesh::describe_triangle(m, 0).find(" mesh ") != std::string::npos);
   CHECK(mesh::describe_triangle(m, 0).find(" primitive ") != std::string::npos);

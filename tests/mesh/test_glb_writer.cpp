@@ -2,7 +2,6 @@
 // tinygltf reads every attribute back bit for bit, and load_mesh round-trips the geometry.
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include <catch2/catch.hpp>
 #include <tiny_gltf.h>
@@ -58,20 +57,6 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   mesh.positions[6] = {1.25f, 1.0f, 1.5f};  // make min/max differ per axis
   const std::size_t n = mesh.vertex_count();
 
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> uniform(-10.0f, 10.0f);
-  std::vector<VertexAttribute> extras;
-  for (int a = 0; a < 3; ++a) {
-    VertexAttribute attribute{"_PRT_T" + std::to_string(a), {}};
-    for (std::size_t i = 0; i < n; ++i)
-      attribute.values.push_back(prt::test::draw_vec4<float>(rng, uniform));
-    extras.push_back(attribute);
-  }
-  // Values that text formats would mangle: -0, denormals, huge, NaN with a payload.
-  std::uint32_t nan_bits = 0x7fc01234u;
-  float payload_nan;
-  std::memcpy(&payload_nan, &nan_bits, 4);
-  extras[0].values[0] = {-0.0f, std::numeric_limits<float>::denorm_min(), 3.0e38f, payload_nan};
   // Radiance above 1 too: COLOR_0 holds L / (1 + L) (glTF requires [0, 1]), _PRT_RADIANCE holds L.
   std::vector<glm::vec3> colours(n), displayed(n);
   for (std::size_t i = 0; i < n; ++i) colours[i] = glm::vec3(4.0f * float(i) / n, 0.5f, 1.0f - float(i) / n);
@@ -79,7 +64,7 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
     for (int c = 0; c < 3; ++c) displayed[i][c] = colours[i][c] / (1.0f + colours[i][c]);
 
   const std::string path = temp_path("baked.glb");
-  write_glb(path, mesh, extras, colours);
+  write_glb(path, mesh, colours);
   const std::string bytes = read_bytes(path);
 
   // GLB header and chunks.
@@ -106,7 +91,7 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   REQUIRE(model.meshes[0].primitives.size() == 1);
   const tinygltf::Primitive& prim = model.meshes[0].primitives[0];
   CHECK(prim.mode == TINYGLTF_MODE_TRIANGLES);
-  CHECK(prim.attributes.size() == 7);
+  CHECK(prim.attributes.size() == 4);
 
   for (const tinygltf::BufferView& view : model.bufferViews) {
     CHECK(view.byteOffset % 4 == 0);
@@ -126,8 +111,6 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   check_float_attribute("NORMAL", TINYGLTF_TYPE_VEC3, words_of(mesh.normals));
   check_float_attribute("COLOR_0", TINYGLTF_TYPE_VEC3, words_of(displayed));
   check_float_attribute("_PRT_RADIANCE", TINYGLTF_TYPE_VEC3, words_of(colours));
-  for (const VertexAttribute& attribute : extras)
-    check_float_attribute(attribute.name, TINYGLTF_TYPE_VEC4, words_of(attribute.values));
 
   // POSITION min/max: exactly the extreme float values, as the spec requires.
   const tinygltf::Accessor& position = model.accessors.at(std::size_t(prim.attributes.at("POSITION")));
@@ -152,29 +135,16 @@ TEST_CASE("write_glb writes a valid GLB that reads back bit for bit", "[mesh][gl
   CHECK_FALSE(report.normals_computed);
 }
 
-TEST_CASE("write_glb refuses bad attributes with one-line errors", "[mesh][gltf][writer]") {
+TEST_CASE("write_glb refuses an empty mesh with a one-line error", "[mesh][gltf][writer]") {
   Mesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
   mesh.indices = {0, 1, 2};
   const std::string path = temp_path("bad.glb");
-  const std::vector<glm::vec4> three(3, glm::vec4(1.0f));
-  CHECK(error_of([&] {
-          write_glb(path, mesh, {{"PRT_T0", three}});
-        }) ==
-        path +
-            ": cannot write glTF: \"PRT_T0\" is not an application-specific attribute name ('_' then A-Z, 0-9, '_')");
-  CHECK(error_of([&] { write_glb(path, mesh, {{"_prt_t0", three}}); }) != "");
-  CHECK(error_of([&] {
-          write_glb(path, mesh, {{"_PRT_T0", three}, {"_PRT_T0", three}});
-        }) == path + ": cannot write glTF: attribute \"_PRT_T0\" repeated");
-  CHECK(error_of([&] {
-          write_glb(path, mesh, {{"_PRT_T0", {glm::vec4(0.0f)}}});
-        }) == path + ": cannot write glTF: attribute _PRT_T0 has 1 values for 3 vertices");
-  CHECK(error_of([&] { write_glb(path, Mesh{}, {}); }) == path + ": cannot write glTF: the mesh is empty");
+  CHECK(error_of([&] { write_glb(path, Mesh{}); }) == path + ": cannot write glTF: the mesh is empty");
   CHECK_FALSE(std::filesystem::exists(path));
-  // No extras, no colour: still a valid file with POSITION and NORMAL only.
-  write_glb(path, mesh, {});
+  // No colour: a valid file with POSITION and NORMAL only.
+  write_glb(path, mesh);
   const Mesh back = load_mesh(path, nullptr, true);
   CHECK(back.positions == mesh.positions);
   CHECK(back.albedo.empty());

@@ -191,3 +191,21 @@ TEST_CASE("render_to_file refuses bad bands and an env background without an ima
   CHECK_THROWS_WITH(render::render_to_file(options), Catch::Contains("output folder does not exist"));
   CHECK_FALSE(fs::exists(f / "out.exr"));
 }
+
+TEST_CASE("shader includes nest (sun_light.glsl includes sun_pcss.glsl), and a loop of includes is a one-line error", "[render][gl][cli]") {
+  Fixtures f;
+  const std::string common = f / "mesh.ply" + " " + f / "transfer.prt" + " --env " + f / "env.exr";
+  // A copy of the shaders in which prt_diffuse.vert includes loop.glsl, which includes itself.
+  const fs::path looped = f.folder / "looped_shaders";
+  fs::create_directories(looped);
+  for (const auto& entry : fs::directory_iterator(fs::path(PRT_SOURCE_DIR) / "shaders"))
+    fs::copy_file(entry.path(), looped / entry.path().filename());
+  std::ofstream(looped / "loop.glsl") << "#include \"loop.glsl\"\n";
+  std::ofstream(looped / "prt_diffuse.vert", std::ios::app) << "\n#include \"loop.glsl\"\n";
+  const Run r = run_prt(f, common + " -o " + f / "out.png", "PRT_SHADER_DIR=" + looped.string());
+  INFO("stderr: " << r.err);
+  CHECK(r.status == 1);
+  CHECK(line_count(r.err) == 1);
+  CHECK(r.err.find("shaders/loop.glsl: includes nested more than 4 deep") != std::string::npos);
+  CHECK_FALSE(fs::exists(f / "out.png"));
+}
