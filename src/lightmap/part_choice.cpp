@@ -11,15 +11,19 @@ namespace prt::lightmap {
 
 namespace {
 
-// The part of each triangle (0 for a mesh without parts) and the parts' descriptions.
-std::vector<std::uint32_t> triangle_parts(const mesh::Mesh& mesh, std::vector<std::string>& parts) {
+// The part of each triangle (0 for a mesh without glTF primitives), the parts' descriptions and node names.
+std::vector<std::uint32_t> triangle_parts(const mesh::Mesh& mesh, std::vector<std::string>& parts, std::vector<std::string>& nodes) {
   std::vector<std::uint32_t> part(mesh.triangle_count(), 0);
-  if (mesh.triangle_source.size() != mesh.triangle_count() || mesh.parts.empty()) {
+  if (mesh.triangle_source.size() != mesh.triangle_count() || mesh.source_primitives.empty()) {
     parts = {"mesh"};
+    nodes = {""};
     return part;
   }
-  parts = mesh.parts;
-  for (std::size_t t = 0; t < part.size(); ++t) part[t] = mesh.triangle_source[t].part;
+  for (const mesh::SourcePrimitive& p : mesh.source_primitives) {
+    parts.push_back(mesh::describe_primitive(p));
+    nodes.push_back(p.node_name);
+  }
+  for (std::size_t t = 0; t < part.size(); ++t) part[t] = mesh.triangle_source[t].primitive;
   return part;
 }
 
@@ -45,8 +49,8 @@ std::vector<std::uint8_t> auto_texel_parts(const mesh::Mesh& mesh, const std::ve
   return texel;
 }
 
-std::vector<std::uint8_t> named_texel_parts(const std::vector<std::string>& parts, const std::string& spec,
-                                            const std::string& mesh_path) {
+std::vector<std::uint8_t> named_texel_parts(const std::vector<std::string>& parts, const std::vector<std::string>& nodes,
+                                            const std::string& spec, const std::string& mesh_path) {
   std::vector<std::uint8_t> texel(parts.size(), 0);
   auto fail_names = [&](const std::string& what) { fail_file(mesh_path, "--texel-parts: " + what); };
   if (parts.size() == 1 && parts[0] == "mesh")
@@ -58,10 +62,10 @@ std::vector<std::uint8_t> named_texel_parts(const std::vector<std::string>& part
     if (name.empty()) fail_names("empty name in '" + spec + "'");
     bool found = false;
     for (std::size_t p = 0; p < parts.size(); ++p)
-      if (part_node_name(parts[p]) == name || parts[p] == name) texel[p] = 1, found = true;
+      if (nodes[p] == name || parts[p] == name) texel[p] = 1, found = true;
     if (!found) {
       std::string known;
-      for (const std::string& p : parts) known += (known.empty() ? "" : ", ") + ("\"" + part_node_name(p) + "\"");
+      for (const std::string& node : nodes) known += (known.empty() ? "" : ", ") + ("\"" + node + "\"");
       fail_names("no part named \"" + name + "\" (node names: " + known + ")");
     }
     start = comma + 1;
@@ -73,26 +77,20 @@ std::vector<std::uint8_t> named_texel_parts(const std::vector<std::string>& part
 
 bool PartChoice::mixed() const { return std::find(vertex_triangle.begin(), vertex_triangle.end(), 1) != vertex_triangle.end(); }
 
-std::string part_node_name(const std::string& part) {
-  const std::size_t open = part.find(" \"");
-  const std::size_t close = part.rfind("\" mesh ");
-  if (part.compare(0, 5, "node ") != 0 || open == std::string::npos || close == std::string::npos || close < open + 2) return "";
-  return part.substr(open + 2, close - open - 2);
-}
-
 PartChoice choose_parts(const mesh::Mesh& mesh, const std::string& spec, int width, int height, const std::string& mesh_path) {
-  std::vector<std::string> parts;
-  const std::vector<std::uint32_t> part = triangle_parts(mesh, parts);
+  std::vector<std::string> parts, nodes;
+  const std::vector<std::uint32_t> part = triangle_parts(mesh, parts, nodes);
   std::vector<std::uint8_t> texel(parts.size(), 1);
   if (spec == "auto") texel = auto_texel_parts(mesh, part, parts.size(), width, height);
-  else if (spec != "all") texel = named_texel_parts(parts, spec, mesh_path);
+  else if (spec != "all") texel = named_texel_parts(parts, nodes, spec, mesh_path);
   if (std::find(texel.begin(), texel.end(), 1) == texel.end())
     fail_file(mesh_path, "--texel-parts " + spec + ": no part is baked per texel; bake per vertex without --lightmap");
   std::vector<double> texel_uv_area(parts.size(), 0.0);
-  for (std::size_t t = 0; t < part.size(); ++t) texel_uv_area[part[t]] += uv_area(mesh, t);
+  std::vector<std::size_t> triangles(parts.size(), 0);
+  for (std::size_t t = 0; t < part.size(); ++t) texel_uv_area[part[t]] += uv_area(mesh, t), ++triangles[part[t]];
   // `all` is a plain lightmap bake: its UV checks (uv_validation.h) name the problem in full.
   for (std::size_t p = 0; p < parts.size() && spec != "all"; ++p)
-    if (texel[p] && !(texel_uv_area[p] > 0.0))
+    if (texel[p] && triangles[p] > 0 && !(texel_uv_area[p] > 0.0))
       fail_file(mesh_path, "--texel-parts " + spec + ": part " + parts[p] +
                                " has no usable lightmap UVs (every triangle has zero UV area or UVs outside [0,1]); bake it per vertex");
   PartChoice choice;

@@ -1,7 +1,7 @@
 #pragma once
 // Which parts of a scene a lightmap bake bakes per texel and which per vertex (`prt bake --lightmap
 // SIZE --texel-parts SPEC`; docs/conventions.md "Mixed scenes"). A part is a glTF triangle primitive
-// as the loader visited it (Mesh::parts: node, mesh, primitive); an OBJ or PLY file is one part,
+// as the loader visited it (Mesh::source_primitives: node, mesh, primitive); an OBJ or PLY file is one part,
 // "mesh". SPEC:
 //   all          every part per texel (the default: a plain lightmap bake);
 //   auto         a part per texel when the lightmap gives it more texels than it has vertices (its UV
@@ -25,10 +25,6 @@ struct PartChoice {
   /// True when some triangle is baked per vertex (the bake writes a mixed pair).
   bool mixed() const;
 };
-
-/// The node name of a part description ("node 3 \"Floor\" mesh 2 primitive 0" -> "Floor"), or "" if
-/// it has none.
-std::string part_node_name(const std::string& part);
 
 /// Chooses per texel or per vertex for every part of `mesh` (which has lightmap UVs) by `spec` and the
 /// lightmap size. Throws prt::Error("<mesh_path>: --texel-parts: ...") in one line for a NAME no

@@ -33,7 +33,7 @@ std::string write_room(const std::string& dir, bool with_box = true) {
 // Per triangle of the loaded room, the name of its node.
 std::vector<std::string> triangle_nodes(const mesh::Mesh& m) {
   std::vector<std::string> out;
-  for (const mesh::TriangleSource& s : m.triangle_source) out.push_back(lightmap::part_node_name(m.parts[s.part]));
+  for (const mesh::TriangleSource& s : m.triangle_source) out.push_back(m.source_primitives[s.primitive].node_name);
   return out;
 }
 
@@ -59,8 +59,6 @@ TEST_CASE("mixed scenes: --texel-parts names pick their nodes' triangles and aut
   for (std::size_t t = 0; t < node.size(); ++t) CHECK(int(small.vertex_triangle[t]) == int(node[t] == "Box"));
   CHECK_FALSE(lightmap::choose_parts(room, "auto", 32, 32, "room.gltf").mixed());
   CHECK_FALSE(lightmap::choose_parts(room, "all", 8, 8, "room.gltf").mixed());
-  CHECK(lightmap::part_node_name("node 3 \"Gear \\\"x\\\"\" mesh 2 primitive 0") == "Gear \\\"x\\\"");
-  CHECK(lightmap::part_node_name("node 3 mesh 2 primitive 0").empty());
 }
 
 TEST_CASE("prt bake --texel-parts: a .prt pair, byte-identical for 1 and 2 threads, each file naming the other",
