@@ -49,7 +49,7 @@ set(PRT_MODULE_PACKAGES_mesh tinyobjloader TinyGLTF nlohmann_json draco meshopti
 set(PRT_MODULE_PACKAGES_unwrap Eigen3)
 set(PRT_MODULE_PACKAGES_trace embree)
 set(PRT_MODULE_PACKAGES_camera "")
-set(PRT_MODULE_PACKAGES_transfer "")
+set(PRT_MODULE_PACKAGES_transfer nlohmann_json)
 set(PRT_MODULE_PACKAGES_shade "")
 set(PRT_MODULE_PACKAGES_brdf nlohmann_json)
 set(PRT_MODULE_PACKAGES_bake nlohmann_json)

@@ -126,14 +126,15 @@ class BounceWorker {
     for (std::size_t k = 0; k < front_.size(); ++k) {
       const trace::HitResult& hit = front_[k];
       const glm::vec3 albedo = at_hits_ ? colours_[hit.prim_id].at(requests_[k]) : glm::vec3(1.0f);
-      if (ctx_.grid) {
+      if (ctx_.grid && !ctx_.grid->per_vertex(hit.prim_id)) {
         add_texel_weights(*ctx_.grid, hit.prim_id, hit.u, hit.v, albedo, weights_);
         continue;
       }
+      const std::uint32_t base = ctx_.grid ? ctx_.grid->vertex_base() : 0;  // mixed scenes: vertices after the texels
       const std::uint32_t* tri = mesh.indices.data() + 3 * static_cast<std::size_t>(hit.prim_id);
-      weights_.add(tri[0], (1.0f - hit.u - hit.v) * albedo);
-      weights_.add(tri[1], hit.u * albedo);
-      weights_.add(tri[2], hit.v * albedo);
+      weights_.add(base + tri[0], (1.0f - hit.u - hit.v) * albedo);
+      weights_.add(base + tri[1], hit.u * albedo);
+      weights_.add(base + tri[2], hit.v * albedo);
     }
   }
 

@@ -33,10 +33,18 @@ struct SamplePoints {
 /// Where a bounce pass reads the previous pass's transfer at a hit: a texel grid over the mesh's
 /// lightmap UVs, filtered bilinearly (texel centres at ((i + 0.5)/W, (j + 0.5)/H), clamped to the
 /// edge; texels of weight-0 coverage (kTexelEmpty) are left out and the other weights renormalised).
+/// Mixed scenes (lightmap/part_choice.h): hits on a triangle that `vertex_triangle` marks 1 read the
+/// previous pass per vertex instead (barycentrically, as without a grid), the block of vertex v at
+/// width x height + v, after the grid's blocks.
 struct TexelGrid {
   const std::vector<glm::vec2>* corner_uv = nullptr;     ///< mesh.lightmap_uv
   const std::vector<std::uint8_t>* coverage = nullptr;   ///< width x height, transfer::Coverage
   int width = 0, height = 0;
+  const std::vector<std::uint8_t>* vertex_triangle = nullptr;  ///< per triangle, 1: read per vertex; null: none
+  /// True if a hit on `triangle` reads the previous pass per vertex.
+  bool per_vertex(std::size_t triangle) const { return vertex_triangle && (*vertex_triangle)[triangle]; }
+  /// The first vertex block's index: width x height.
+  std::uint32_t vertex_base() const { return static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height); }
 };
 
 /// What every ray-tracing pass shares.
@@ -53,13 +61,16 @@ struct PassContext {
   const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
   const mesh::VertexFootprints* footprints = nullptr;  ///< null: rays leave from the vertices themselves
   const std::vector<double>* frame_angles = nullptr;  ///< per point: its sample frame's turn (trace::VertexRays); null: hashed
+  /// With `points` and `footprints`: points from this one on are the mesh's vertices (a mixed scene's,
+  /// trace::VertexRays::footprint_first); their rays leave from their footprints.
+  std::size_t footprint_first = static_cast<std::size_t>(-1);
 
   /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`, over this
   /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
     return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
-                             share.begin, share.end, footprints, points.geometric_normals, frame_angles};
+                             share.begin, share.end, footprints, points.geometric_normals, frame_angles, footprint_first};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
   std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }

@@ -17,9 +17,11 @@
 #include "core/memory_check.h"
 #include "core/stopwatch.h"
 #include "core/text.h"
+#include "lightmap/part_choice.h"
 #include "lightmap/texel_bake.h"
 #include "lightmap/uv_source.h"
 #include "mesh/mesh.h"
+#include "pipeline/mixed_outputs.h"
 #include "pipeline/transfer_outputs.h"
 #include "transfer/transfer_file.h"
 
@@ -51,6 +53,7 @@ struct BakeCommandOptions {
   bool denoise = false;  // --lightmap: filter the texel transfer (lightmap/denoise.h)
   bool stitch = false;   // --lightmap: stitch the seams (lightmap/seams.h)
   std::string uv = "file";  // --lightmap: file | auto | generate (lightmap/uv_source.h)
+  std::string texel_parts = "all";  // --lightmap: all | auto | NAME,NAME (lightmap/part_choice.h)
 };
 
 // Everything of the command line that changes the output (dist: every rank must bake the same job).
@@ -61,7 +64,7 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
          std::to_string(b.seed) + " footprint " + mesh::footprint_name(b.footprint) + " brdf " + (b.brdf_from_mesh ? "mesh" : b.brdf.empty() ? "" : brdf::to_spec(b.brdf)) + " float16 " +
          std::to_string(o.float16) + " compress " + o.compress + " gltf " + std::to_string(!o.gltf_output.empty()) +
          " lightmap " + o.lightmap + " gutter " + std::to_string(o.gutter) + " repair " + std::to_string(!o.no_repair) + " uv " + o.uv +
-         " denoise " + std::to_string(o.denoise) + " stitch " + std::to_string(o.stitch);
+         (o.texel_parts == "all" ? "" : " texel-parts " + o.texel_parts) + " denoise " + std::to_string(o.denoise) + " stitch " + std::to_string(o.stitch);
 }
 
 // Bytes a per-vertex bake of `vertices` needs at most: the sample set's basis (samples x bands^2
@@ -158,6 +161,25 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   print_summary(what, report, options.kind, seconds, o.output);
 }
 
+// --texel-parts: which parts are baked per texel (lightmap/part_choice.h); for a mixed scene sets
+// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair: no --gltf, no --compress,
+// the file's own UVs: only a mesh that carries generated UVs could draw the texel file, and the glTF
+// that would carry them is not written for mixed scenes yet).
+lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap,
+                                        bool uv_generated) {
+  lightmap::PartChoice parts = lightmap::choose_parts(mesh, o.texel_parts, lightmap.width, lightmap.height, o.mesh_path);
+  if (!parts.mixed()) return parts;
+  if (uv_generated)
+    fail_file(o.mesh_path, "--texel-parts: a mixed scene needs the file's own lightmap UVs (these were generated: --uv " + o.uv +
+                               "); give the texel parts TEXCOORD_1 or bake them all per texel");
+  if (!o.gltf_output.empty()) fail("--gltf: the engine glTF of a mixed scene (--texel-parts) is not supported yet; write the .prt pair");
+  if (!o.compress.empty() || lower_extension(o.output) != ".prt")
+    fail("-o " + o.output + ": a mixed scene (--texel-parts) is written as a .prt pair (no --compress, no .cprt)");
+  if (job().is_root()) check_outputs({pipeline::mixed_vertex_path(o.output)}, {o.mesh_path});
+  lightmap.vertex_triangles = parts.vertex_triangle;
+  return parts;
+}
+
 // Per texel of the mesh's lightmap UVs (src/lightmap): checks everything (options, outputs, UVs,
 // memory), bakes (split over the ranks) and writes the outputs from rank 0.
 void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, const pipeline::TransferOutputs& out) {
@@ -175,6 +197,7 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::UvSourceReport uv_source;
   lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, options.threads, &uv_source);
+  const lightmap::PartChoice parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
   if (uv_source.generated && !o.quiet && job().is_root())
     std::fprintf(stderr,
                  "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; shade and render with "
@@ -185,16 +208,22 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   lightmap::LightmapReport report;
-  transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report);
+  transfer::TransferData vertex_data;
+  transfer::TransferData data = lightmap::bake_lightmap(mesh, options, lightmap, &report, &vertex_data);
   if (!job().is_root()) return;  // only rank 0 holds the whole result
   if (!o.quiet)
     for (const std::string& line : report.uv_summary) std::fprintf(stderr, "%s: %s\n", o.mesh_path.c_str(), line.c_str());
   const transfer::Header header = data.header;
   pipeline::TransferOutputs outputs = out;
   outputs.uv_generated = uv_source.generated;  // the glTF then carries the generated UVs
-  const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
-  if (ships_compressed(o, options)) set_ship_compression(data, prior, outputs);  // K and N sized to the texels
-  pipeline::write_transfer_outputs(mesh, std::move(data), outputs);
+  if (parts.mixed()) {
+    pipeline::write_mixed_outputs(std::move(data), std::move(vertex_data), o.output, pipeline::mixed_vertex_path(o.output),
+                                  parts.vertex_triangle, parts.texel_parts, parts.vertex_parts, out.float16);
+  } else {
+    const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
+    if (ships_compressed(o, options)) set_ship_compression(data, prior, outputs);  // K and N sized to the texels
+    pipeline::write_transfer_outputs(mesh, std::move(data), outputs);
+  }
   if (o.quiet) return;
   char what[256];
   std::snprintf(what, sizeof what,
@@ -203,6 +232,9 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
                 transfer::kind_name(options.kind), lightmap.width, lightmap.height, report.covered, report.gutter,
                 report.moved, report.unrecoverable, header.bands, header.channels);
   std::string summary = what;
+  if (parts.mixed())
+    summary += ", " + std::to_string(parts.texel_parts.size()) + " part(s) per texel, " + std::to_string(parts.vertex_parts.size()) +
+               " per vertex (" + std::to_string(mesh.vertex_count()) + " vertices -> " + pipeline::mixed_vertex_path(o.output) + ")";
   char extra[128];
   if (lightmap.denoise) {
     std::snprintf(extra, sizeof extra, ", denoised in %.2f s", report.seconds_denoise);
@@ -249,6 +281,7 @@ void run_bake(const BakeCommandOptions& o) {
   if (o.denoise && o.lightmap.empty()) fail("--denoise applies to lightmap bakes only (give --lightmap SIZE)");
   if (o.stitch && o.lightmap.empty()) fail("--stitch applies to lightmap bakes only (give --lightmap SIZE)");
   if (o.lightmap.empty() && o.uv != "file") fail("--uv applies to texel bakes only (--lightmap SIZE)");
+  if (o.lightmap.empty() && o.texel_parts != "all") fail("--texel-parts applies to texel bakes only (--lightmap SIZE)");
   if (o.lightmap.empty())
     bake_vertices(o, options, out);
   else
@@ -295,6 +328,11 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--uv", options->uv,
                   "--lightmap: which lightmap UVs: file (the file's, refused beyond a few defects), auto (the file's when usable, "
                   "else generated as by prt unwrap) or generate")
+      ->capture_default_str();
+  cmd->add_option("--texel-parts", options->texel_parts,
+                  "--lightmap: which parts (glTF primitives, by node name) are baked per texel, the rest per vertex in the same "
+                  "bake: all, auto (parts the lightmap gives more texels than they have vertices) or NAME,NAME; a mixed scene "
+                  "writes -o (texels) and <stem>.vertices.prt (vertices)")
       ->capture_default_str();
   cmd->add_option("--gutter", options->gutter, "--lightmap: gutter (chart dilation) in texels, 0..64")->capture_default_str();
   cmd->add_flag("--no-sample-repair", options->no_repair,

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,7 @@
 #include "lightmap/uv_validation.h"
 #include "trace/scene.h"
 #include "trace/true_surface.h"
+#include "transfer/mixed_parts.h"
 
 namespace prt::lightmap {
 
@@ -64,9 +66,12 @@ TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, co
   LightmapReport local;
   if (!report) report = &local;
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
-  UvProblems problems = check_uvs(mesh);
+  const std::vector<std::uint8_t>* per_vertex = lightmap.vertex_triangles.empty() ? nullptr : &lightmap.vertex_triangles;
+  UvProblems problems = check_uvs(mesh, per_vertex);
   if (problems.tiling()) fail_file(lightmap.mesh_path, problems.message(mesh));
-  const std::vector<std::uint8_t> skip = problems.skipped_triangles(mesh);
+  std::vector<std::uint8_t> skip = problems.skipped_triangles(mesh);
+  if (per_vertex)
+    for (std::size_t t = 0; t < skip.size(); ++t) skip[t] |= (*per_vertex)[t];
   auto start = std::chrono::steady_clock::now();
   TexelSamples samples = rasterize(mesh, albedo, lightmap.width, lightmap.height, threads, &skip);
   report->seconds_raster = seconds_since(start);
@@ -99,6 +104,9 @@ BakedLightmap baked_lightmap(const transfer::Header& header, const std::string& 
   out.options.repair = l["sample_repair"].get<bool>();
   out.options.mesh_path = path;
   if (l.contains("seed") && l["seed"].is_number_unsigned()) out.seed = l["seed"].get<std::uint32_t>();
+  // A mixed scene's texel file: its per-vertex triangles have no texels (transfer/mixed_parts.h).
+  if (const std::optional<transfer::MixedParts> mixed = transfer::read_mixed_entry(header, path))
+    out.options.vertex_triangles = transfer::vertex_triangle_mask(*mixed, header.triangle_count, path);
   return out;
 }
 
@@ -119,20 +127,70 @@ void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, co
 
 namespace {
 
-// Per-sample blocks into the texel grid (empty texels zero), then the gutters filled.
+// Per-sample blocks into the texel grid (empty texels zero), then the gutters filled; in a mixed bake
+// the vertex points' blocks follow the grid's (TexelGrid::vertex_base), in vertex order.
 struct GridWriter {
   const TexelSamples& samples;
   const std::vector<std::uint8_t>& coverage;  // grown by grow_gutter
   const std::vector<std::vector<std::uint32_t>>& rounds;
   std::size_t stride;
+  std::size_t vertex_points = 0;  // after the texel samples in the per-point buffers
 
-  void operator()(const std::vector<float>& per_sample, std::vector<float>& grid) const {
-    grid.assign(coverage.size() * stride, 0.0f);
+  void operator()(const std::vector<float>& per_point, std::vector<float>& grid) const {
+    grid.assign((coverage.size() + vertex_points) * stride, 0.0f);
     for (std::size_t k = 0; k < samples.samples.size(); ++k)
-      std::copy_n(per_sample.begin() + std::ptrdiff_t(k * stride), stride, grid.begin() + std::ptrdiff_t(samples.samples[k].texel * stride));
+      std::copy_n(per_point.begin() + std::ptrdiff_t(k * stride), stride, grid.begin() + std::ptrdiff_t(samples.samples[k].texel * stride));
     fill_gutter(grid, stride, coverage, rounds, samples.width, samples.height);
+    std::copy_n(per_point.begin() + std::ptrdiff_t(samples.samples.size() * stride), vertex_points * stride,
+                grid.begin() + std::ptrdiff_t(coverage.size() * stride));
   }
 };
+
+// The bake's points: the texel samples, then (mixed) every mesh vertex with a zero geometric normal
+// (no true-surface rule: its rays leave from the vertex) and the vertex's albedo.
+struct BakePoints {
+  std::vector<glm::vec3> positions, normals, geometric_normals, albedo;
+};
+
+BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<glm::vec3>& vertex_albedo, bool vertices) {
+  BakePoints p;
+  for (const TexelSample& s : samples.samples) {
+    p.positions.push_back(s.position);
+    p.normals.push_back(s.normal);
+    p.geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
+    p.albedo.push_back(s.albedo);
+  }
+  if (!vertices) return p;
+  p.positions.insert(p.positions.end(), mesh.positions.begin(), mesh.positions.end());
+  p.normals.insert(p.normals.end(), mesh.normals.begin(), mesh.normals.end());
+  p.geometric_normals.resize(p.positions.size(), glm::vec3(0.0f));
+  p.albedo.insert(p.albedo.end(), vertex_albedo.begin(), vertex_albedo.end());
+  return p;
+}
+
+// Mixed: moves the vertex blocks after the texel grid (`texel_floats`) of `grid` into `vertices`.
+void split_vertex_tail(std::vector<float>& grid, std::size_t texel_floats, std::vector<float>& vertices) {
+  vertices.assign(grid.begin() + std::ptrdiff_t(texel_floats), grid.end());
+  grid.resize(texel_floats);
+}
+
+// The per-vertex file's data of a mixed bake: the header of a vertex bake and the vertex blocks split
+// off the texel grids.
+transfer::TransferData vertex_transfer(const mesh::Mesh& mesh, const bake::BakeOptions& options, transfer::TransferData& texels,
+                                       std::size_t texel_floats, int bounces_done, float ray_offset) {
+  transfer::TransferData v;
+  v.header.kind = options.kind;
+  v.header.bands = texels.header.bands;
+  v.header.channels = texels.header.channels;
+  v.header.vertex_count = mesh.vertex_count();
+  v.header.triangle_count = mesh.triangle_count();
+  v.header.mesh_fingerprint = texels.header.mesh_fingerprint;
+  v.header.bounce_only_section = texels.header.bounce_only_section;
+  v.header.parameters_json = bake::parameters_json(options, mesh, bounces_done, ray_offset);
+  split_vertex_tail(texels.values, texel_floats, v.values);
+  if (!texels.bounce_only.empty()) split_vertex_tail(texels.bounce_only, texel_floats, v.bounce_only);
+  return v;
+}
 
 std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Mesh& mesh, const LightmapOptions& l,
                                 const LightmapReport& rep, float ray_offset) {
@@ -152,7 +210,8 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
   if (l.denoise) {
     const DenoiseOptions& d = l.denoise_options;
     j["lightmap"]["denoise"] = {{"iterations", d.iterations}, {"plane_sigma", d.plane_sigma}, {"normal_power", d.normal_power},
-                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"twicing", d.twicing}, {"interleave", d.interleave}};
+                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"twicing", d.twicing},
+                                {"interleave", d.interleave && std::find(l.vertex_triangles.begin(), l.vertex_triangles.end(), 1) == l.vertex_triangles.end()}};
   }
   return j.dump();
 }
@@ -202,39 +261,45 @@ void filter_texels(const mesh::Mesh& mesh, const TexelSamples& samples, const Li
 }  // namespace
 
 transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap,
-                                     LightmapReport* report) {
+                                     LightmapReport* report, transfer::TransferData* vertex_data) {
   check_lightmap(mesh, options, lightmap);
+  const bool mixed = std::find(lightmap.vertex_triangles.begin(), lightmap.vertex_triangles.end(), 1) != lightmap.vertex_triangles.end();
+  if (mixed && !vertex_data) fail("bake_lightmap: a mixed bake needs vertex_data");
   LightmapReport local;
   LightmapReport& rep = report ? *report : local;
   rep = LightmapReport{};
-  const int channels = bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo));
+  const std::vector<glm::vec3> vertex_albedo = bake::effective_albedo(mesh, options.albedo);
+  const int channels = bake::transfer_channels(mesh, vertex_albedo);
   auto start = std::chrono::steady_clock::now();
   const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
   rep.bake.seconds_build = seconds_since(start);
-  const TexelSamples samples =
-      texel_samples(mesh, scene, bake::effective_albedo(mesh, options.albedo), lightmap, options.seed, options.threads, &rep);
-  std::vector<glm::vec3> positions, normals, geometric_normals, albedo;
-  for (const TexelSample& s : samples.samples) {
-    positions.push_back(s.position);
-    normals.push_back(s.normal);
-    geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
-    albedo.push_back(s.albedo);
-  }
+  const TexelSamples samples = texel_samples(mesh, scene, vertex_albedo, lightmap, options.seed, options.threads, &rep);
+  const BakePoints points = bake_points(mesh, samples, vertex_albedo, mixed);
+  const std::vector<glm::vec3>& normals = points.normals;
+  const std::vector<glm::vec3>& albedo = points.albedo;
   std::vector<std::uint8_t> coverage = samples.coverage;
   const auto rounds = grow_gutter(coverage, lightmap.width, lightmap.height, lightmap.gutter);
   rep.gutter = 0;
   for (const auto& round : rounds) rep.gutter += round.size();
   const std::size_t n = std::size_t(options.bands) * std::size_t(options.bands), stride = n * std::size_t(channels);
-  const GridWriter to_grid{samples, coverage, rounds, stride};
+  const GridWriter to_grid{samples, coverage, rounds, stride, mixed ? mesh.vertex_count() : 0};
 
-  const std::vector<std::uint32_t> order = trace::morton_order(positions);
+  const std::vector<std::uint32_t> order = trace::morton_order(points.positions);
   const bake::LocalSampleSet set = bake::make_local_sample_set(options.samples, options.bands, options.seed);
-  const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height};
-  bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress, {&positions, &normals, &geometric_normals}, &grid};
+  const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height, mixed ? &lightmap.vertex_triangles : nullptr};
+  bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress,
+                        {&points.positions, &points.normals, &points.geometric_normals}, &grid};
   ctx.dist = options.dist;
-  const std::vector<double> angles =
-      lightmap.denoise && lightmap.denoise_options.interleave ? interleaved_frame_angles(samples, options.seed) : std::vector<double>();
+  // Interleaved frames per texel sample; a mixed scene's points go on with its vertices, whose frames
+  // stay a vertex bake's (hashed), so a mixed bake does not interleave.
+  const std::vector<double> angles = lightmap.denoise && lightmap.denoise_options.interleave && !mixed
+                                         ? interleaved_frame_angles(samples, options.seed)
+                                         : std::vector<double>();
   if (!angles.empty()) ctx.frame_angles = &angles;
+  // Mixed: the vertices' rays leave from their footprints (--footprint), as in a vertex bake.
+  const std::unique_ptr<mesh::VertexFootprints> footprints = mixed ? mesh::footprints_for(mesh, options.footprint) : nullptr;
+  ctx.footprints = footprints.get();
+  ctx.footprint_first = samples.samples.size();
   const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();
   std::vector<float> geometric;
@@ -268,6 +333,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
     to_grid(bounce_only, data.bounce_only);
   }
   to_grid(values, data.values);
+  if (mixed) *vertex_data = vertex_transfer(mesh, options, data, coverage.size() * stride, rep.bake.bounces_done, scene.ray_offset());
   if (dist.is_root()) filter_texels(mesh, samples, lightmap, options.threads, {coverage, rounds, stride}, data, rep);  // rank 0 holds it all
   data.coverage = std::move(coverage);
   rep.bake.rays_traced = dist.sum(rep.bake.rays_traced);

@@ -41,6 +41,9 @@ struct LightmapOptions {
   DenoiseOptions denoise_options;  ///< its settings (threads: the bake's)
   bool stitch = false;        ///< stitch the seams (seams.h) after denoising and gutters
   StitchOptions stitch_options;
+  /// Mixed scenes (part_choice.h): per triangle, 1 when it is baked per vertex (no texels of its own,
+  /// its UVs not checked); empty: every triangle per texel.
+  std::vector<std::uint8_t> vertex_triangles;
 };
 
 struct LightmapReport {
@@ -74,7 +77,7 @@ TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, co
                            const LightmapOptions& lightmap, std::uint32_t seed, int threads, LightmapReport* report = nullptr);
 
 /// What recomputing a texel file's sample points needs, from its header and bake parameters: size,
-/// gutter, repair flag (LightmapOptions) and the seed. Throws prt::Error("<path>: ...") for a
+/// gutter, repair flag, a mixed scene's per-vertex triangles (LightmapOptions) and the seed. Throws prt::Error("<path>: ...") for a
 /// per-vertex file or parameters without them.
 struct BakedLightmap {
   LightmapOptions options;
@@ -88,7 +91,13 @@ BakedLightmap baked_lightmap(const transfer::Header& header, const std::string& 
 void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap);
 
 /// Bakes the texel transfer (after check_lightmap). Also throws prt::Error for UV problems.
+/// MIXED SCENES (lightmap.vertex_triangles marks some triangle): one bake over the texel samples of the
+/// texel triangles and every mesh vertex, in one scene of the whole mesh; the bounce passes read a hit
+/// on a per-vertex triangle from its vertices (barycentric), any other from the texel grid
+/// (bake/passes.h, TexelGrid). The rays of a vertex leave from its footprint (options.footprint, as in
+/// a vertex bake), with the vertex's albedo. `vertex_data` (required then) gets the per-vertex transfer of every mesh
+/// vertex (a per-vertex file's data; the texel triangles' vertices are baked as receivers too).
 transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap,
-                                     LightmapReport* report = nullptr);
+                                     LightmapReport* report = nullptr, transfer::TransferData* vertex_data = nullptr);
 
 }  // namespace prt::lightmap

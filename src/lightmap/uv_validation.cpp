@@ -73,10 +73,11 @@ std::string pairs(const mesh::Mesh& mesh, const std::vector<std::pair<std::uint3
 
 }  // namespace
 
-UvProblems check_uvs(const mesh::Mesh& mesh) {
+UvProblems check_uvs(const mesh::Mesh& mesh, const std::vector<std::uint8_t>* exclude) {
   UvProblems p;
   glm::vec2 lo(1e30f), hi(-1e30f);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (exclude && (*exclude)[t]) continue;
     const glm::vec2* uv = mesh.lightmap_uv.data() + 3 * t;
     const double area = area_of(mesh, t);
     p.total_area += area;

@@ -62,8 +62,10 @@ struct UvProblems {
 /// True if UV triangle (a, b, c) has zero area by the rule above.
 bool uv_zero_area(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c);
 
-/// The range and zero-area checks of every triangle (the mesh must have lightmap UVs).
-UvProblems check_uvs(const mesh::Mesh& mesh);
+/// The range and zero-area checks of every triangle (the mesh must have lightmap UVs). `exclude` (one
+/// per triangle, if given): triangles marked 1 are not checked and count no area (a mixed scene's
+/// per-vertex parts, part_choice.h).
+UvProblems check_uvs(const mesh::Mesh& mesh, const std::vector<std::uint8_t>* exclude = nullptr);
 
 /// check_uvs plus the overlaps and coverage of `samples` (rasterized with skipped_triangles).
 void add_raster_checks(UvProblems& problems, const TexelSamples& samples);

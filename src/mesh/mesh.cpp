@@ -259,12 +259,15 @@ Mesh finish_mesh(const std::string& path, RawMesh raw, LoadReport* report, bool 
 
 }  // namespace detail
 
+std::string describe_primitive(const SourcePrimitive& p) {
+  return "node " + std::to_string(p.node) + (p.node_name.empty() ? "" : " \"" + p.node_name + "\"") + " mesh " +
+         std::to_string(p.mesh) + " primitive " + std::to_string(p.primitive);
+}
+
 std::string describe_triangle(const Mesh& mesh, std::size_t t) {
   if (t >= mesh.triangle_source.size()) return "triangle " + std::to_string(t);
   const TriangleSource& source = mesh.triangle_source[t];
-  const SourcePrimitive& p = mesh.source_primitives[source.primitive];
-  return "node " + std::to_string(p.node) + (p.node_name.empty() ? "" : " \"" + p.node_name + "\"") + " mesh " +
-         std::to_string(p.mesh) + " primitive " + std::to_string(p.primitive) + " triangle " + std::to_string(source.triangle);
+  return describe_primitive(mesh.source_primitives[source.primitive]) + " triangle " + std::to_string(source.triangle);
 }
 
 Mesh load_mesh(const std::string& path, LoadReport* report, bool quiet) {

@@ -163,6 +163,9 @@ struct Mesh {
 /// keeps triangle sources (glTF), else "triangle 17" (the mesh's own index, as for OBJ and PLY).
 std::string describe_triangle(const Mesh& mesh, std::size_t t);
 
+/// Names a glTF primitive for messages: "node 3 \"Gear\" mesh 2 primitive 0" (no name when the node has none).
+std::string describe_primitive(const SourcePrimitive& primitive);
+
 /// Drops the albedo the file gave: albedo, materials, triangle_material, base_color_uv, textures and
 /// vertex_color become empty and albedo_source none (the caller's default applies, e.g. --albedo).
 void drop_albedo(Mesh* mesh);

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "render/headless_context.h"
+#include "render/mixed_frame.h"
 #include "render/scene_inputs.h"
 #include "sh/rotation.h"
 #include "shade/surface_albedo.h"
@@ -34,7 +35,9 @@ void check_output_extension(const std::string& path) {
 
 void render_to_file(const RenderOptions& options) {
   check_output_extension(options.output);
-  const SceneInputs scene = load_scene(options.mesh_path, {options.transfer_path}, options.scene);
+  // A mixed pair (mixed_frame.h) loads both files: the texel one first.
+  const SceneInputs scene = load_scene(options.mesh_path, mixed_transfer_paths(options.transfer_path), options.scene);
+  const std::vector<std::uint8_t> vertex_triangles = scene.transfers.size() == 2 ? mixed_vertex_triangles(scene) : std::vector<std::uint8_t>{};
   const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
   // The lighting is projected (and windowed) at the bands the frame shades: the run-time truncation.
   const int shaded_bands = used_bands(scene.transfers[0].header, options.bands);  // before any GL work
@@ -59,8 +62,12 @@ void render_to_file(const RenderOptions& options) {
   renderer.set_mesh(scene.mesh);
   const int index = add_scene_transfer(renderer, scene, 0);
   if (glossy) renderer.set_brdfs(index, *glossy);
-  if (!lighting.discs.empty() && !glossy)
-    renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[0].header, scene.transfer_paths[0]));
+  std::vector<int> indices{index};
+  for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
+    if (i > 0) indices.push_back(add_scene_transfer(renderer, scene, i));
+    if (!lighting.discs.empty() && !glossy)
+      renderer.set_surface_albedo(indices[i], shade::surface_albedo(scene.mesh, scene.transfers[i].header, scene.transfer_paths[i]));
+  }
   renderer.set_lighting(lighting.coefficients, lighting.has_image ? &lighting.equirect : nullptr);
   renderer.set_discs(lighting.discs);
 
@@ -71,8 +78,10 @@ void render_to_file(const RenderOptions& options) {
   settings.bands = options.bands;
   settings.background = background;
   const auto start = std::chrono::steady_clock::now();
-  renderer.render(settings, options.width, options.height);
-  const image::Image radiance = renderer.read_radiance();
+  if (vertex_triangles.empty()) renderer.render(settings, options.width, options.height);
+  const image::Image radiance = vertex_triangles.empty() ? renderer.read_radiance()
+                                                         : render_mixed(renderer, settings, indices[0], indices[1], vertex_triangles,
+                                                                        options.width, options.height);
   const double milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 

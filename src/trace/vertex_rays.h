@@ -87,8 +87,9 @@ struct VertexRays {
   std::size_t order_begin = 0;
   std::size_t order_end = static_cast<std::size_t>(-1);
   /// The mesh's vertex footprints: rays leave from points of each vertex's one-ring (footprint_origins)
-  /// instead of the vertex; the robust-mode choice stays the vertex's. Null, or with `positions` set:
-  /// from the points themselves.
+  /// instead of the vertex; the robust-mode choice stays the vertex's. Null: from the points
+  /// themselves. With `positions` set: only points v >= footprint_first, which are then mesh vertex
+  /// v - footprint_first (a mixed scene's vertices after its texel samples, lightmap/texel_bake.h).
   const mesh::VertexFootprints* footprints = nullptr;
   /// With `positions`: the unit geometric normal of each sample point's triangle (the true-surface
   /// rule's; a zero entry: none). Null: no rule at the sample points.
@@ -96,6 +97,8 @@ struct VertexRays {
   /// Per point (indexed like `positions`): the angle in radians that turns its sample frame about the
   /// normal, sh::turned_frame(n, angle), instead of sh::vertex_frame's hashed one. Null: hashed.
   const std::vector<double>* frame_angles = nullptr;
+  /// With `positions` and `footprints`: the first point that is a mesh vertex (see footprints).
+  std::size_t footprint_first = static_cast<std::size_t>(-1);
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
@@ -118,7 +121,8 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
   // without it ~5e-6 of vertex rays name a wrong triangle (trace/scene.h, ROBUST MODE), and a bounce
   // pass reads transfer at the hit. Occlusion takes robust mode only for contact points.
   const bool closest_robust = r.query == Query::closest_hit;
-  const bool spread = r.footprints != nullptr && r.positions == nullptr;
+  // Points with footprints: every vertex, or a mixed scene's vertices after footprint_first.
+  const std::size_t first_spread = r.footprints == nullptr ? static_cast<std::size_t>(-1) : r.positions == nullptr ? 0 : r.footprint_first;
   const int capped_samples = static_cast<int>(std::min<std::size_t>(samples, INT32_MAX));
   const std::size_t origin_count = static_cast<std::size_t>(mesh::footprint_point_count(capped_samples));
   std::atomic<std::uint64_t> rays{0};
@@ -145,8 +149,10 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
       const glm::mat3 frame = r.frame_angles ? sh::turned_frame(normals[v], (*r.frame_angles)[v]) : sh::vertex_frame(normals[v], r.seed, v);
       const SpawnPoint& spawn = spawns[k - begin];
       rules[0] = TrueSurface{};
+      const bool spread = v >= first_spread;
       if (spread) {
-        footprint_origins(*r.footprints, *r.scene, v, normals[v], r.seed, origin_count, origins, triangles);
+        footprint_origins(*r.footprints, *r.scene, static_cast<std::uint32_t>(v - first_spread), normals[v], r.seed, origin_count,
+                          origins, triangles);
         for (std::size_t o = 0; o < origin_count; ++o) rules[o] = true_surface(*r.mesh, triangles[o]);
       } else if (r.geometric_normals) {
         rules[0].geometric_normal = glm::dvec3((*r.geometric_normals)[v]);

@@ -9,12 +9,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "camera/camera.h"
 #include "image/image.h"
 #include "lightmap/lightmap_scenes.h"  // tests/lightmap
+#include "lightmap/mixed_scenes.h"
 #include "mesh/mesh.h"
 #include "support/run_prt.h"
 
@@ -42,6 +44,21 @@ double luminance_at(const image::Image& image, const mesh::Mesh& mesh, const glm
   return sum / 25.0;
 }
 
+// Runs prt; the test case stops unless it succeeds.
+void run_ok(const std::string& arguments) {
+  const test::RunResult r = test::run_prt(arguments);
+  INFO("prt " << arguments << "\n" << r.output);
+  REQUIRE(r.exit_code == 0);
+}
+
+// The sky of these tests: a bright 30-degree lobe toward kLight over a dim constant, 5 bands, as an
+// equirect image `sky` (256 wide) and `dir`/sky.json.
+void write_lobe_sky(const std::string& dir, const std::string& sky) {
+  char spec[160];
+  std::snprintf(spec, sizeof spec, "cone:%.4f,%.4f,%.4f:30:6,5.5,5+constant:0.25,0.3,0.4", kLight.x, kLight.y, kLight.z);
+  run_ok("light '" + std::string(spec) + "' --bands 5 -o " + dir + "/sky.json --preview " + sky + " --preview-width 256");
+}
+
 }  // namespace
 
 TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle floor that a per-vertex bake cannot",
@@ -50,14 +67,8 @@ TEST_CASE("prt render of a lightmap shows the box's shadow on a two-triangle flo
   const std::string scene = dir + "/scene.obj", sky = dir + "/sky.exr";
   const mesh::Mesh mesh = test::floor_and_box(true, 0.0f);
   test::write_obj_with_uv(scene, mesh);
-  char spec[160];
-  std::snprintf(spec, sizeof spec, "cone:%.4f,%.4f,%.4f:30:6,5.5,5+constant:0.25,0.3,0.4", kLight.x, kLight.y, kLight.z);
-  auto run = [](const std::string& arguments) {
-    const test::RunResult r = test::run_prt(arguments);
-    INFO("prt " << arguments << "\n" << r.output);
-    REQUIRE(r.exit_code == 0);
-  };
-  run("light '" + std::string(spec) + "' --bands 5 -o " + dir + "/sky.json --preview " + sky + " --preview-width 256");
+  const auto run = run_ok;
+  write_lobe_sky(dir, sky);
   run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 --lightmap 128x128 -q -o " + dir + "/lightmap.prt");
   run("bake " + scene + " --transfer shadowed --bands 5 --samples 256 --footprint vertex -q -o " + dir + "/vertex.prt");
   const std::string view = std::string(" --env ") + sky + " --sun none --window none --background black --camera " + kCamera +
@@ -117,4 +128,83 @@ TEST_CASE("prt render refuses a lightmap with a mesh whose lightmap UVs differ, 
   INFO(ok.output);
   CHECK(ok.exit_code == 0);
   CHECK(std::filesystem::exists(dir + "/out.png"));
+}
+
+// MIXED SCENES (prt bake --texel-parts): the floor and a back wall per texel, the box standing on the
+// floor per vertex, baked together (one bounce) and rendered together, against `prt reference --image
+// --bounces 1`, next to the all-texel and the all-vertex bake of the same scene. The floor's texels
+// must show the box's contact shadow (the same check fails on the floor of the scene without the box:
+// a floor baked without the object), and the whole frame must be about as close to the truth as the
+// all-texel bake and closer than the all-vertex one.
+TEST_CASE("prt render of a mixed bake (floor and wall per texel, box per vertex) against prt reference --image",
+          "[render][gl][lightmap][mixed][cli][slow]") {
+  const std::string dir = test::fresh_temp_dir("render_mixed");
+  const std::string scene = dir + "/room.gltf", bare = dir + "/bare.gltf", sky = dir + "/sky.exr";
+  std::vector<test::NamedPart> parts;
+  const mesh::Mesh mesh = test::room_with_box(true, parts);
+  test::write_gltf_parts(scene, mesh, parts);
+  std::vector<test::NamedPart> bare_parts;
+  test::write_gltf_parts(bare, test::room_with_box(false, bare_parts), bare_parts);
+  const auto run = run_ok;
+  write_lobe_sky(dir, sky);
+  const std::string bake = " --transfer interreflected --bounces 1 --bands 5 --samples 256 -q -o " + dir;
+  run("bake " + scene + " --lightmap 128 --texel-parts Floor,Wall" + bake + "/mixed.prt");
+  run("bake " + scene + " --lightmap 128" + bake + "/texel.prt");
+  run("bake " + scene + bake + "/vertex.prt");
+  run("bake " + bare + " --lightmap 128" + bake + "/bare.prt");
+  const std::string view = std::string(" --env ") + sky + " --sun none --window none --background black --camera " + kCamera +
+                           " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " -q -o ";
+  for (const char* name : {"mixed", "texel", "vertex"}) run("render " + scene + " " + dir + "/" + name + ".prt" + view + dir + "/" + name + ".exr");
+  run("render " + bare + " " + dir + "/bare.prt" + view + dir + "/bare.exr");
+  run("reference " + scene + " --image --env " + sky + " --band-limit 5 --bounces 1 --spp 256 --background black --camera " +
+      kCamera + " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " -q -o " + dir + "/reference.exr");
+
+  const double mixed_error = test::compare_rel_rms(dir + "/mixed.exr", dir + "/reference.exr");
+  const double texel_error = test::compare_rel_rms(dir + "/texel.exr", dir + "/reference.exr");
+  const double vertex_error = test::compare_rel_rms(dir + "/vertex.exr", dir + "/reference.exr");
+  std::printf("room with a box, 160x120, 5 bands, 1 bounce: rel_rms against prt reference --image: mixed %.4f, all-texel %.4f, "
+              "all-vertex %.4f\n", mixed_error, texel_error, vertex_error);
+
+  const glm::dvec3 away = -glm::normalize(glm::dvec3(kLight.x, 0.0, kLight.z));
+  const glm::dvec3 shadow = 0.42 * away, open = -0.75 * away;
+  auto ratio = [&](const std::string& name) {
+    const image::Image image = image::read_rgb(dir + "/" + name + ".exr");
+    return luminance_at(image, mesh, shadow) / luminance_at(image, mesh, open);
+  };
+  const double ref_ratio = ratio("reference"), mixed_ratio = ratio("mixed"), bare_ratio = ratio("bare");
+  std::printf("shadow / open floor luminance: reference %.3f, mixed %.3f, floor baked without the box %.3f\n", ref_ratio,
+              mixed_ratio, bare_ratio);
+  INFO("rel_rms mixed " << mixed_error << ", all-texel " << texel_error << ", all-vertex " << vertex_error);
+  INFO("shadow / open: reference " << ref_ratio << ", mixed " << mixed_ratio << ", without the box " << bare_ratio);
+  CHECK(ref_ratio < 0.6);
+  CHECK(std::abs(mixed_ratio - ref_ratio) < 0.1);   // the box's shadow on the floor texels
+  CHECK(std::abs(bare_ratio - ref_ratio) > 0.1);    // the same check on a floor baked without the box fails
+  CHECK(mixed_error < vertex_error);
+  CHECK(mixed_error <= 1.25 * texel_error);
+}
+
+TEST_CASE("prt render of a mixed pair: either file draws both, a missing or foreign partner is refused in one line, writing nothing",
+          "[render][gl][lightmap][mixed][cli]") {
+  const std::string dir = test::fresh_temp_dir("render_mixed_bad");
+  std::vector<test::NamedPart> parts;
+  test::write_gltf_parts(dir + "/room.gltf", test::room_with_box(true, parts), parts);
+  REQUIRE(test::run_prt("light 'constant:1,1,1' --bands 2 -o " + dir + "/white.json").exit_code == 0);
+  const std::string bake = "bake " + dir + "/room.gltf --transfer shadowed --bands 2 --samples 16 --lightmap 16 -q ";
+  run_ok(bake + "--texel-parts Floor,Wall -o " + dir + "/a.prt");
+  run_ok(bake + "--texel-parts Floor -o " + dir + "/b.prt");
+  const std::string render = "render " + dir + "/room.gltf ";
+  const std::string view = " --env " + dir + "/white.json --size 32x32 -q -o " + dir + "/out.png";
+  run_ok(render + dir + "/a.prt" + view);
+  run_ok(render + dir + "/a.vertices.prt" + view);
+  std::filesystem::remove(dir + "/out.png");
+  // b's vertex file lists other per-vertex triangles (the wall too): not a's partner.
+  std::filesystem::rename(dir + "/b.vertices.prt", dir + "/a.vertices.prt");
+  const test::RunResult foreign = test::run_prt(render + dir + "/a.prt" + view);
+  INFO(foreign.output);
+  CHECK(test::fails_in_one_line(foreign, "(not baked together)"));
+  std::filesystem::remove(dir + "/a.vertices.prt");
+  const test::RunResult missing = test::run_prt(render + dir + "/a.prt" + view);
+  INFO(missing.output);
+  CHECK(test::fails_in_one_line(missing, "a.vertices.prt"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/out.png"));
 }
