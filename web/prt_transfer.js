@@ -20,7 +20,7 @@
 // V from an orthographic depth map per disc filtered PCSS-style for the disc's size (web/prt_sun.js);
 // with discs every channel is clamped at 0.
 import { DataTexture, FloatType, NearestFilter, RGBAFormat } from 'three';
-import { discCoefficients, rotateRgb, shRotation } from './sh.js';
+import { discCoefficients, rotateRgb, shRotation, truncateBands } from './sh.js';
 import { createPrtMaterial } from './prt_material.js';
 import { PrtSun } from './prt_sun.js';
 import { createLightmapMaterial, loadLightmap } from './prt_lightmap.js';
@@ -154,6 +154,7 @@ export class PrtRelighting {
       mesh.material = createPrtMaterial(mesh, model, { textured, sun: this.sun });
     }
     this.bands = Math.max(...this.models.map((m) => m.bands));
+    this.shadingBands = 0;  // 0: all
     this.rotation = [1, 0, 0, 0, 1, 0, 0, 0, 1];
     this.lighting = null;
     this.sunEnabled = true;
@@ -177,6 +178,16 @@ export class PrtRelighting {
     this.dirty = true;
   }
 
+  /// Shades with the lighting truncated to its first `bands` whole bands (prt render's --bands N: a cheaper
+  /// tier of the same bake, sh.js truncateBands); 0: all of the transfer's bands.
+  setBands(bands) {
+    if (!(Number.isInteger(bands) && bands >= 0 && bands <= this.bands))
+      throw new Error(`PrtRelighting: ${bands} bands is out of range 0..${this.bands}`);
+    if (bands === this.shadingBands) return;
+    this.shadingBands = bands;
+    this.dirty = true;
+  }
+
   /// Turns the discs' direct and bounce light on or off.
   setSunEnabled(enabled) {
     if (this.sunEnabled === !!enabled) return;
@@ -189,10 +200,11 @@ export class PrtRelighting {
     if (!this.dirty || !this.lighting) return;
     const bands = this.bands;
     const blocks = shRotation(bands, this.rotation);
-    const sky = rotateRgb(this.lighting.coefficients, blocks);
+    const keep = this.shadingBands || bands;
+    const sky = truncateBands(rotateRgb(this.lighting.coefficients, blocks), keep);
     const discs = this.sunEnabled ? (this.lighting.discs || []).map((disc) => rotateDisc(disc, this.rotation)) : [];
-    const discSh = discs.length ? discs.map((d) => discCoefficients(bands, d.direction, d.irradiance, d.radius))
-      .reduce((sum, c) => sum.map((v, i) => v + c[i])) : null;
+    const discSh = discs.length ? truncateBands(discs.map((d) => discCoefficients(bands, d.direction, d.irradiance, d.radius))
+      .reduce((sum, c) => sum.map((v, i) => v + c[i])), keep) : null;
     for (const model of this.models) {
       clusterProducts(model, sky, discSh, model.products.image.data);
       model.products.needsUpdate = true;

@@ -61,6 +61,7 @@ export class PrtViewer {
                    distance: camera[2] === undefined || camera[0] === 'auto' || camera[2] === 'auto' ? 'auto' : Number(camera[2]) };
     this.lightAngles = params.get('rotate') ? numbers(params.get('rotate'), 3, 'rotate') : [0, 0, 0];
     this.sunEnabled = params.get('sun') !== 'off';
+    this.shadingBands = Number(params.get('bands') || 0);  // prt view's --bands N (0: all)
     this.extraDisc = params.get('disc') ? numbers(params.get('disc'), 7, 'disc') : null;
     this.background = params.get('background') || 'env';
     this.setDisplay(Number(params.get('exposure') || 0), params.get('tonemap') || 'aces');
@@ -85,6 +86,7 @@ export class PrtViewer {
     this.gltf = gltf;
     this.bakeName = name;
     this.relighting = new PrtRelighting(gltf);
+    this.relighting.setBands(Math.min(this.shadingBands, this.relighting.bands));
     this.scene.add(gltf.scene);
     this.bounds = worldBounds(this.relighting.meshes);
     this.applyLighting();

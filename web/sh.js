@@ -221,6 +221,17 @@ export function rotateRgb(coefficients, blocks) {
   return out;
 }
 
+/// The run-time band truncation of docs/conventions.md ("Run-time band truncation", prt's `--bands N`):
+/// RGB coefficients (coefficient-major, n^2 triples) with every coefficient of band l >= `keep` set to 0
+/// and bands 0..keep-1 kept as they are; returns a new Float64Array of the same length. keep in
+/// 1..bands of the coefficients (a larger one keeps all).
+export function truncateBands(coefficients, keep) {
+  if (!(Number.isInteger(keep) && keep >= 1)) throw new Error(`truncateBands: ${keep} bands is not a whole number >= 1`);
+  const out = Float64Array.from(coefficients);
+  out.fill(0, Math.min(out.length, 3 * keep * keep));
+  return out;
+}
+
 /// RGB coefficients from a `prt light` JSON object (already parsed): checks basis, index and frame
 /// strings and the count; returns { bands, coefficients: Float64Array(3 n^2), discs }.
 export function fromLightFile(json) {

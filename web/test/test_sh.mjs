@@ -4,7 +4,9 @@
 //     within 1e-4 of c0 (the red/green/blue c0 of the map; every coefficient, every channel), for two
 //     real HDRIs (assets/env, CC0) as float EXR and half-float EXR, and for an RGBE .hdr written here
 //     (flat scanlines, a smooth sky with a bright spot, exponents spread over 2^-3 .. 2^4);
-//  2. rotation: sh.js's rotation of that projection by R(yaw, pitch, roll) equals
+//  2. run-time band truncation: sh.js's truncateBands of the 5-band projection to 3 bands equals
+//     `prt light --bands 3` (zero beyond) within 1e-4 of c0;
+//  3. rotation: sh.js's rotation of that projection by R(yaw, pitch, roll) equals
 //     `prt light --rotate YAW,PITCH,ROLL` (prt rotates with the Ivanic-Ruedenberg recursion in C++; sh.js
 //     integrates Y_i(d) Y_j(R^T d) by quadrature: no shared code) within 1e-4 of c0.
 // Usage: node web/test/test_sh.mjs --prt <prt binary> --env <a.exr,b.exr> [--work DIR]
@@ -16,7 +18,7 @@ import { FloatType, HalfFloatType } from 'three';
 import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
 import { RGBELoader } from 'three/examples/jsm/loaders/RGBELoader.js';
 import { argument, run } from '../../tests/engines/common.mjs';
-import { projectEquirect, rotateRgb, rotationFromYawPitchRoll, shRotation } from '../sh.js';
+import { projectEquirect, rotateRgb, rotationFromYawPitchRoll, shRotation, truncateBands } from '../sh.js';
 
 // three's FileLoader reports progress with the DOM's ProgressEvent, which node lacks.
 globalThis.ProgressEvent ??= class extends Event { constructor(type, init) { super(type); Object.assign(this, init); } };
@@ -49,9 +51,9 @@ function writeRgbe(path, width, height) {
   writeFileSync(path, Buffer.concat([header, pixels]));
 }
 
-function prtLight(path, extra) {
-  const out = join(work, `${basename(path)}${extra.join('_').replace(/[^a-z0-9_]/gi, '')}.json`);
-  run(prt, ['light', path, '--bands', String(bands), '--sun', 'none', '--window', 'none', ...extra, '-o', out]);
+function prtLight(path, extra, lightBands = bands) {
+  const out = join(work, `${basename(path)}${extra.join('_').replace(/[^a-z0-9_]/gi, '')}_${lightBands}.json`);
+  run(prt, ['light', path, '--bands', String(lightBands), '--sun', 'none', '--window', 'none', ...extra, '-o', out]);
   return Float64Array.from(JSON.parse(readFileSync(out, 'utf8')).coefficients.flat());
 }
 
@@ -122,6 +124,11 @@ for (const [index, path] of argument('env').split(',').entries()) {
     // (The DWAB files hold half floats, so three's HalfFloatType gives the same values.)
     compare(`projection of ${name}`, projected, prtLight(lossless, []));
     if (type === HalfFloatType || index > 0) continue;
+    // Run-time band truncation (PrtRelighting.setBands): the 5-band projection cut to 3 bands is prt's own
+    // 3-band projection, zero beyond (coefficients 9..24); a rule that dropped band 2 too, or kept band 3, fails.
+    const three = prtLight(lossless, [], 3);
+    compare(`truncation of ${name} to 3 bands`, truncateBands(projected, 3),
+            Float64Array.from({ length: 3 * bands * bands }, (_, i) => (i < three.length ? three[i] : 0)));
     for (const [y, p, r] of rotations) {
       const rotated = rotateRgb(projected, shRotation(bands, rotationFromYawPitchRoll(y, p, r)));
       compare(`rotation ${y},${p},${r} of ${name}`, rotated, prtLight(lossless, ['--rotate', `${y},${p},${r}`]));
