@@ -3,7 +3,9 @@
 // one indexed draw: render/base_colour.h) against the same transfer drawn without it (the untextured
 // path), on the same mesh, camera and bands, alternating frame by frame. Headless (EGL); on llvmpipe the
 // times are a CPU rasteriser's, so the figure to read is the textured / untextured ratio of the same
-// run: of the best frames (the least disturbed by other load) and of the medians.
+// run: of the best frames (the least disturbed by other load) and of the medians. Texture sizes 1x1 and
+// 64x64 (always in cache) give the fixed cost of one filtered lookup per pixel on this device; 256^2 and
+// 1024^2 add what cache misses cost.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -111,7 +113,7 @@ int main(int argc, char** argv) {
   render::HeadlessContext context;
   std::printf("bench_render_texture: %s; frames %dx%d, 5 bands RGB\n", context.description().c_str(), kFrameSize, kFrameSize);
   render::Renderer renderer;
-  for (int size : {256, 1024}) {
+  for (int size : {1, 64, 256, 1024}) {
     const std::string name = "frame_textured_vs_untextured/texture:" + std::to_string(size);
     benchmark::RegisterBenchmark(name.c_str(), [&renderer, size](benchmark::State& state) {
       frame_textured_vs_untextured(state, renderer, size);
