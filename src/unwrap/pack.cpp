@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "unwrap/footprint.h"
 
 namespace prt::unwrap {
 
@@ -113,8 +114,8 @@ bool place(std::vector<Rect>& rects, const std::vector<std::uint32_t>& order, in
   return true;
 }
 
-bool try_scale(const std::vector<glm::dvec2>& extents, double scale, const PackOptions& o, std::vector<Rect>& rects) {
-  rects = rectangles(extents, scale, o.padding);
+// The order both packers place charts in: padded height, then width (both descending), then chart order.
+std::vector<std::uint32_t> placement_order(const std::vector<Rect>& rects) {
   std::vector<std::uint32_t> order(rects.size());
   std::iota(order.begin(), order.end(), 0u);
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
@@ -122,7 +123,127 @@ bool try_scale(const std::vector<glm::dvec2>& extents, double scale, const PackO
     if (rects[a].w != rects[b].w) return rects[a].w > rects[b].w;
     return a < b;
   });
-  return place(rects, order, o.width, o.height);
+  return order;
+}
+
+bool try_scale(const std::vector<glm::dvec2>& extents, double scale, const PackOptions& o, std::vector<Rect>& rects) {
+  rects = rectangles(extents, scale, o.padding);
+  return place(rects, placement_order(rects), o.width, o.height);
+}
+
+// Where a chart goes: the lower corner of its padded box, and whether it is turned half a turn.
+struct Placement {
+  int x = 0, y = -1;
+  bool turned = false;
+};
+
+// A corner of an oriented chart (extent `extent`) at `scale` texels per unit, turned half a turn about
+// its box when `turned`, relative to the lower corner of its padded box.
+glm::dvec2 box_corner(const glm::dvec2& p, const glm::dvec2& extent, double scale, bool turned, int padding) {
+  const glm::dvec2 q = turned ? extent - p : p;
+  return q * scale + glm::dvec2(padding + kMargin);
+}
+
+ColumnProfile chart_profile(const FlatChart& chart, const glm::dvec2& extent, double scale, bool turned, int padding) {
+  std::vector<glm::dvec2> corners(chart.corner_uv.size());
+  for (std::size_t i = 0; i < corners.size(); ++i) corners[i] = box_corner(chart.corner_uv[i], extent, scale, turned, padding);
+  return column_profile(corners, extent * scale + glm::dvec2(2.0 * kMargin), padding);
+}
+
+// Where `p` rests on the skyline `sky` within `height` rows: the lowest position, then the one that
+// leaves the least area between the skyline and p's bottom profile (`*gap`, texels), then the
+// leftmost; y = -1 when it fits nowhere.
+Placement resting_place(const std::vector<int>& sky, const ColumnProfile& p, int height, long long* gap) {
+  Placement best;
+  long long best_gap = 0;
+  int reach = 0;          // the highest top of p's columns
+  long long columns = 0;  // p's non-empty columns
+  for (int c = 0; c < p.width; ++c) {
+    reach = std::max(reach, p.top[std::size_t(c)]);
+    columns += p.bottom[std::size_t(c)] < p.top[std::size_t(c)];
+  }
+  for (int x = 0; x + p.width <= int(sky.size()); ++x) {
+    int y = 0;
+    long long under = 0;  // sum over columns of bottom - sky: the gap is under + columns * y
+    for (int c = 0; c < p.width; ++c)
+      if (p.bottom[std::size_t(c)] < p.top[std::size_t(c)]) {
+        const int s = sky[std::size_t(x + c)];
+        y = std::max(y, s - p.bottom[std::size_t(c)]);
+        under += p.bottom[std::size_t(c)] - s;
+      }
+    const long long g = under + columns * y;
+    if (y + reach <= height && (best.y < 0 || y < best.y || (y == best.y && g < best_gap))) best = {x, y, false}, best_gap = g;
+  }
+  *gap = best_gap;
+  return best;
+}
+
+// The profile packer at `scale`: each chart in placement order, in whichever of its two turns rests
+// lower (then with less gap under it; unturned on ties), on the skyline of the charts before it. False when some
+// chart fits nowhere.
+bool place_profiles(const std::vector<FlatChart>& charts, const std::vector<glm::dvec2>& extents, double scale,
+                    const PackOptions& o, std::vector<Placement>& placements) {
+  const std::vector<Rect> rects = rectangles(extents, scale, o.padding);
+  std::vector<int> sky(std::size_t(o.width), 0);
+  placements.assign(charts.size(), Placement{});
+  for (std::uint32_t i : placement_order(rects)) {
+    if (rects[i].w > o.width || rects[i].h > o.height) return false;
+    Placement best;
+    long long best_gap = 0;
+    ColumnProfile chosen;
+    for (bool turned : {false, true}) {
+      ColumnProfile p = chart_profile(charts[i], extents[i], scale, turned, o.padding);
+      long long gap = 0;
+      Placement at = resting_place(sky, p, o.height, &gap);
+      at.turned = turned;
+      if (at.y >= 0 && (best.y < 0 || at.y < best.y || (at.y == best.y && gap < best_gap)))
+        best = at, best_gap = gap, chosen = std::move(p);
+    }
+    if (best.y < 0) return false;
+    for (int c = 0; c < chosen.width; ++c)
+      if (chosen.bottom[std::size_t(c)] < chosen.top[std::size_t(c)])
+        sky[std::size_t(best.x + c)] = std::max(sky[std::size_t(best.x + c)], best.y + chosen.top[std::size_t(c)]);
+    placements[i] = best;
+  }
+  return true;
+}
+
+// The largest scale, up to twice `feasible` (a scale the rectangle packer fits), at which the profile
+// packer fits (bisection, 7 steps in log scale), with its placements; 0 when it does not fit even at
+// `feasible`.
+double profile_scale(const std::vector<FlatChart>& charts, const std::vector<glm::dvec2>& extents, double feasible,
+                     const PackOptions& o, std::vector<Placement>& placements) {
+  double lo = feasible, hi = 2.0 * feasible;
+  if (!place_profiles(charts, extents, lo, o, placements)) return 0.0;
+  if (place_profiles(charts, extents, hi, o, placements)) return hi;
+  for (int step = 0; step < 7; ++step) {
+    const double mid = std::sqrt(lo * hi);
+    if (place_profiles(charts, extents, mid, o, placements)) lo = mid;
+    else hi = mid;
+  }
+  place_profiles(charts, extents, lo, o, placements);
+  return lo;
+}
+
+// The largest scale (bisection, 24 steps in log scale) at which the rectangle packer fits, with its
+// rectangles. Throws prt::Error when even the smallest does not fit.
+double rectangle_scale(const std::vector<glm::dvec2>& extents, const PackOptions& o, std::vector<Rect>& rects) {
+  double area = 0.0;
+  for (const glm::dvec2& e : extents) area += e.x * e.y;
+  const double top = area > 0.0 ? std::sqrt(double(o.width) * double(o.height) / area) : 1.0;
+  double lo = top * 1e-4, hi = top;
+  if (!try_scale(extents, lo, o, rects))
+    fail(std::to_string(extents.size()) + " charts do not fit a " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+         " lightmap with padding " + std::to_string(o.padding) + " (each needs at least " + std::to_string(1 + 2 * o.padding) +
+         " texels square); use a larger lightmap or a smaller padding");
+  if (try_scale(extents, hi, o, rects)) return hi;
+  for (int step = 0; step < 24; ++step) {
+    const double mid = std::sqrt(lo * hi);
+    if (try_scale(extents, mid, o, rects)) lo = mid;
+    else hi = mid;
+  }
+  try_scale(extents, lo, o, rects);
+  return lo;
 }
 
 }  // namespace
@@ -132,35 +253,21 @@ PackResult pack_charts(std::vector<FlatChart>& charts, const PackOptions& o, std
     fail_option("size", " " + std::to_string(o.width) + "x" + std::to_string(o.height) + ": each side must be 1..16384 texels");
   if (o.padding < 0 || o.padding > 64) fail_option("padding", " " + std::to_string(o.padding) + " is out of range 0..64");
   std::vector<glm::dvec2> extents(charts.size());
-  double area = 0.0;
-  for (std::size_t i = 0; i < charts.size(); ++i) {
-    extents[i] = orient_chart(charts[i]);
-    area += extents[i].x * extents[i].y;
-  }
-  const double top = area > 0.0 ? std::sqrt(double(o.width) * double(o.height) / area) : 1.0;
+  for (std::size_t i = 0; i < charts.size(); ++i) extents[i] = orient_chart(charts[i]);
   std::vector<Rect> rects;
-  double lo = top * 1e-4, hi = top;
-  if (!try_scale(extents, lo, o, rects))
-    fail(std::to_string(charts.size()) + " charts do not fit a " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-         " lightmap with padding " + std::to_string(o.padding) + " (each needs at least " + std::to_string(1 + 2 * o.padding) +
-         " texels square); use a larger lightmap or a smaller padding");
-  if (try_scale(extents, hi, o, rects)) {
-    lo = hi;
-  } else {
-    for (int step = 0; step < 24; ++step) {
-      const double mid = std::sqrt(lo * hi);
-      if (try_scale(extents, mid, o, rects)) lo = mid;
-      else hi = mid;
-    }
-    try_scale(extents, lo, o, rects);
-  }
+  const double rect_scale = rectangle_scale(extents, o, rects);
+  std::vector<Placement> placements;
+  const double scale = profile_scale(charts, extents, rect_scale, o, placements);
+  if (scale == 0.0)  // the rectangles' layout, which fits
+    for (std::size_t i = 0; i < charts.size(); ++i) placements[i] = {rects[i].x, rects[i].y, false};
   PackResult result;
-  result.texels_per_unit = lo;
+  result.texels_per_unit = scale == 0.0 ? rect_scale : scale;
   double uv_area = 0.0;
   for (std::size_t i = 0; i < charts.size(); ++i) {
-    const glm::dvec2 offset(rects[i].x + o.padding + kMargin, rects[i].y + o.padding + kMargin);
+    const Placement& at = placements[i];
     FlatChart& chart = charts[i];
-    for (glm::dvec2& p : chart.corner_uv) p = p * lo + offset;
+    for (glm::dvec2& p : chart.corner_uv)
+      p = box_corner(p, extents[i], result.texels_per_unit, at.turned, o.padding) + glm::dvec2(at.x, at.y);
     for (std::size_t j = 0; j < chart.triangles.size(); ++j) {
       for (std::size_t k = 0; k < 3; ++k) {
         const glm::dvec2 p = chart.corner_uv[3 * j + k];

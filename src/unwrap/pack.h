@@ -3,14 +3,19 @@
 // UVs"):
 //   ORIENTATION: each chart is turned so that its smallest-area bounding rectangle (over the edges of
 //     its convex hull) is axis-aligned, its longer side horizontal;
-//   RECTANGLES: at a scale of s texels per world unit, a chart of extent (ex, ey) takes
-//     ceil(ex s + 2 kMargin) x ceil(ey s + 2 kMargin) texels for its own texels plus `padding` texels on
-//     each side; its UVs start kMargin texels inside its own texels, so every texel it touches lies in
-//     them (float rounding of the UVs stays far below kMargin);
-//   PLACEMENT: rectangles sorted by height, then width (both descending), then chart order, each
-//     placed where it rests lowest on the skyline of those before it (leftmost on ties);
-//   SCALE: the largest s (bisection, 24 steps in log s) at which every rectangle fits. One s for all
-//     charts: the texel density is the same everywhere (LSCM's own area distortion aside).
+//   PLACEMENT: charts sorted by the height, then the width of their padded rectangles (both
+//     descending), then chart order. Each chart's padded footprint (footprint.h: the texels it
+//     touches grown by `padding`) is held as column profiles, in two turns (as oriented, and half a
+//     turn); it rests on the skyline of the charts before it at the lowest position, then the one with
+//     the least gap under it, then the leftmost, in whichever turn rests lower. Profiles nest where
+//     rectangles cannot (a triangle's slope against its neighbour's); holes under a chart's overhang
+//     are not reused;
+//   SCALE: s, texels per world unit, one for all charts (the texel density is the same everywhere,
+//     LSCM's own area distortion aside): the largest at which rectangles of ceil(ex s + 2 kMargin) x
+//     ceil(ey s + 2 kMargin) texels plus `padding` on each side fit the same skyline (bisection, 24
+//     steps in log s), then the largest up to twice that at which the profiles fit (7 more steps); the
+//     rectangles' layout when the profiles do not fit at the rectangles' scale.
+//   A chart's UVs start kMargin texels inside its padded box's inner part, at an integer texel offset.
 // So two charts' touched texels are at least 2 * padding texels apart (and `padding` from the image
 // border). Deterministic and single-threaded.
 #include <cstdint>
