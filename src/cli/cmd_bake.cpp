@@ -112,6 +112,8 @@ void set_ship_compression(const transfer::TransferData& data, const sh::RgbCoeff
   }
   out.clusters = ship.clusters;
   out.pca = ship.pca;
+  out.fit_points = ship.fit_points;
+  out.rounds = ship.rounds;
   out.metric_sky = &prior;
 }
 

@@ -291,26 +291,63 @@ void validate_cpca_options(std::size_t count, std::size_t dimension, const CpcaO
     fail_file_option(what, "pca", " " + std::to_string(o.pca) + " must be between 1 and the dimension of the transfer (" +
                                       std::to_string(dimension) + " values per point)");
   if (o.iterations < 1) fail_file_option(what, "iterations", " " + std::to_string(o.iterations) + " must be at least 1");
+  if (o.fit_points > 0 && o.fit_points < count && static_cast<std::size_t>(o.clusters) > o.fit_points)
+    fail_file_option(what, "clusters", " " + std::to_string(o.clusters) + " must not exceed the points fitted (" +
+                                           std::to_string(o.fit_points) + ")");
 }
 
-CpcaResult cpca(const float* x, std::size_t P, std::size_t D, const CpcaOptions& o, const std::string& what) {
-  validate_cpca_options(P, D, o, what);
-  ScopedFlushDenormals flush;
-  Model m = seed_model(x, P, D, o);
+namespace {
+
+// Steps 1-5 on P points: the rounds; returns the clusters of the points.
+std::vector<std::uint32_t> fit_rounds(const float* x, std::size_t P, const CpcaOptions& o, Model& m, std::vector<double>& history) {
   std::vector<std::uint32_t> cluster;
   std::vector<double> error;
-  CpcaResult r;
   for (int round = 0; round < o.iterations; ++round) {
     assign(x, P, m, o.threads, cluster, error);
     fill_empty_clusters(x, P, m, cluster, error);
     refit(x, cluster, o.seed, round, o.threads, m);
     const double e = total_error(x, P, m, cluster, o.threads, nullptr);
-    const bool stalled = !r.error_history.empty() && r.error_history.back() - e <= kStopFraction * r.error_history.back();
-    r.error_history.push_back(e);
+    const bool stalled = !history.empty() && history.back() - e <= kStopFraction * history.back();
+    history.push_back(e);
     if (e == 0.0 || stalled) break;
   }
+  return cluster;
+}
+
+// The points floor(i P / S), i = 0 .. S - 1, copied point-major.
+std::vector<float> strided_subset(const float* x, std::size_t P, std::size_t D, std::size_t S) {
+  std::vector<float> subset(S * D);
+  for (std::size_t i = 0; i < S; ++i) {
+    const std::size_t p = static_cast<std::size_t>((static_cast<unsigned __int128>(i) * P) / S);
+    std::copy(x + p * D, x + (p + 1) * D, subset.begin() + static_cast<std::ptrdiff_t>(i * D));
+  }
+  return subset;
+}
+
+}  // namespace
+
+CpcaResult cpca(const float* x, std::size_t P, std::size_t D, const CpcaOptions& o, const std::string& what) {
+  validate_cpca_options(P, D, o, what);
+  ScopedFlushDenormals flush;
+  CpcaResult r;
+  const bool subset = o.fit_points > 0 && P > o.fit_points;
+  Model m;
+  std::vector<std::uint32_t> cluster;
+  if (subset) {
+    const std::vector<float> points = strided_subset(x, P, D, o.fit_points);
+    m = seed_model(points.data(), o.fit_points, D, o);
+    fit_rounds(points.data(), o.fit_points, o, m, r.error_history);
+    std::vector<double> error;  // every point: assign, fill, refit on all members, assign again
+    assign(x, P, m, o.threads, cluster, error);
+    fill_empty_clusters(x, P, m, cluster, error);
+    refit(x, cluster, o.seed, static_cast<int>(r.error_history.size()), o.threads, m);
+    assign(x, P, m, o.threads, cluster, error);
+  } else {
+    m = seed_model(x, P, D, o);
+    cluster = fit_rounds(x, P, o, m, r.error_history);
+  }
   std::vector<double> weights(P * static_cast<std::size_t>(o.pca));
-  total_error(x, P, m, cluster, o.threads, &weights);
+  r.error = total_error(x, P, m, cluster, o.threads, &weights);
   r.dimension = D;
   r.count = P;
   r.clusters = o.clusters;

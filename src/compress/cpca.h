@@ -17,6 +17,11 @@
 //      from the previous directions; the previous directions are kept if they capture more variance);
 //   5. repeat 2-4 until the total squared residual falls by less than 1e-4 of itself, or `iterations`.
 // Every step cannot increase the total squared residual, so error_history is non-increasing.
+// FITTING ON A SUBSET (fit_points = S > 0 and P > S): steps 1-5 run on the S points floor(i P / S), i =
+// 0..S-1 (evenly strided through the point order, so spread over the mesh or lightmap); then every
+// point is assigned (2), empty clusters filled (3), every cluster refitted on all its members (4) and
+// every point assigned again, its current cluster winning ties. The rounds then cost S / P of theirs;
+// the model sees every point once in the last refit.
 //
 // Deterministic: work is split into fixed chunks of points or single clusters and every sum runs in a
 // fixed order, so the result is byte-identical for any thread count.
@@ -33,6 +38,7 @@ struct CpcaOptions {
   int iterations = 20;     ///< I >= 1: most assignment/refit rounds
   std::uint64_t seed = 1;  ///< seeds the k-means++ choice and the subspace-iteration start vectors
   int threads = 0;         ///< 0 = all cores; the result does not depend on it
+  std::size_t fit_points = 0;  ///< S: > 0 and below the point count: the rounds fit this many points (above); 0: all
 };
 
 struct CpcaResult {
@@ -44,10 +50,13 @@ struct CpcaResult {
   std::vector<float> bases;             ///< K x N x D: b_kn at (k * N + n) * D, orthonormal per cluster
   std::vector<std::uint32_t> cluster;   ///< P: the cluster of each point
   std::vector<float> weights;           ///< P x N: w_pn at p * N + n
-  std::vector<double> error_history;    ///< total squared residual after each round (double model), non-increasing
+  std::vector<double> error_history;    ///< total squared residual after each round (double model) over the points the
+                                        ///< rounds fit (the subset when fit_points applies), non-increasing
+  double error = 0.0;                   ///< total squared residual of every point in the returned model
 };
 
-/// Throws prt::Error("<what>: ...") unless 1 <= K <= count, 1 <= N <= dimension and iterations >= 1.
+/// Throws prt::Error("<what>: ...") unless 1 <= K <= count, 1 <= N <= dimension and iterations >= 1
+/// (and K <= fit_points when the subset applies).
 void validate_cpca_options(std::size_t count, std::size_t dimension, const CpcaOptions& options, const std::string& what);
 
 /// Runs CPCA on `count` points of `dimension` floats each, point-major (point p at p * dimension).

@@ -21,7 +21,7 @@ compress::CompressedTransfer compressed_model(const transfer::TransferData& tran
   const std::size_t dimension = std::size_t(transfer.header.values_per_vertex()) * (transfer.bounce_only.empty() ? 1 : 2);
   const int clusters = o.clusters > 0 ? o.clusters : int(std::min<std::size_t>(kExportClusters, points));
   const int pca = o.clusters > 0 ? o.pca : int(std::min<std::size_t>(kExportPca, dimension));
-  request.options = {clusters, pca, 20, o.seed, o.threads};
+  request.options = {clusters, pca, o.rounds, o.seed, o.threads, o.fit_points};
   request.scalar = transfer.header.scalar;
   request.metric_sky = o.metric_sky;
   return compress::compress_for_shading(transfer, o.clusters > 0 ? o.transfer_path : o.gltf_path, request);

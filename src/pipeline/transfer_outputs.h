@@ -19,6 +19,8 @@ struct TransferOutputs {
   bool float16 = false;       ///< store the transfer (or the compressed model) as IEEE float16
   int clusters = 0, pca = 0;  ///< > 0: compress with CPCA, `clusters` clusters of `pca` vectors each
   unsigned seed = 1;          ///< of the compression's initial clusters
+  std::size_t fit_points = 0; ///< compression: fit the rounds on this many points (compress::CpcaOptions::fit_points); 0: all
+  int rounds = 20;            ///< compression: most CPCA rounds (compress::CpcaOptions::iterations)
   const sh::RgbCoefficients* metric_sky = nullptr;  ///< compression: the metric's spectrum (null: flat; shaded_compression.h)
   int threads = 0;            ///< for the compression (0 = all cores); the output does not depend on it
 };

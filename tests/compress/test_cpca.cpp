@@ -166,6 +166,30 @@ TEST_CASE("cpca output is byte-identical for 1 and 2 threads", "[compress]") {
   CHECK(one.error_history == two.error_history);
 }
 
+TEST_CASE("cpca fitted on a subset: exact recovery from 3 points per cluster, every point assigned, any thread count", "[compress]") {
+  // 6 subspaces of dimension 4, 150 points each; the rounds see 18 points (3 per cluster on average:
+  // too few for 4 directions), so only the last refit on every member can recover the subspaces.
+  std::vector<int> truth;
+  const std::vector<float> x = subspace_points(6, 4, 40, 150, truth, 21);
+  compress::CpcaOptions o = options(6, 4, 1);
+  o.fit_points = 18;
+  const compress::CpcaResult one = compress::cpca(x.data(), truth.size(), 40, o, "subset");
+  std::map<std::uint32_t, std::set<int>> found;
+  for (std::size_t p = 0; p < truth.size(); ++p) found[one.cluster[p]].insert(truth[p]);
+  CHECK(found.size() == 6);
+  for (const auto& [k, members] : found) CHECK(members.size() == 1);
+  CHECK(max_reconstruction_error(x, one) <= 1e-6 * 10.0 * 2.0);
+  CHECK(one.error <= 1e-8);
+  o.threads = 2;
+  const compress::CpcaResult two = compress::cpca(x.data(), truth.size(), 40, o, "subset");
+  CHECK(one.cluster == two.cluster);
+  CHECK(std::memcmp(one.bases.data(), two.bases.data(), one.bases.size() * 4) == 0);
+  CHECK(std::memcmp(one.weights.data(), two.weights.data(), one.weights.size() * 4) == 0);
+  // More clusters than the subset holds is refused.
+  o.clusters = 19;
+  CHECK_THROWS_WITH(compress::cpca(x.data(), truth.size(), 40, o, "subset"), Catch::Contains("subset: clusters 19 must not exceed the points fitted (18)"));
+}
+
 TEST_CASE("cpca: bad K, N or iterations are one-line errors naming the input", "[compress]") {
   const std::vector<float> x(10 * 4, 1.0f);
   const auto message = [&](int k, int n, int iterations) {
