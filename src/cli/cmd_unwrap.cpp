@@ -38,10 +38,10 @@ void run_unwrap(const UnwrapCommandOptions& o) {
   unwrap::UnwrapReport report;
   mesh.lightmap_uv = unwrap::unwrap(mesh, options, &report);
   mesh.lightmap_uv_set = 1;
-  // The mesh as loaded with its materials, the generated UVs as TEXCOORD_1 (docs/formats.md, "Unwrapped mesh").
+  // The source with the generated UVs as TEXCOORD_1 (docs/formats.md, "Unwrapped mesh").
   mesh::EngineExtras extras;
   extras.lightmap_set = 1;
-  extras.as_loaded = true;
+  extras.corner_uvs = true;
   mesh::write_engine_glb(o.output, o.mesh_path, mesh, extras);
   if (o.quiet) return;
   std::fprintf(stderr,

@@ -73,6 +73,9 @@ void write_engine_glb(const std::string& path, const std::string& source_path, c
     fail_file(path, "cannot write glTF: extension " + extras.extension + " has no root or primitive object");
   const std::string ext = lower_extension(source_path);
   const bool gltf = (ext == ".gltf" || ext == ".glb") && !extras.as_loaded;
+  if (extras.corner_uvs && (extras.lightmap_set < 0 || mesh.lightmap_uv.size() != mesh.indices.size() ||
+                            (gltf && mesh.triangle_source.size() != mesh.triangle_count())))
+    fail_file(path, "cannot write glTF: generated lightmap UVs need a UV set and one UV per triangle corner");
   if (gltf && mesh.source_primitives.empty()) fail_file(path, "cannot write glTF: the mesh does not say which glTF primitives it came from");
   write_file_atomically(path, gltf ? detail::engine_glb_from_gltf(path, source_path, mesh, extras)
                                    : detail::engine_glb_from_mesh(path, source_path, mesh, extras));

@@ -138,6 +138,8 @@ json primitive(glb::Builder& glb, const Mesh& mesh, const Part& part, const Engi
   attributes["NORMAL"] = glb.add_floats(&normals[0].x, normals.size(), 3, "VEC3");
   if (!part.uv0.empty()) attributes["TEXCOORD_0"] = glb.add_floats(&part.uv0[0].x, part.uv0.size(), 2, "VEC2");
   if (!part.uv1.empty()) attributes["TEXCOORD_1"] = glb.add_floats(&part.uv1[0].x, part.uv1.size(), 2, "VEC2");
+  // glTF's texture coordinate sets start at 0: without base colour UVs, set 0 is the same accessor.
+  if (part.uv0.empty() && !part.uv1.empty()) attributes["TEXCOORD_0"] = attributes["TEXCOORD_1"];
   if (!colours.empty()) attributes["COLOR_0"] = glb.add_floats(&colours[0].x, colours.size(), 3, "VEC3");
   for (const EngineAttribute& a : extras.attributes) attributes[a.name] = add_attribute_gather(glb, a, part.source);
   json out = {{"attributes", attributes}, {"indices", glb.add_indices(part.indices)}, {"mode", 4}};

@@ -1,6 +1,7 @@
 // The engine glTF of a glTF source (engine_gltf.h): the document as authored, its primitives' data
 // rewritten from the decoded model, the baked node instances' primitives given the extras.
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
 #include <string>
@@ -160,14 +161,33 @@ class SourceWriter {
     json out = without_extensions(source, kDroppedExtensions);
     out.erase("targets");
     json attributes = json::object();
+    const SplitVertices vertices = baked && extras_.corner_uvs ? split_by_uv(*baked) : SplitVertices{};
+    const bool split = !vertices.source.empty();  // (a primitive whose triangles were all dropped stays as it is)
     for (const auto& [name, accessor] : prim.attributes) {
       if (name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0) continue;
-      attributes[name] = copy_accessor(accessor, name == "POSITION", what + " " + name);
+      attributes[name] = copy_accessor(accessor, name == "POSITION", what + " " + name, split ? &vertices.source : nullptr);
     }
-    if (prim.indices >= 0) out["indices"] = copy_indices(prim.indices, what + " indices");
+    if (split) {  // the loaded triangles, as a triangle list over the split vertices
+      const int uv = glb_.add_floats(&vertices.uv[0].x, vertices.uv.size(), 2, "VEC2");
+      attributes["TEXCOORD_" + std::to_string(extras_.lightmap_set)] = uv;
+      // glTF's texture coordinate sets start at 0 and have no gaps: missing lower sets share the accessor.
+      for (int set = 0; set < extras_.lightmap_set; ++set)
+        if (!attributes.contains("TEXCOORD_" + std::to_string(set))) attributes["TEXCOORD_" + std::to_string(set)] = uv;
+      out["indices"] = glb_.add_indices(vertices.indices);
+      out["mode"] = 4;
+    } else if (prim.indices >= 0) {
+      out["indices"] = copy_indices(prim.indices, what + " indices");
+    }
     if (baked) {
-      for (const EngineAttribute& a : extras_.attributes)
-        attributes[a.name] = add_attribute_slice(glb_, a, baked->first_vertex, baked->vertex_count);
+      for (const EngineAttribute& a : extras_.attributes) {
+        if (!split) {
+          attributes[a.name] = add_attribute_slice(glb_, a, baked->first_vertex, baked->vertex_count);
+          continue;
+        }
+        std::vector<std::uint32_t> loaded(vertices.source.size());
+        for (std::size_t i = 0; i < loaded.size(); ++i) loaded[i] = baked->first_vertex + vertices.source[i];
+        attributes[a.name] = add_attribute_gather(glb_, a, loaded);
+      }
       if (!extras_.extension.empty()) out["extensions"][extras_.extension] = extras_.primitive(added_);
     }
     check_attribute_count(path_, attributes.size(), what);
@@ -175,28 +195,32 @@ class SourceWriter {
     return out;
   }
 
-  int copy_accessor(int index, bool with_bounds, const std::string& what) {
+  // Accessor `index` rewritten tightly packed; with `gather`, its elements gather[0], gather[1], ...
+  // (each < its count) instead of all of them in order.
+  int copy_accessor(int index, bool with_bounds, const std::string& what, const std::vector<std::uint32_t>* gather = nullptr) {
     const auto cached = copied_.find(index);
-    if (cached != copied_.end()) return cached->second;
+    if (!gather && cached != copied_.end()) return cached->second;
     int components = 0;
-    const std::vector<double> values = reader_->read_accessor(index, what, &components, /*normalize=*/false);
+    std::vector<double> values = reader_->read_accessor(index, what, &components, /*normalize=*/false);
     const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
+    std::size_t count = a.count;
+    if (gather) values = gathered(values, std::size_t(components), *gather, what), count = gather->size();
     const std::size_t size = component_size(a.componentType), element = size * std::size_t(components);
     const std::size_t stride = (element + 3) / 4 * 4;  // vertex attributes: elements 4-byte aligned (spec)
     std::string bytes;
-    for (std::size_t i = 0; i < a.count; ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
       for (int c = 0; c < components; ++c) put_component(bytes, values[i * std::size_t(components) + std::size_t(c)], a.componentType);
       bytes.append(stride - element, '\0');
     }
-    const int out = glb_.add(bytes, a.count, glb::accessor_type(components), a.componentType, glb::kArrayBuffer);
+    const int out = glb_.add(bytes, count, glb::accessor_type(components), a.componentType, glb::kArrayBuffer);
     json& accessor = glb_.accessors[std::size_t(out)];
     if (a.normalized) accessor["normalized"] = true;
     if (stride != element) glb_.buffer_views[accessor["bufferView"].get<std::size_t>()]["byteStride"] = stride;
-    if (with_bounds && a.count > 0) {
+    if (with_bounds && count > 0) {
       json lo = json::array(), hi = json::array();
       for (int c = 0; c < components; ++c) {
         double l = values[std::size_t(c)], h = l;
-        for (std::size_t i = 0; i < a.count; ++i) {
+        for (std::size_t i = 0; i < count; ++i) {
           l = std::min(l, values[i * std::size_t(components) + std::size_t(c)]);
           h = std::max(h, values[i * std::size_t(components) + std::size_t(c)]);
         }
@@ -206,7 +230,45 @@ class SourceWriter {
       accessor["min"] = lo;
       accessor["max"] = hi;
     }
-    return copied_[index] = out;
+    return gather ? out : copied_[index] = out;
+  }
+
+  std::vector<double> gathered(const std::vector<double>& values, std::size_t components, const std::vector<std::uint32_t>& gather,
+                               const std::string& what) const {
+    std::vector<double> out;
+    out.reserve(gather.size() * components);
+    for (std::uint32_t v : gather) {
+      if ((std::size_t(v) + 1) * components > values.size())
+        fail_file(path_, "cannot write glTF: " + what + " has fewer elements than the primitive's POSITION");
+      out.insert(out.end(), values.begin() + std::ptrdiff_t(v * components), values.begin() + std::ptrdiff_t((v + 1) * components));
+    }
+    return out;
+  }
+
+  // A baked primitive's loaded triangles with the generated lightmap UVs (extras.corner_uvs): one vertex
+  // per distinct (source vertex, UV bits) in order of first use over the triangles' corners.
+  struct SplitVertices {
+    std::vector<std::uint32_t> source;  // per vertex: its element of the source primitive's attributes
+    std::vector<glm::vec2> uv;          // per vertex: its lightmap UV
+    std::vector<std::uint32_t> indices;  // 3 per loaded triangle of the primitive, in mesh order
+  };
+  SplitVertices split_by_uv(const SourcePrimitive& baked) const {
+    const std::uint32_t index = std::uint32_t(&baked - mesh_.source_primitives.data());
+    SplitVertices out;
+    std::map<std::pair<std::uint32_t, std::uint64_t>, std::uint32_t> seen;
+    for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
+      if (mesh_.triangle_source[t].primitive != index) continue;
+      for (std::size_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+        const glm::vec2 uv = mesh_.lightmap_uv[corner];
+        const std::uint32_t v = mesh_.indices[corner] - baked.first_vertex;
+        std::uint64_t key = 0;
+        std::memcpy(&key, &uv, sizeof key);
+        const auto found = seen.emplace(std::make_pair(v, key), std::uint32_t(out.source.size()));
+        if (found.second) out.source.push_back(v), out.uv.push_back(uv);
+        out.indices.push_back(found.first->second);
+      }
+    }
+    return out;
   }
 
   int copy_indices(int index, const std::string& what) {

@@ -83,14 +83,14 @@ json model_json(const compress::CompressedTransfer& model, const mesh::EngineInd
 }  // namespace
 
 void write_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
-                       const compress::CompressedTransfer& model, bool as_loaded) {
+                       const compress::CompressedTransfer& model, bool uv_generated) {
   const transfer::Header& h = model.source;
   if (transfer::is_glossy(h.kind)) fail_file(path, "cannot write glTF: the engine glTF carries diffuse transfer only");
   transfer::check_mesh_match(path, h, mesh.vertex_count(), mesh.triangle_count(), mesh::fingerprint(mesh));
   mesh::EngineExtras extras;
   extras.arrays = {model.means, model.bases};
   extras.extension = kTransferExtension;
-  extras.as_loaded = as_loaded;
+  extras.corner_uvs = uv_generated;
   extras.root = [&](const mesh::EngineIndices& added) {
     return json{{"version", 1}, {"models", {model_json(model, added)}}};
   };

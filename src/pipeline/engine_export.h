@@ -23,8 +23,9 @@ inline constexpr int kExportPca = 8;
 /// carrying `model` (diffuse: unshadowed, shadowed or interreflected; per vertex or per texel; its source
 /// header matching the mesh). The albedo attribute is shade::surface_albedo's. Throws prt::Error naming
 /// the file for a glossy model, a model of another mesh, or what mesh::write_engine_glb refuses.
-/// `as_loaded`: write the mesh as loaded, not the source's document (mesh::EngineExtras::as_loaded).
+/// `uv_generated`: the mesh's lightmap UVs were generated, not read from the source; the file carries
+/// them (mesh::EngineExtras::corner_uvs).
 void write_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
-                       const compress::CompressedTransfer& model, bool as_loaded = false);
+                       const compress::CompressedTransfer& model, bool uv_generated = false);
 
 }  // namespace prt::pipeline
