@@ -28,6 +28,7 @@
 #include "render/renderer_cpca.h"
 #include "render/renderer_lightmap.h"
 #include "render/transfer_pass.h"
+#include "transfer/half.h"
 
 namespace prt::render {
 
@@ -76,6 +77,18 @@ std::vector<std::uint32_t> point_texels(const compress::CompressedTransfer& c, c
   return out;
 }
 
+// The weights of a float16 model as IEEE binary16 bits, two per uint32 (the lower half first, as GLSL's
+// unpackHalf2x16 reads them), each point's N padded to an even count. The weights are float16 values
+// already (CompressedTransfer), so the bits are exact.
+std::vector<std::uint32_t> packed_half_weights(const compress::CompressedTransfer& c) {
+  const std::size_t N = static_cast<std::size_t>(c.pca), pairs = (N + 1) / 2;
+  std::vector<std::uint32_t> packed(c.point_count() * pairs, 0u);
+  for (std::size_t p = 0; p < c.point_count(); ++p)
+    for (std::size_t n = 0; n < N; ++n)
+      packed[p * pairs + n / 2] |= std::uint32_t(transfer::float_to_half(c.weights[p * N + n])) << (16 * (n % 2));
+  return packed;
+}
+
 class LightmapCpcaPass final : public TransferPass {
  public:
   LightmapCpcaPass(const compress::CompressedTransfer& c, const std::string& origin);
@@ -93,6 +106,7 @@ class LightmapCpcaPass final : public TransferPass {
   GLuint clusters_ = 0, weights_ = 0, texels_ = 0, products_ = 0, products_view_ = 0, shaded_ = 0, scratch_ = 0;
   std::vector<glm::vec4> products_now_, products_last_;
   bool shaded_valid_ = false;
+  bool half_weights_ = false;  // the weights buffer holds float16 pairs (the file's own values, bit for bit)
 };
 
 LightmapCpcaPass::LightmapCpcaPass(const compress::CompressedTransfer& c, const std::string& origin)
@@ -110,7 +124,13 @@ LightmapCpcaPass::LightmapCpcaPass(const compress::CompressedTransfer& c, const 
   levels_ = mip_level_count(width_, height_);
   points_ = static_cast<int>(texels.size());
   clusters_ = storage(c.cluster.data(), c.cluster.size() * sizeof(std::uint32_t), 0);
-  weights_ = storage(c.weights.data(), c.weights.size() * sizeof(float), 0);
+  half_weights_ = c.source.scalar == transfer::Scalar::float16;
+  if (half_weights_) {
+    const std::vector<std::uint32_t> packed = packed_half_weights(c);
+    weights_ = storage(packed.data(), packed.size() * sizeof(std::uint32_t), 0);
+  } else {
+    weights_ = storage(c.weights.data(), c.weights.size() * sizeof(float), 0);
+  }
   texels_ = storage(texels.data(), texels.size() * sizeof(std::uint32_t), 0);
   shaded_ = texture_2d(width_, height_, levels_);
   scratch_ = texture_2d(width_, height_, levels_);
@@ -131,7 +151,8 @@ void LightmapCpcaPass::shade_texels(FrameCore& core) {
     glTextureBuffer(products_view_, GL_RGBA32F, products_);
   }
   glNamedBufferSubData(products_, 0, static_cast<GLsizeiptr>(bytes), products_now_.data());
-  const Program& blend = core.program({"prt_lightmap_cpca.comp"}, "#define PCA " + std::to_string(model_.pca) + "\n");
+  const Program& blend = core.program({"prt_lightmap_cpca.comp"}, "#define PCA " + std::to_string(model_.pca) + "\n" +
+                                                                     (half_weights_ ? "#define HALF_WEIGHTS 1\n" : ""));
   glUseProgram(blend.id());
   glUniform1i(blend.uniform("point_count"), points_);
   glUniform1i(blend.uniform("width"), width_);
