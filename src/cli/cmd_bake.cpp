@@ -165,13 +165,16 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
 // lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair: no --gltf, no --compress,
 // the file's own UVs: only a mesh that carries generated UVs could draw the texel file, and the glTF
 // that would carry them is not written for mixed scenes yet).
+void refuse_generated_mixed(const BakeCommandOptions& o) {
+  fail_file(o.mesh_path, "--texel-parts: a mixed scene needs the file's own lightmap UVs (these were generated: --uv " + o.uv +
+                             "); give the texel parts TEXCOORD_1 or bake them all per texel");
+}
+
 lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap,
                                         bool uv_generated) {
   lightmap::PartChoice parts = lightmap::choose_parts(mesh, o.texel_parts, lightmap.width, lightmap.height, o.mesh_path);
   if (!parts.mixed()) return parts;
-  if (uv_generated)
-    fail_file(o.mesh_path, "--texel-parts: a mixed scene needs the file's own lightmap UVs (these were generated: --uv " + o.uv +
-                               "); give the texel parts TEXCOORD_1 or bake them all per texel");
+  if (uv_generated) refuse_generated_mixed(o);
   if (!o.gltf_output.empty()) fail("--gltf: the engine glTF of a mixed scene (--texel-parts) is not supported yet; write the .prt pair");
   if (!o.compress.empty() || lower_extension(o.output) != ".prt")
     fail("-o " + o.output + ": a mixed scene (--texel-parts) is written as a .prt pair (no --compress, no .cprt)");
@@ -196,8 +199,13 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::UvSourceReport uv_source;
+  // --uv auto with parts named or auto: the parts are chosen on the file's UVs first, so that auto
+  // judges the texel parts' UVs alone (a per-vertex part's UVs are never read).
+  const bool parts_first = uv_mode == lightmap::UvMode::automatic && mesh.has_lightmap_uv() && o.texel_parts != "all";
+  lightmap::PartChoice parts = parts_first ? choose_mixed_parts(o, mesh, lightmap, false) : lightmap::PartChoice{};
   lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, options.threads, &uv_source);
-  const lightmap::PartChoice parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
+  if (!parts_first) parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
+  if (parts_first && parts.mixed() && uv_source.generated) refuse_generated_mixed(o);
   if (uv_source.generated && !o.quiet && job().is_root())
     std::fprintf(stderr,
                  "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; shade and render with "
