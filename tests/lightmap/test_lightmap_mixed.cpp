@@ -128,10 +128,10 @@ TEST_CASE("prt bake --texel-parts: bad input gives one line, exit 1 and no file"
   refused(bake(dir + "/broken.gltf") + "--texel-parts Floor,Wall -o " + dir + "/o.prt",
           "\"Floor\" mesh 0 primitive 0 has no usable lightmap UVs");
   refused(bake(dir + "/room.obj") + "--texel-parts Floor -o " + dir + "/o.prt", "names need a glTF scene");
-  refused(bake(room) + "--texel-parts Floor --uv generate -o " + dir + "/o.prt", "needs the file's own lightmap UVs");
+  refused(bake(room) + "--texel-parts Floor --uv generate -o " + dir + "/o.cprt", "mixed scene");
 }
 
-TEST_CASE("prt bake --texel-parts --uv auto judges the texel parts' UVs alone: tiling UVs on the box keep the file's UVs",
+TEST_CASE("prt bake --texel-parts --uv auto judges the texel parts' UVs alone: tiling UVs on the box keep the file's UVs, bad texel UVs generate",
           "[lightmap][mixed][cli]") {
   const std::string dir = test::fresh_temp_dir("mixed_uv_auto");
   std::vector<test::NamedPart> parts;
@@ -160,12 +160,15 @@ TEST_CASE("prt bake --texel-parts --uv auto judges the texel parts' UVs alone: t
   CHECK_FALSE(std::filesystem::exists(dir + "/all.vertices.prt"));
   CHECK(transfer::read_transfer(dir + "/all.prt").header.uv_fingerprint != transfer::read_transfer(dir + "/file/t.prt").header.uv_fingerprint);
   // A texel part's own UVs unusable (a corner of the wall that only its first triangle uses, outside
-  // [0, 1]: 11% of the texel parts' area skipped, beyond the 1% rule): auto would generate, which a
-  // mixed scene refuses, in one line, writing nothing.
+  // [0, 1]: 11% of the texel parts' area skipped, beyond the 1% rule): auto generates, and the mixed
+  // bake writes the mesh that carries the UVs beside the pair (pipeline/mixed_uv_mesh.h).
   room.lightmap_uv[3 * 14 + 1] = glm::vec2(1.7f, 0.3f);
   test::write_gltf_parts(dir + "/room.gltf", room, parts);
-  CHECK(test::fails_in_one_line(run("--texel-parts Floor,Wall --uv auto -o " + dir + "/bad.prt"), "needs the file's own lightmap UVs"));
-  CHECK_FALSE(std::filesystem::exists(dir + "/bad.prt"));
+  const test::RunResult generated = run("--texel-parts Floor,Wall --uv auto -o " + dir + "/gen.prt");
+  CHECK(generated.exit_code == 0);
+  CHECK(std::filesystem::exists(dir + "/gen.vertices.prt"));
+  CHECK(std::filesystem::exists(dir + "/gen.mesh.glb"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/file/t.mesh.glb"));  // none with the file's UVs
 }
 
 
