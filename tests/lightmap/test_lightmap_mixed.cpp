@@ -1,7 +1,8 @@
 // Mixed scenes (`prt bake --lightmap N --texel-parts ...`, lightmap/part_choice.h): which parts go per
 // texel (names, and the auto rule against its closed form), the .prt pair a mixed bake writes
 // (byte-identical for any thread count, each file naming the other), and bad input: one line, exit 1,
-// no file. The rendered pair against `prt reference --image` is tests/render/test_render_mixed.cpp.
+// no file. The rendered pair against `prt reference --image` is tests/render/test_render_lightmap_image.cpp,
+// the pair drawn in one frame tests/render/test_render_mixed.cpp.
 #include <filesystem>
 #include <string>
 #include <vector>
