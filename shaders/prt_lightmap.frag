@@ -19,6 +19,9 @@ const int layers = LAYERS;
 in vec2 texture_coordinate;
 layout(location = 0) out vec4 radiance_out;
 layout(location = 1) out uint triangle_out;
+// The first mesh triangle of this draw (frame_core.h draw_runs); gl_PrimitiveID counts from 0 in every
+// draw. 0 for a draw of the whole mesh.
+uniform uint first_triangle;
 
 // A texel's value block (channel-major, then SH index, as the .prt payload) packed four values per
 // layer: layer k holds values 4k .. 4k+3 in r, g, b, a; the last layer is zero-padded
@@ -78,5 +81,5 @@ void main() {
   sum = max(sum + surface_albedo * inv_pi * direct, vec3(0.0));  // as split shading clamps
 #endif
   radiance_out = vec4(sum, 1.0);
-  triangle_out = uint(gl_PrimitiveID);
+  triangle_out = first_triangle + uint(gl_PrimitiveID);
 }

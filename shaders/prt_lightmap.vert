@@ -1,7 +1,7 @@
 // pass: prt_lightmap (texel transfer shaded per pixel), vertex stage; mirrors mesh::Mesh::lightmap_uv.
 // Drawn with glDrawArrays over the triangles' corners (lightmap UVs are per corner): corner
-// gl_VertexID = 3t + k reads its vertex from the index buffer, so gl_PrimitiveID is the mesh's triangle
-// index t.
+// gl_VertexID = 3t + k reads its vertex from the index buffer, so first_triangle + gl_PrimitiveID is the
+// mesh's triangle index t (a draw of the triangles from first_triangle on starts at corner 3 first_triangle).
 #version 450 core
 
 // #defined by Renderer::lightmap_program:

@@ -9,6 +9,9 @@ in vec3 radiance;  // interpolated perspective-correctly from the vertices
 #endif
 layout(location = 0) out vec4 radiance_out;
 layout(location = 1) out uint triangle_out;
+// The first mesh triangle of this draw (frame_core.h draw_runs: a pass drawing some runs of triangles);
+// gl_PrimitiveID counts from 0 in every draw. 0 for a draw of the whole mesh.
+uniform uint first_triangle;
 
 void main() {
 #ifdef TEXTURED
@@ -16,5 +19,5 @@ void main() {
 #else
   radiance_out = vec4(radiance, 1.0);
 #endif
-  triangle_out = uint(gl_PrimitiveID);  // index of the triangle in the mesh's index list
+  triangle_out = first_triangle + uint(gl_PrimitiveID);  // index of the triangle in the mesh's index list
 }

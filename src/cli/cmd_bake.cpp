@@ -1,8 +1,10 @@
 // prt bake: bakes per-vertex transfer (src/bake: diffuse vectors, glossy matrices) and writes the .prt file (and a .glb).
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "bake/bake.h"
 #include "brdf/brdf.h"
@@ -22,6 +24,7 @@
 #include "lightmap/uv_source.h"
 #include "mesh/mesh.h"
 #include "pipeline/mixed_outputs.h"
+#include "pipeline/mixed_uv_mesh.h"
 #include "pipeline/transfer_outputs.h"
 #include "transfer/transfer_file.h"
 
@@ -164,22 +167,54 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
 }
 
 // --texel-parts: which parts are baked per texel (lightmap/part_choice.h); for a mixed scene sets
-// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair: no --gltf, no --compress,
-// the file's own UVs: only a mesh that carries generated UVs could draw the texel file, and the glTF
-// that would carry them is not written for mixed scenes yet).
+// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair, no --gltf, no --compress;
+// with generated UVs also the mesh that carries them, pipeline/mixed_uv_mesh.h).
 lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap,
                                         bool uv_generated) {
   lightmap::PartChoice parts = lightmap::choose_parts(mesh, o.texel_parts, lightmap.width, lightmap.height, o.mesh_path);
   if (!parts.mixed()) return parts;
-  if (uv_generated)
-    fail_file(o.mesh_path, "--texel-parts: a mixed scene needs the file's own lightmap UVs (these were generated: --uv " + o.uv +
-                               "); give the texel parts TEXCOORD_1 or bake them all per texel");
   if (!o.gltf_output.empty()) fail("--gltf: the engine glTF of a mixed scene (--texel-parts) is not supported yet; write the .prt pair");
   if (!o.compress.empty() || lower_extension(o.output) != ".prt")
     fail("-o " + o.output + ": a mixed scene (--texel-parts) is written as a .prt pair (no --compress, no .cprt)");
   if (job().is_root()) check_outputs({pipeline::mixed_vertex_path(o.output)}, {o.mesh_path});
+  if (uv_generated && job().is_root()) check_outputs({pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
   lightmap.vertex_triangles = parts.vertex_triangle;
   return parts;
+}
+
+// The lightmap UVs (lightmap/uv_source.h) and the parts. With --uv auto and parts named or auto, the
+// parts are chosen on the file's UVs first, so that auto judges the texel parts' UVs alone (a
+// per-vertex part's UVs are never read). A mixed scene with generated UVs is then baked on the mesh
+// as loaded back from the file that carries them (`uv_mesh`, committed with the pair).
+lightmap::PartChoice choose_uvs_and_parts(const BakeCommandOptions& o, mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap, int threads,
+                                          lightmap::UvSourceReport& uv_source, std::optional<pipeline::MixedUvMesh>& uv_mesh) {
+  const lightmap::UvMode uv_mode = lightmap::parse_uv_mode(o.uv);
+  const bool parts_first = uv_mode == lightmap::UvMode::automatic && mesh.has_lightmap_uv() && o.texel_parts != "all";
+  lightmap::PartChoice parts = parts_first ? choose_mixed_parts(o, mesh, lightmap, false) : lightmap::PartChoice{};
+  lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, threads, &uv_source);
+  if (!parts_first) parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
+  if (!parts.mixed() || !uv_source.generated) return parts;
+  if (parts_first && job().is_root()) check_outputs({pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
+  uv_mesh.emplace(pipeline::mixed_mesh_path(o.output), o.mesh_path, mesh, parts.vertex_triangle);
+  mesh = std::move(uv_mesh->loaded());
+  lightmap.vertex_triangles = uv_mesh->vertex_triangle();
+  return parts;
+}
+
+// A mixed scene's outputs: the mesh with generated UVs (if any) and the .prt pair, the mesh removed
+// again if the pair cannot be written.
+void write_mixed(const BakeCommandOptions& o, transfer::TransferData texels, transfer::TransferData vertices,
+                 const lightmap::LightmapOptions& lightmap, const lightmap::PartChoice& parts, std::optional<pipeline::MixedUvMesh>& uv_mesh,
+                 bool float16) {
+  if (uv_mesh) uv_mesh->commit();
+  try {
+    pipeline::write_mixed_outputs(std::move(texels), std::move(vertices), o.output, pipeline::mixed_vertex_path(o.output),
+                                  lightmap.vertex_triangles, parts.texel_parts, parts.vertex_parts, float16);
+  } catch (...) {
+    std::error_code ignored;
+    if (uv_mesh) std::filesystem::remove(uv_mesh->path(), ignored);
+    throw;
+  }
 }
 
 // Per texel of the mesh's lightmap UVs (src/lightmap): checks everything (options, outputs, UVs,
@@ -193,19 +228,19 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   lightmap.stitch = o.stitch;
   lightmap.mesh_path = o.mesh_path;
   if (job().is_root()) check_outputs({o.output, o.gltf_output}, {o.mesh_path});
-  const lightmap::UvMode uv_mode = lightmap::parse_uv_mode(o.uv);
+  lightmap::parse_uv_mode(o.uv);  // a bad --uv before the mesh is loaded
   mesh::LoadReport load_report;
   mesh::Mesh mesh = load_mesh_for_albedo(o.mesh_path, o.albedo, {o.scene, o.quiet || !job().is_root()}, &load_report);
   lightmap.missing_uv_reason = load_report.missing_uv_reason;
   lightmap::UvSourceReport uv_source;
-  lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, options.threads, &uv_source);
-  const lightmap::PartChoice parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
+  std::optional<pipeline::MixedUvMesh> uv_mesh;
+  const lightmap::PartChoice parts = choose_uvs_and_parts(o, mesh, lightmap, options.threads, uv_source, uv_mesh);
   if (uv_source.generated && !o.quiet && job().is_root())
     std::fprintf(stderr,
                  "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; shade and render with "
-                 "a mesh that carries them (the --gltf output, or prt unwrap's)\n",
+                 "a mesh that carries them (%s)\n",
                  o.mesh_path.c_str(), uv_source.reason.c_str(), uv_source.unwrap.charts, 100.0 * uv_source.unwrap.fill,
-                 uv_source.unwrap.seconds);
+                 uv_source.unwrap.seconds, uv_mesh ? uv_mesh->path().c_str() : "the --gltf output, or prt unwrap's");
   lightmap::check_lightmap(mesh, options, lightmap);
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
@@ -219,8 +254,7 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   pipeline::TransferOutputs outputs = out;
   outputs.uv_generated = uv_source.generated;  // the glTF then carries the generated UVs
   if (parts.mixed()) {
-    pipeline::write_mixed_outputs(std::move(data), std::move(vertex_data), o.output, pipeline::mixed_vertex_path(o.output),
-                                  parts.vertex_triangle, parts.texel_parts, parts.vertex_parts, out.float16);
+    write_mixed(o, std::move(data), std::move(vertex_data), lightmap, parts, uv_mesh, out.float16);
   } else {
     const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
     if (ships_compressed(o, options)) set_ship_compression(data, prior, outputs);  // K and N sized to the texels
@@ -334,7 +368,7 @@ void add_bake_command(CLI::App& app) {
   cmd->add_option("--texel-parts", options->texel_parts,
                   "--lightmap: which parts (glTF primitives, by node name) are baked per texel, the rest per vertex in the same "
                   "bake: all, auto (parts the lightmap gives more texels than they have vertices) or NAME,NAME; a mixed scene "
-                  "writes -o (texels) and <stem>.vertices.prt (vertices)")
+                  "writes -o (texels) and <stem>.vertices.prt (vertices), and with generated UVs <stem>.mesh.glb, the mesh to render them with")
       ->capture_default_str();
   cmd->add_option("--gutter", options->gutter, "--lightmap: gutter (chart dilation) in texels, 0..64")->capture_default_str();
   cmd->add_flag("--no-sample-repair", options->no_repair,

@@ -40,7 +40,8 @@ void add_view_command(CLI::App& app) {
       "view", "Interactive relighting viewer: drag orbits, Shift+drag rotates the lighting, scroll zooms, H for help");
   cmd->add_option("MESH", options->mesh_path, "The mesh the transfers were baked for")->required();
   add_scene_option(cmd, options->scene);
-  cmd->add_option("TRANSFER", options->transfer_paths, "One or more transfer files (.prt, or .cprt compressed; diffuse or glossy; lightmaps sampled per pixel); keys 1-9 switch")
+  cmd->add_option("TRANSFER", options->transfer_paths, "One or more transfer files (.prt, or .cprt compressed; diffuse or glossy; lightmaps sampled per pixel; either file of a mixed pair "
+                 "draws the pair); keys 1-9 switch")
       ->required();
   cmd->add_option("--env", options->environments,
                   "Environment image or SH lighting .json; repeat for several (E switches), or drop files on the window")

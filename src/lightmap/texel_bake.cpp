@@ -66,12 +66,9 @@ TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, co
   LightmapReport local;
   if (!report) report = &local;
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
-  const std::vector<std::uint8_t>* per_vertex = lightmap.vertex_triangles.empty() ? nullptr : &lightmap.vertex_triangles;
-  UvProblems problems = check_uvs(mesh, per_vertex);
+  std::vector<std::uint8_t> skip;
+  UvProblems problems = check_texel_uvs(mesh, lightmap.vertex_triangles, skip);
   if (problems.tiling()) fail_file(lightmap.mesh_path, problems.message(mesh));
-  std::vector<std::uint8_t> skip = problems.skipped_triangles(mesh);
-  if (per_vertex)
-    for (std::size_t t = 0; t < skip.size(); ++t) skip[t] |= (*per_vertex)[t];
   auto start = std::chrono::steady_clock::now();
   TexelSamples samples = rasterize(mesh, albedo, lightmap.width, lightmap.height, threads, &skip);
   report->seconds_raster = seconds_since(start);

@@ -20,9 +20,9 @@ namespace {
 // Empty when the file's UVs are usable (uv_validation.h), else why not.
 std::string why_not_usable(const mesh::Mesh& mesh, const LightmapOptions& lightmap, int threads) {
   if (!mesh.has_lightmap_uv()) return "the file has no lightmap UVs: " + lightmap.missing_uv_reason;
-  UvProblems problems = check_uvs(mesh);
+  std::vector<std::uint8_t> skip;
+  UvProblems problems = check_texel_uvs(mesh, lightmap.vertex_triangles, skip);
   if (problems.tiling()) return problems.message(mesh);
-  const std::vector<std::uint8_t> skip = problems.skipped_triangles(mesh);
   const TexelSamples samples =
       rasterize(mesh, std::vector<glm::vec3>(mesh.vertex_count(), glm::vec3(1.0f)), lightmap.width, lightmap.height, threads, &skip);
   add_raster_checks(problems, samples);

@@ -29,8 +29,10 @@ struct UvSourceReport {
 
 /// Gives `mesh` the lightmap UVs the bake uses (see above): when generated, Mesh::lightmap_uv is
 /// replaced and lightmap_uv_set set to 1 (the set `prt unwrap` writes). `lightmap` gives the size,
-/// gutter and mesh path (for messages), `missing_uv_reason` of the load report included. Deterministic
-/// for any `threads`.
+/// gutter and mesh path (for messages), `missing_uv_reason` of the load report included; a mixed
+/// scene's lightmap.vertex_triangles (part_choice.h, chosen on the file's UVs) are left out of auto's
+/// judgement, as the bake's UV checks leave them out (their UVs are never read). Deterministic for any
+/// `threads`.
 void choose_lightmap_uvs(mesh::Mesh& mesh, UvMode mode, const LightmapOptions& lightmap, int threads, UvSourceReport* report = nullptr);
 
 }  // namespace prt::lightmap

@@ -122,6 +122,13 @@ std::vector<std::uint8_t> UvProblems::skipped_triangles(const mesh::Mesh& mesh) 
   return skip;
 }
 
+UvProblems check_texel_uvs(const mesh::Mesh& mesh, const std::vector<std::uint8_t>& per_vertex, std::vector<std::uint8_t>& skip) {
+  UvProblems problems = check_uvs(mesh, per_vertex.empty() ? nullptr : &per_vertex);
+  skip = problems.skipped_triangles(mesh);
+  for (std::size_t t = 0; t < skip.size() && t < per_vertex.size(); ++t) skip[t] |= per_vertex[t];
+  return problems;
+}
+
 std::string UvProblems::message(const mesh::Mesh& mesh) const {
   std::ostringstream s;
   s << "lightmap UVs:";

@@ -67,6 +67,11 @@ bool uv_zero_area(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c);
 /// per-vertex parts, part_choice.h).
 UvProblems check_uvs(const mesh::Mesh& mesh, const std::vector<std::uint8_t>* exclude = nullptr);
 
+/// check_uvs of the triangles a texel bake rasterizes: all but `per_vertex`'s (one per triangle, 1: a
+/// mixed scene's per-vertex triangle; empty: none); `skip` gets, per triangle, 1 where rasterize leaves
+/// it out (skipped_triangles, or per vertex).
+UvProblems check_texel_uvs(const mesh::Mesh& mesh, const std::vector<std::uint8_t>& per_vertex, std::vector<std::uint8_t>& skip);
+
 /// check_uvs plus the overlaps and coverage of `samples` (rasterized with skipped_triangles).
 void add_raster_checks(UvProblems& problems, const TexelSamples& samples);
 

@@ -155,13 +155,14 @@ void BaseColour::bind(const Program& program) const {
   glUniform1i(program.uniform("has_vertex_colour"), has_vertex_colour_ ? 1 : 0);
 }
 
-void BaseColour::draw_corners(const FrameCore& core, const Program& program) const {
+void BaseColour::draw_corners(const FrameCore& core, const Program& program, const TriangleRuns* runs) const {
   bind(program);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndicesBinding, core.indices);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, core.positions);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kAlbedoBinding, core.albedo);
   glBindVertexArray(corner_vao_);
-  glDrawElements(GL_TRIANGLES, corner_count_, GL_UNSIGNED_INT, nullptr);
+  // The draw's index list has three entries per mesh triangle, in triangle order.
+  draw_indexed_runs(program, runs, static_cast<std::uint64_t>(corner_count_) / 3);
 }
 
 }  // namespace prt::render

@@ -18,6 +18,7 @@
 #include "mesh/mesh.h"
 #include "render/gl.h"
 #include "render/shader_program.h"
+#include "render/triangle_runs.h"
 
 namespace prt::render {
 
@@ -46,9 +47,10 @@ class BaseColour {
   void bind(const Program& program) const;
   /// A textured per-vertex draw with `program` (in use): binds the above and the mesh's indices (3),
   /// positions (4) and albedo (11), and draws the triangles indexed over the draw vertices, whose
-  /// attribute 2 is the corner 3 t + k each stands for (textured_vertex.glsl); gl_PrimitiveID is the
-  /// mesh's triangle index.
-  void draw_corners(const FrameCore& core, const Program& program) const;
+  /// attribute 2 is the corner 3 t + k each stands for (textured_vertex.glsl); the triangles of `runs`
+  /// only (all when null: draw_runs, frame_core.h, so first_triangle + gl_PrimitiveID is the mesh's
+  /// triangle index).
+  void draw_corners(const FrameCore& core, const Program& program, const TriangleRuns* runs = nullptr) const;
 
  private:
   GLuint materials_ = 0, uv_ = 0, triangle_material_ = 0, vertex_colour_ = 0;

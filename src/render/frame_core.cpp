@@ -146,6 +146,10 @@ glm::vec3 FrameCore::eye_object(const FrameSettings& settings) const {
 
 void FrameCore::draw_mesh_elements() const { glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr); }
 
+void FrameCore::draw_mesh_elements(const Program& program, const TriangleRuns* runs) const {
+  draw_indexed_runs(program, runs, static_cast<std::uint64_t>(index_count) / 3);
+}
+
 void FrameCore::begin_deferred(const Program& program, const FrameSettings& settings) const {
   glTextureBarrier();
   const GLenum radiance_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};

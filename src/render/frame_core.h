@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "render/shader_program.h"
 #include "render/sun_light.h"
+#include "render/triangle_runs.h"
 
 namespace prt::render {
 
@@ -27,6 +28,7 @@ inline constexpr GLuint kWorkgroupSize = 64;
 
 /// A GL buffer of `bytes` (at least 4) holding `data` (may be null), with storage flags `flags`.
 GLuint make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags);
+
 
 struct FrameCore {
   FrameCore();
@@ -57,6 +59,8 @@ struct FrameCore {
   /// The eye of the frame in mesh coordinates: p = c + R_object^T (eye - c).
   glm::vec3 eye_object(const FrameSettings& settings) const;
   void draw_mesh_elements() const;  ///< glDrawElements of the whole mesh (mesh_vao bound by the caller)
+  /// glDrawElements of the triangles `runs` (all when null) with `program` in use (draw_runs).
+  void draw_mesh_elements(const Program& program, const TriangleRuns* runs) const;
   /// A deferred pass over the pixels the mesh draw covered (prt_sun.frag): writes to
   /// the radiance attachment only, with the depth test passing only where the mesh is; uses `program`,
   /// binds the frame's radiance (unit 11) and triangle index (unit 12) and sets pixel_surface.glsl's

@@ -37,7 +37,8 @@ void render_to_file(const RenderOptions& options) {
   check_output_extension(options.output);
   // A mixed pair (mixed_frame.h) loads both files: the texel one first.
   const SceneInputs scene = load_scene(options.mesh_path, mixed_transfer_paths(options.transfer_path), options.scene);
-  const std::vector<std::uint8_t> vertex_triangles = scene.transfers.size() == 2 ? mixed_vertex_triangles(scene) : std::vector<std::uint8_t>{};
+  const bool mixed = scene.transfers.size() == 2;
+  const TriangleRuns vertex_runs = mixed ? mixed_vertex_runs(scene) : TriangleRuns{};
   const int transfer_bands = static_cast<int>(scene.transfers[0].header.bands);
   // The lighting is projected (and windowed) at the bands the frame shades: the run-time truncation.
   const int shaded_bands = used_bands(scene.transfers[0].header, options.bands);  // before any GL work
@@ -72,16 +73,15 @@ void render_to_file(const RenderOptions& options) {
   renderer.set_discs(lighting.discs);
 
   FrameSettings settings;
+  settings.transfer = mixed ? renderer.add_mixed(indices[0], indices[1], vertex_runs) : index;  // one frame either way
   settings.camera = options.camera;
   settings.environment_rotation = rotation_of(options.rotate);
   settings.object_rotation = rotation_of(options.object_rotate);
   settings.bands = options.bands;
   settings.background = background;
   const auto start = std::chrono::steady_clock::now();
-  if (vertex_triangles.empty()) renderer.render(settings, options.width, options.height);
-  const image::Image radiance = vertex_triangles.empty() ? renderer.read_radiance()
-                                                         : render_mixed(renderer, settings, indices[0], indices[1], vertex_triangles,
-                                                                        options.width, options.height);
+  renderer.render(settings, options.width, options.height);
+  const image::Image radiance = renderer.read_radiance();
   const double milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 

@@ -72,11 +72,13 @@ class DiffusePass final : public TransferPass {
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSunBounceBinding, bounce_buffer_);
     }
     if (textured_)
-      core.base_colour.draw_corners(core, program);
+      core.base_colour.draw_corners(core, program, frame.triangles);
     else
-      core.draw_mesh_elements();
+      core.draw_mesh_elements(program, frame.triangles);
     if (frame.sun) core.sun->draw_deferred(core, frame.settings, sun_surface_, textured_ ? &core.base_colour : nullptr);
   }
+  bool draws_runs() const override { return true; }
+  bool deferred_sun() const override { return true; }
 
  private:
   TransferBuffer transfer_;

@@ -28,6 +28,7 @@ class LightmapPass final : public TransferPass {
   const transfer::Header& header() const override { return textures_.header(); }
   const char* name() const override { return "lightmap"; }
   void draw(FrameCore& core, const Frame& frame) override;
+  bool draws_runs() const override { return true; }
 
  private:
   const Program& program(FrameCore& core, int used_count, bool sun, bool bounce, bool texel_space) const {
@@ -60,7 +61,10 @@ void LightmapPass::draw(FrameCore& core, const Frame& frame) {
     glBindBufferBase(GL_UNIFORM_BUFFER, kDiscLightingBinding, disc_lighting_);
     glBindTextureUnit(kBounceUnit, textures_.bounce_texture());
   }
-  glDrawArrays(GL_TRIANGLES, 0, core.index_count);
+  // Corners 3 first .. 3 (first + count) - 1 of each run (the vertex stage reads corner gl_VertexID).
+  draw_runs(p, frame.triangles, static_cast<std::uint64_t>(core.index_count) / 3, [](std::uint64_t first, std::uint64_t count) {
+    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(3 * first), static_cast<GLsizei>(3 * count));
+  });
 }
 
 }  // namespace

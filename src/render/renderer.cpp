@@ -142,6 +142,11 @@ int Renderer::add_compressed(const compress::CompressedTransfer& compressed, con
   return add(header_only, &compressed, origin);
 }
 
+int Renderer::add_mixed(int texel, int vertex, const TriangleRuns& vertex_runs) {
+  passes_.push_back(make_mixed_pass(*core_, pass(texel), pass(vertex), vertex_runs));
+  return static_cast<int>(passes_.size()) - 1;
+}
+
 int Renderer::add_lightmap(const transfer::TransferData& transfer, const std::string& origin) {
   if (!transfer.header.is_texel()) fail_file(origin, "not a texel (lightmap) transfer");
   return add(transfer, nullptr, origin);
@@ -229,7 +234,7 @@ void Renderer::set_surface_albedo(int transfer, const std::vector<glm::vec3>& al
   if (albedo.size() != core_->vertex_count)
     fail("renderer: surface albedo has " + std::to_string(albedo.size()) + " entries for " + std::to_string(core_->vertex_count) +
          " vertices");
-  p.sun_surface().set_albedo(albedo);
+  p.set_surface_albedo(albedo);
 }
 
 void Renderer::set_textured(int transfer, bool textured) {

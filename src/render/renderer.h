@@ -42,6 +42,11 @@
 //               fragment shader samples them bilinearly at the lightmap UV and takes the dot product with
 //               the object-frame lighting; with discs, also the bounce-only layers with the discs' SH and
 //               the discs' direct light per pixel as prt_sun.frag (renderer_lightmap.h).
+//   mixed       a mixed scene (add_mixed, pass_mixed.cpp): the per-vertex diffuse pass draws its runs of
+//               triangles (one draw per run; first_triangle + gl_PrimitiveID is the mesh triangle index,
+//               triangle_runs.h), with its deferred direct light over the pixels covered so far, then the
+//               lightmap pass draws the other triangles into the same frame and depth buffer; each pixel is
+//               that of its nearest triangle, shaded by that triangle's kind.
 //   lambert     lambert.vert + surface.frag: a baseline without PRT, albedo * E * max(n . l, 0) for one
 //               directional light (see lambert_light()).
 //   sun         discs (light/disc.h: a sun, lamps; set_discs), sun_light.cpp: when the lighting
@@ -90,6 +95,7 @@
 #include "mesh/mesh.h"
 #include "render/gl.h"
 #include "render/shader_program.h"
+#include "render/triangle_runs.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
 
@@ -245,6 +251,14 @@ class Renderer {
   /// fingerprints first.)
   int add_lightmap(const transfer::TransferData& transfer, const std::string& origin);
   bool is_lightmap(int transfer) const;
+  /// A mixed scene (docs/conventions.md "Mixed scenes"): a new transfer index whose frames draw, in one
+  /// frame with one depth buffer, the triangles `vertex_runs` (runs [first, first + count) of mesh
+  /// triangles, increasing and disjoint) with per-vertex transfer `vertex` and every other triangle with
+  /// lightmap transfer `texel` (PASSES: mixed). Each keeps its own settings (set_surface_albedo,
+  /// set_textured on their own indices, or on this one for both); both stay in the list as they are.
+  /// Throws prt::Error unless `texel` is an uncompressed lightmap, `vertex` an uncompressed per-vertex
+  /// diffuse transfer of the same bands, and the runs lie inside the mesh in order.
+  int add_mixed(int texel, int vertex, const TriangleRuns& vertex_runs);
   /// Draws lightmap transfer `settings.transfer` in texel space into the float framebuffer, resized to
   /// its texel_width x texel_height: each triangle at its lightmap UV, so that read_radiance()'s pixel
   /// (i, j) is texel (i, j) shaded at its centre (as render() shades it per pixel: the rotations, bands,

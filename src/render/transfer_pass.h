@@ -39,6 +39,9 @@ struct Frame {
   int bands = 0;             ///< bands used this frame, in [1, header().bands]
   bool sun = false;          ///< the discs are shaded this frame (the core's SunLight holds them)
   bool texel_space = false;  ///< draw in texel space (Renderer::render_texels; lightmap passes only)
+  /// The triangles to draw, a share of a mixed frame (pass_mixed.cpp); null: the whole mesh. Only
+  /// passes whose draws_runs() is true are given runs.
+  const TriangleRuns* triangles = nullptr;
 };
 
 class TransferPass {
@@ -57,15 +60,23 @@ class TransferPass {
   /// Before the frame's framebuffer is bound, with the shadow maps up to date: whatever of the discs'
   /// light the pass computes when the lighting changes (its bounce light). Only on frames with discs.
   virtual void prepare_sun(FrameCore& core, const Frame& frame);
-  /// Draws the mesh into the bound framebuffer (the background drawn, depth cleared).
+  /// Draws the mesh (frame.triangles of it) into the bound framebuffer (the background drawn, depth
+  /// cleared, or the depth of an earlier share of a mixed frame kept).
   virtual void draw(FrameCore& core, const Frame& frame) = 0;
+  /// Whether draw() honours Frame::triangles (the per-vertex diffuse and the lightmap passes).
+  virtual bool draws_runs() const { return false; }
+  /// Whether draw() adds the discs' direct light in a deferred pass over every pixel the mesh covers
+  /// so far (SunLight::draw_deferred) rather than in its own fragments.
+  virtual bool deferred_sun() const { return false; }
+  /// Sets the albedo of the discs' direct light (Renderer::set_surface_albedo).
+  virtual void set_surface_albedo(const std::vector<glm::vec3>& albedo) { sun_surface_.set_albedo(albedo); }
 
   /// How the discs light this transfer.
   SunSurface& sun_surface() { return sun_surface_; }
   /// Renderer::set_textured: draw albedo-free radiance per vertex and multiply it by the base colour per
   /// pixel (BaseColour::draw_corners). Only the per-vertex diffuse passes (diffuse, cpca of diffuse
   /// transfer) do; the others ignore it.
-  void set_textured(bool textured) { textured_ = textured; }
+  virtual void set_textured(bool textured) { textured_ = textured; }
 
  protected:
   /// Sets the sun surface's origin and shadows flag (false for unshadowed transfer).
@@ -80,6 +91,14 @@ class TransferPass {
 /// The pass for `input`: the first registered factory (transfer_pass.cpp) that takes it. Throws
 /// prt::Error("<origin>: ...") if none does.
 std::unique_ptr<TransferPass> make_pass(FrameCore& core, const PassInput& input);
+
+/// A mixed scene's pass (pass_mixed.cpp; not in the factory list: it is made of two passes already
+/// made): one frame, one depth buffer, `vertex` drawing the triangles `vertex_runs` and `texel` every
+/// other triangle of the core's mesh. Both passes stay owned by the caller and must outlive it. Throws
+/// prt::Error unless `texel` is a lightmap pass and `vertex` a per-vertex pass that draw runs, of the
+/// same bands, and the runs are increasing, disjoint and inside the mesh.
+std::unique_ptr<TransferPass> make_mixed_pass(const FrameCore& core, TransferPass& texel, TransferPass& vertex,
+                                              const TriangleRuns& vertex_runs);
 
 /// The prt_diffuse program for (channels, transfer coefficients, used coefficients, chunks, discs,
 /// and for a textured draw BaseColour::defines()).

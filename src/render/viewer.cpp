@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "shade/glossy.h"
 #include "shade/surface_albedo.h"
+#include "render/mixed_frame.h"
 #include "render/renderer_cpca.h"
 #include "render/viewer_state.h"
 #include "sh/rotation.h"
@@ -111,6 +112,13 @@ class FrameTimer {
  private:
   GLuint queries_[2] = {0, 0};
   unsigned long frame_ = 0;
+};
+
+// A mixed pair among the transfers: its texel file's index (the per-vertex file follows) and the
+// triangles drawn per vertex.
+struct MixedEntry {
+  std::size_t texel = 0;
+  TriangleRuns vertex_runs;
 };
 
 enum class Drag { none, camera, light, object };
@@ -298,8 +306,42 @@ void init_state(ViewerState& state, const SceneInputs& scene, const ViewerOption
     fail_option("bands", ": must be between 1 and the transfer's " + std::to_string(state.current_bands()) + " bands");
 }
 
-// Uploads the mesh and every transfer (with its BRDF or surface albedo) to the renderer.
-void upload_scene(Renderer& renderer, const SceneInputs& scene, const ViewerState& state) {
+// The transfer files of `options` with each mixed pair's partner (mixed_frame.h), and where each pair's
+// texel file is in that list.
+std::vector<std::string> expand_mixed_pairs(const ViewerOptions& options, std::vector<std::size_t>& pairs) {
+  std::vector<std::string> paths;
+  for (const std::string& path : options.transfer_paths) {
+    const std::vector<std::string> expanded = mixed_transfer_paths(path);
+    if (expanded.size() == 2) pairs.push_back(paths.size());
+    paths.insert(paths.end(), expanded.begin(), expanded.end());
+  }
+  return paths;
+}
+
+// A mixed pair's entry after the files' own: "a.prt + a.vertices.prt (mixed, 5 bands, 14 of 16
+// triangles per texel)", drawn in one frame (Renderer::add_mixed). The viewer starts on it when the
+// first file given is of a pair.
+void add_mixed_entries(ViewerState& state, const SceneInputs& scene, const std::vector<MixedEntry>& mixed) {
+  for (std::size_t k = 0; k < mixed.size(); ++k) {
+    const std::size_t t = mixed[k].texel;
+    const transfer::Header& h = scene.transfers[t].header;
+    std::uint64_t per_vertex = 0;
+    for (const auto& run : mixed[k].vertex_runs) per_vertex += run.second;
+    const auto name = [&](std::size_t i) { return std::filesystem::path(scene.transfer_paths[i]).filename().string(); };
+    state.transfer_names.push_back(name(t) + " + " + name(t + 1) + " (mixed, " + std::to_string(h.bands) + " bands, " +
+                                   std::to_string(scene.mesh.triangle_count() - per_vertex) + " of " +
+                                   std::to_string(scene.mesh.triangle_count()) + " triangles per texel)");
+    state.transfer_bands.push_back(static_cast<int>(h.bands));
+    state.transfer_brdfs.emplace_back();
+    state.transfer_tables.emplace_back();
+    state.transfer_bands_out.push_back(0);
+    if (k == 0 && t == 0) state.settings.transfer = static_cast<int>(scene.transfers.size());
+  }
+}
+
+// Uploads the mesh and every transfer (with its BRDF or surface albedo) to the renderer, then each mixed
+// pair's one-frame entry (add_mixed_entries).
+void upload_scene(Renderer& renderer, const SceneInputs& scene, const ViewerState& state, const std::vector<MixedEntry>& mixed) {
   renderer.set_mesh(scene.mesh);
   for (std::size_t i = 0; i < scene.transfers.size(); ++i) {
     const int index = add_scene_transfer(renderer, scene, i);
@@ -310,6 +352,8 @@ void upload_scene(Renderer& renderer, const SceneInputs& scene, const ViewerStat
     else
       renderer.set_surface_albedo(index, shade::surface_albedo(scene.mesh, scene.transfers[i].header, scene.transfer_paths[i]));
   }
+  for (const MixedEntry& entry : mixed)
+    renderer.add_mixed(static_cast<int>(entry.texel), static_cast<int>(entry.texel + 1), entry.vertex_runs);
 }
 
 void install_callbacks(GLFWwindow* window, Session& session) {
@@ -384,15 +428,19 @@ void run_frames(GLFWwindow* window, Session& session, Renderer& renderer, const 
 
 void run_viewer(const ViewerOptions& options) {
   check_screenshot_option(options);
-  SceneInputs scene = load_scene(options.mesh_path, options.transfer_paths, options.scene);
+  std::vector<std::size_t> pairs;
+  SceneInputs scene = load_scene(options.mesh_path, expand_mixed_pairs(options, pairs), options.scene);
+  std::vector<MixedEntry> mixed;
+  for (std::size_t t : pairs) mixed.push_back({t, mixed_vertex_runs(scene, t)});
   Session session;
   ViewerState& state = session.state;
   init_state(state, scene, options);
+  add_mixed_entries(state, scene, mixed);
 
   Window window(options.width, options.height, options.frames <= 0);
   install_callbacks(window.get(), session);
   Renderer renderer;
-  upload_scene(renderer, scene, state);
+  upload_scene(renderer, scene, state, mixed);
   const mesh::Bounds bounds = mesh::bounds(scene.mesh);
   scene = SceneInputs();  // the GPU holds what is needed now
   state.renderer_name = describe_current_context();

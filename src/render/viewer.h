@@ -42,7 +42,10 @@ namespace prt::render {
 struct ViewerOptions {
   std::string mesh_path;
   int scene = mesh::kDefaultScene;  ///< mesh::LoadOptions::scene
-  std::vector<std::string> transfer_paths;  ///< one or more, all for the mesh (diffuse or glossy)
+  /// One or more, all for the mesh (diffuse or glossy). A file of a mixed pair (mixed_frame.h) loads
+  /// both files and adds, after all files, an entry drawing the pair in one frame; the viewer starts on
+  /// it when the first file given is of a pair.
+  std::vector<std::string> transfer_paths;
   std::string brdf;                         ///< glossy transfers: BRDF SPEC; empty = each one's baked BRDF
   std::vector<std::string> environments;    ///< one or more (images or SH lighting .json)
   Camera camera;

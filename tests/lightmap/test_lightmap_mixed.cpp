@@ -1,7 +1,8 @@
 // Mixed scenes (`prt bake --lightmap N --texel-parts ...`, lightmap/part_choice.h): which parts go per
 // texel (names, and the auto rule against its closed form), the .prt pair a mixed bake writes
 // (byte-identical for any thread count, each file naming the other), and bad input: one line, exit 1,
-// no file. The rendered pair against `prt reference --image` is tests/render/test_render_mixed.cpp.
+// no file. The rendered pair against `prt reference --image` is tests/render/test_render_lightmap_image.cpp,
+// the pair drawn in one frame tests/render/test_render_mixed.cpp.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -128,7 +129,47 @@ TEST_CASE("prt bake --texel-parts: bad input gives one line, exit 1 and no file"
   refused(bake(dir + "/broken.gltf") + "--texel-parts Floor,Wall -o " + dir + "/o.prt",
           "\"Floor\" mesh 0 primitive 0 has no usable lightmap UVs");
   refused(bake(dir + "/room.obj") + "--texel-parts Floor -o " + dir + "/o.prt", "names need a glTF scene");
-  refused(bake(room) + "--texel-parts Floor --uv generate -o " + dir + "/o.prt", "needs the file's own lightmap UVs");
+  refused(bake(room) + "--texel-parts Floor --uv generate -o " + dir + "/o.cprt", "mixed scene");
+}
+
+TEST_CASE("prt bake --texel-parts --uv auto judges the texel parts' UVs alone: tiling UVs on the box keep the file's UVs, bad texel UVs generate",
+          "[lightmap][mixed][cli]") {
+  const std::string dir = test::fresh_temp_dir("mixed_uv_auto");
+  std::vector<test::NamedPart> parts;
+  mesh::Mesh room = test::room_with_box(true, parts);
+  // The box (triangles 2..13) gets tiling texture UVs, as a prop's TEXCOORD_0 repeating a texture.
+  for (std::size_t c = 3 * 2; c < 3 * 14; ++c) room.lightmap_uv[c] = room.lightmap_uv[c] * 4.0f - 1.5f;
+  test::write_gltf_parts(dir + "/room.gltf", room, parts);
+  const std::string bake = "bake " + dir + "/room.gltf --transfer shadowed --bands 2 --samples 16 --lightmap 32 -q ";
+  auto run = [&](const std::string& arguments) {
+    const test::RunResult r = test::run_prt(bake + arguments);
+    INFO("prt " << bake << arguments << "\n" << r.output);
+    return r;
+  };
+  // The whole file's UVs would be generated (tiling), which a mixed scene cannot take; the texel parts'
+  // own UVs are fine, so auto keeps them: the same bytes as --uv file.
+  // (The same file names in two folders: each file of the pair names the other.)
+  for (const char* mode : {"file", "auto"}) {
+    std::filesystem::create_directory(dir + "/" + mode);
+    REQUIRE(run("--texel-parts Floor,Wall --uv " + std::string(mode) + " -o " + dir + "/" + mode + "/t.prt").exit_code == 0);
+  }
+  CHECK(read_file(dir + "/file/t.prt") == read_file(dir + "/auto/t.prt"));
+  CHECK(read_file(dir + "/file/t.vertices.prt") == read_file(dir + "/auto/t.vertices.prt"));
+  // With the box per texel too, its tiling UVs are judged: auto generates (a plain bake, no pair).
+  const test::RunResult all = run("--uv auto -o " + dir + "/all.prt");
+  CHECK(all.exit_code == 0);
+  CHECK_FALSE(std::filesystem::exists(dir + "/all.vertices.prt"));
+  CHECK(transfer::read_transfer(dir + "/all.prt").header.uv_fingerprint != transfer::read_transfer(dir + "/file/t.prt").header.uv_fingerprint);
+  // A texel part's own UVs unusable (a corner of the wall that only its first triangle uses, outside
+  // [0, 1]: 11% of the texel parts' area skipped, beyond the 1% rule): auto generates, and the mixed
+  // bake writes the mesh that carries the UVs beside the pair (pipeline/mixed_uv_mesh.h).
+  room.lightmap_uv[3 * 14 + 1] = glm::vec2(1.7f, 0.3f);
+  test::write_gltf_parts(dir + "/room.gltf", room, parts);
+  const test::RunResult generated = run("--texel-parts Floor,Wall --uv auto -o " + dir + "/gen.prt");
+  CHECK(generated.exit_code == 0);
+  CHECK(std::filesystem::exists(dir + "/gen.vertices.prt"));
+  CHECK(std::filesystem::exists(dir + "/gen.mesh.glb"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/file/t.mesh.glb"));  // none with the file's UVs
 }
 
 

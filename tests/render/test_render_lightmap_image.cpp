@@ -19,6 +19,7 @@
 #include "lightmap/mixed_scenes.h"
 #include "mesh/mesh.h"
 #include "support/run_prt.h"
+#include "transfer/transfer_file.h"
 
 using namespace prt;
 
@@ -207,4 +208,57 @@ TEST_CASE("prt render of a mixed pair: either file draws both, a missing or fore
   INFO(missing.output);
   CHECK(test::fails_in_one_line(missing, "a.vertices.prt"));
   CHECK_FALSE(std::filesystem::exists(dir + "/out.png"));
+}
+
+// Generated UVs in a mixed bake (--uv generate): the pair and ROOM.mesh.glb, the mesh that carries the
+// UVs (prt unwrap's form), baked as it loads back. The box is welded (8 vertices, smooth normals), so
+// its charts split vertices in the written mesh: the per-vertex file has the written mesh's vertices,
+// not the source's. Rendered from ROOM.mesh.glb, the frame matches the same scene baked with its own
+// (hand-made) UVs, rendered from the source, within 1.5% (rel_rms, mostly sample noise);
+// the source scene cannot draw the generated pair (refused in one line).
+TEST_CASE("prt bake --texel-parts --uv generate writes the mesh with the generated UVs, which prt render draws with the pair",
+          "[render][gl][lightmap][mixed][cli]") {
+  const std::string dir = test::fresh_temp_dir("render_mixed_generated");
+  std::vector<test::NamedPart> parts;
+  mesh::Mesh room = test::room_with_box(true, parts);
+  const test::NamedPart box = parts[1];
+  REQUIRE(box.name == "Box");
+  for (std::size_t c = 3 * box.first_triangle; c < 3 * (box.first_triangle + box.triangle_count); ++c) {
+    std::uint32_t& v = room.indices[c];
+    for (std::size_t d = 3 * box.first_triangle; d < c; ++d)
+      if (room.positions[room.indices[d]] == room.positions[v]) v = room.indices[d];  // the first vertex at that corner
+  }
+  glm::vec3 box_centre(0.0f);
+  for (std::size_t c = 3 * box.first_triangle; c < 3 * (box.first_triangle + box.triangle_count); ++c)
+    box_centre += room.positions[room.indices[c]] / float(3 * box.triangle_count);
+  for (std::size_t c = 3 * box.first_triangle; c < 3 * (box.first_triangle + box.triangle_count); ++c)
+    room.normals[room.indices[c]] = glm::normalize(room.positions[room.indices[c]] - box_centre);
+  test::write_gltf_parts(dir + "/room.gltf", room, parts);
+  const std::string bake = "bake " + dir + "/room.gltf --lightmap 96 --texel-parts Floor,Wall --transfer interreflected --bounces 1 "
+                                                      "--bands 3 --samples 512 -q ";
+  run_ok(bake + "--uv generate -o " + dir + "/gen.prt");
+  run_ok(bake + "-o " + dir + "/file.prt");
+  const mesh::Mesh source = mesh::load_mesh(dir + "/room.gltf", nullptr, true);
+  const mesh::Mesh written = mesh::load_mesh(dir + "/gen.mesh.glb", nullptr, true);
+  const transfer::Header vertices = transfer::read_transfer_header(dir + "/gen.vertices.prt");
+  std::printf("mixed bake with generated UVs: source %zu vertices, written mesh %zu, per-vertex file %llu\n", source.vertex_count(),
+              written.vertex_count(), static_cast<unsigned long long>(vertices.vertex_count));
+  CHECK(written.vertex_count() > source.vertex_count());  // the box's welded corners split at its charts
+  CHECK(vertices.vertex_count == written.vertex_count());
+  CHECK(written.lightmap_uv_set == 1);
+
+  const std::string view = std::string(" --env ") + dir + "/sky.exr --sun none --window none --background black --camera " + kCamera +
+                           " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " -q -o ";
+  write_lobe_sky(dir, dir + "/sky.exr");
+  run_ok("render " + dir + "/gen.mesh.glb " + dir + "/gen.prt" + view + dir + "/gen.exr");
+  run_ok("render " + dir + "/room.gltf " + dir + "/file.prt" + view + dir + "/file.exr");
+  const double difference = test::compare_rel_rms(dir + "/gen.exr", dir + "/file.exr");
+  std::printf("generated against hand-made UVs, mixed pair, rel_rms %.4f\n", difference);
+  // Measured 0.93% (two bakes of the file's UVs with other seeds differ by 1.0% at 512 samples, 1.7%
+  // at 128: mostly sample noise); the issue's 1% for generated UVs, with a margin for it.
+  CHECK(difference < 0.015);
+  const test::RunResult r = test::run_prt("render " + dir + "/room.gltf " + dir + "/gen.prt" + view + dir + "/wrong.exr");
+  INFO(r.output);
+  CHECK(test::fails_in_one_line(r, "gen"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/wrong.exr"));
 }
