@@ -39,7 +39,7 @@ std::string mixed_mesh_path(const std::string& texel_path) {
 MixedUvMesh::MixedUvMesh(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
                          const std::vector<std::uint8_t>& vertex_triangle)
     : file_(std::make_unique<AtomicFile>(path)) {
-  mesh::EngineExtras extras;  // prt unwrap's form (docs/formats.md, "Unwrapped mesh")
+  mesh::EngineExtras extras;  // the mesh as loaded, in prt unwrap's OBJ/PLY layout (docs/formats.md, "Unwrapped mesh")
   extras.lightmap_set = 1;
   extras.as_loaded = true;
   write_staged(*file_, [&](const std::string& temp) { mesh::write_engine_glb(temp, source_path, mesh, extras); });
