@@ -51,7 +51,7 @@ namespace prt::lightmap {
 
 struct DenoiseOptions {
   bool linear = true;          ///< weighted local linear fit instead of the weighted mean (no bias from one-sided taps)
-  int iterations = 5;          ///< a-trous levels (steps 1, 2, 4, ...): footprint 2^(iterations+1) - 1 texels; 0..12
+  int iterations = 4;          ///< a-trous levels (steps 1, 2, 4, ...): footprint 2^(iterations+1) - 1 texels; 0..12
   float plane_sigma = 0.5f;    ///< tangent-plane distance scale, in texels' world size; > 0
   float normal_power = 64.0f;  ///< exponent of the normal weight; >= 0
   float value_sigma = 1.0f;    ///< transfer distance scale, in noise standard deviations; > 0 (infinity: no range weight)
