@@ -13,7 +13,7 @@
 // are covered texels of p's chart (the centre q = p always with weight 1/4), with
 //   w(p,q) = h(dx) h(dy)                                         h = (1/4, 1/2, 1/4): B-spline taps
 //          * exp(-(n_p . (x_q - x_p))^2 / (plane_sigma * size_p)^2   off p's tangent plane
-//                - D(p,q) / (value_sigma^2 (v_p + v_q) + value_floor^2 |T_p|^2))
+//                - D(p,q) / (value_sigma^2 (v_p + v_q) + f_i^2 |T_p|^2))    f_i = value_floor floor_decay^i
 //          * max(0, n_p . n_q)^normal_power                           normals turning
 // where x, n are the texel's sample position and unit normal, size_p the world size of a texel there
 // (charts.h), T the texel's whole transfer vector (every coefficient of every channel; the bounce-only
@@ -26,12 +26,12 @@
 // each texel's difference from the mean of its chart's 3 x 3 neighbours (x k/(k-1) for k texels);
 // each iteration propagates it as v_p <- sum w^2 v_q / (sum w)^2. Gutter and empty texels are not
 // read or written (refill the gutters afterwards, gutter.h). The weights of each texel then become
-// those of a weighted local linear fit (`linear`).
+// those of a weighted local linear fit (`linear`), its slopes damped by a ridge (`slope_ridge`).
 // TWICING (Tukey 1977). The levels S above, with their weights kept, filter the residual once more:
 // T <- S T + twicing x S (T - S T). At equal settings this about halves S's bias (curvature, one-sided
 // taps) and leaves more noise: on the test's box scene (a 4096-sample bake filtered and compared with
 // itself, sunrise) 0.27% -> 0.15% at value_floor 0.01. The defaults spend the gain on a wider range
-// weight (value_floor 0.1; bias 0.41%, but less noise left: docs/conventions.md has the figures).
+// weight (docs/conventions.md has the figures).
 // Still one fixed linear map per texel: linear in the lighting.
 // INTERLEAVED SAMPLES. A bake that will be denoised gives the 16 texels of each 4 x 4 tile 16
 // complementary sample sets (interleaved_sampling), so that neighbouring texels' noise largely cancels
