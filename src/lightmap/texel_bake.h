@@ -5,7 +5,7 @@
 //   - unshadowed: closed form at each sample's normal;
 //   - shadowed: the same S cosine-distributed Owen-scrambled Sobol directions per sample, in the
 //     frame sh::vertex_frame(n, seed, texel index) (with --denoise: turned by
-//     interleaved_sampling, denoise.h, which also gives each texel one of 16 sample sets), with the
+//     interleaved_sampling, denoise.h, which also gives each texel one of up to 256 sample sets), with the
 //     unshadowed control variate;
 //   - interreflected: each bounce pass gathers, at a front-face hit, the previous pass's texel
 //     transfer at the hit's lightmap UV, filtered bilinearly in the texel grid (bake/passes.h,
