@@ -299,13 +299,14 @@ InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample
   const std::uint32_t bits = std::uint32_t(out.tile_bits), side = 1u << bits;
   const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), tiles_across = (width + side - 1) / side;
   out.set.reserve(samples.samples.size());
-  out.angle.reserve(samples.samples.size());
+  out.angle.assign(samples.samples.size(), 0.0);
   for (const TexelSample& s : samples.samples) {
     const std::uint32_t i = s.texel % width, j = s.texel / width, x = (i ^ j) % side, y = i % side;
     std::uint32_t set = 0;
     for (std::uint32_t b = 0; b < bits; ++b) set |= (((x >> b) & 1u) << (2 * b)) | (((y >> b) & 1u) << (2 * b + 1));
-    out.set.push_back(std::uint8_t(set));
-    out.angle.push_back(2.0 * kPi * hash_to_unit(seed, std::uint64_t(i / side) + std::uint64_t(j / side) * tiles_across, 0x1ea5e));
+    // XOR with a constant maps every aligned block of consecutive sets onto another one.
+    const double tile = hash_to_unit(seed, std::uint64_t(i / side) + std::uint64_t(j / side) * tiles_across, 0x5e7);
+    out.set.push_back(std::uint8_t(set ^ std::uint32_t(tile * double(side * side))));
   }
   return out;
 }

@@ -80,18 +80,19 @@ DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples
 /// frame's turn. The grid is cut into tiles of 2^L x 2^L texels, L = interleaved_tile_bits(S) (16 x 16
 /// up to S = 1024 samples per texel), and the 4^L texels of a tile trace the 4^L different sets of
 /// bake::make_interleaved_sample_sets (consecutive blocks of S points of one Sobol sequence): texel
-/// (i, j) traces set k whose bits interleave those of x = (i xor j) mod 2^L (bits 0, 2, ...) and
-/// y = i mod 2^L (bits 1, 3, ...), k = bit-reversed Bayer index. So every aligned 2 x 2 block traces 4
-/// consecutive sets (for S = 2^m together a (0,m+2,2)-net), every aligned 4 x 4 block 16 (a
-/// (0,m+4,2)-net), and so on up to the tile: neighbouring texels sample complementary strata in
-/// elevation and azimuth alike, and their noise largely cancels in the filter's sums. Every texel of a
-/// tile turns its frame by the same 2 pi u_tile, u_tile in [0, 1) hashed from (seed, tile), so that
-/// tiles do not repeat one another's pattern. Each texel alone keeps an S-direction set as good as an
-/// undenoised bake's.
+/// (i, j) traces set k = k0 xor h_tile: the bits of k0 interleave those of x = (i xor j) mod 2^L
+/// (bits 0, 2, ...) and y = i mod 2^L (bits 1, 3, ...) (k0 is the bit-reversed Bayer index), h_tile in
+/// 0..4^L - 1 is hashed from (seed, tile). So every aligned 2 x 2 block traces 4 consecutive sets (for
+/// S = 2^m together a (0,m+2,2)-net), every aligned 4 x 4 block 16 (a (0,m+4,2)-net), and so on up to
+/// the tile (a XOR maps aligned blocks of sets onto aligned blocks): neighbouring texels sample
+/// complementary strata in elevation and azimuth alike, and their noise largely cancels in the filter's
+/// sums; h_tile keeps tiles from repeating one another's pattern. The frames are not turned (angle 0,
+/// sh::turned_frame): a turn per tile measured worse (docs/conventions.md). Each texel alone keeps an
+/// S-direction set as good as an undenoised bake's.
 struct InterleavedSampling {
   int tile_bits = 0;              ///< L
   std::vector<std::uint8_t> set;  ///< 0..4^L - 1
-  std::vector<double> angle;      ///< radians
+  std::vector<double> angle;      ///< radians, all 0 (the frames of PassContext::frame_angles)
 };
 InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed);
 

@@ -167,7 +167,7 @@ TEST_CASE("denoise: twicing halves the curvature bias of a smooth bowl (and stay
   CHECK(twice < 0.5 * once);
 }
 
-TEST_CASE("denoise: interleaved sampling: every aligned 2^k x 2^k block of a tile traces 4^k consecutive sets, one turn per tile",
+TEST_CASE("denoise: interleaved sampling: every aligned 2^k x 2^k block of a tile traces 4^k consecutive sets, tiles differ",
           "[lightmap][denoise]") {
   // Tile side 2^L by the sample count: 4^L x S <= 2^18.
   CHECK(lightmap::interleaved_tile_bits(1) == 4);
@@ -188,9 +188,9 @@ TEST_CASE("denoise: interleaved sampling: every aligned 2^k x 2^k block of a til
     REQUIRE(a.tile_bits == lightmap::interleaved_tile_bits(count));
     REQUIRE(a.set.size() == samples.samples.size());
     REQUIRE(a.angle.size() == samples.samples.size());
-    CHECK(a.angle == lightmap::interleaved_sampling(samples, count, 3).angle);
-    CHECK(a.angle != lightmap::interleaved_sampling(samples, count, 4).angle);
-    CHECK(a.set == lightmap::interleaved_sampling(samples, count, 4).set);  // the sets follow the grid alone
+    CHECK(a.set == lightmap::interleaved_sampling(samples, count, 3).set);
+    CHECK(a.set != lightmap::interleaved_sampling(samples, count, 4).set);  // each tile's sets are permuted by seed
+    CHECK(std::all_of(a.angle.begin(), a.angle.end(), [](double angle) { return angle == 0.0; }));  // frames not turned
     // The sets of every aligned block of b x b texels, b = 2, 4, ..., tile, sorted: m b^2 .. m b^2 + b^2 - 1.
     for (int b = 2; b <= tile; b *= 2)
       for (int j0 = 0; j0 + b <= side; j0 += b)
@@ -204,11 +204,10 @@ TEST_CASE("denoise: interleaved sampling: every aligned 2^k x 2^k block of a til
           INFO("block of " << b << " at " << i0 << ", " << j0);
           CHECK(consecutive);
         }
-    for (int t = 0; t < side * side; ++t) {
-      const int i = t % side, j = t / side;
-      CHECK(a.angle[std::size_t(t)] == a.angle[std::size_t(i - i % tile + side * (j - j % tile))]);  // one turn per tile
-    }
-    CHECK(a.angle[0] != a.angle[std::size_t(tile)]);  // tiles turn by their own hashed offsets
+    // Tiles do not repeat one another's pattern: the first two tiles of the first row differ.
+    bool differ = false;
+    for (int t = 0; t < tile; ++t) differ |= a.set[std::size_t(t)] != a.set[std::size_t(t + tile)];
+    CHECK(differ);
   }
 }
 
@@ -298,10 +297,10 @@ TEST_CASE("denoise: box on a floor vs 4096 samples, three HDRIs: 128 denoised be
   for (int e = 0; e < 3; ++e) {
     const double r128 = rel_rms(raw128, ref, all, e), r1024 = rel_rms(raw1024, ref, all, e), rdn = rel_rms(dn128, ref, all, e);
     INFO("environment " << e << ": rel_rms 128 raw " << r128 << ", 1024 raw " << r1024 << ", 128 denoised " << rdn);
-    CHECK(rdn <= r1024);  // the issue's figure: 0.97x, 0.997x, 0.98x; not on every seed (docs/conventions.md)
+    CHECK(rdn <= r1024);  // the issue's figure: 0.99x, 0.93x, 0.97x; not on every seed (docs/conventions.md)
   }
   // Edges: the contact band and the chart borders at 128 samples, no worse than the filter of the
-  // previous stop (1.19% and 0.63%, i.e. 0.46x and 0.40x the undenoised 2.6% and 1.57%; now 0.40x and 0.28x).
+  // previous stop (1.19% and 0.63%, i.e. 0.46x and 0.40x the undenoised 2.6% and 1.57%; now 0.36x and 0.27x).
   const double c_raw = rel_rms(raw128, ref, contact, -1), c_dn = rel_rms(dn128, ref, contact, -1);
   const double b_raw = rel_rms(raw128, ref, border, -1), b_dn = rel_rms(dn128, ref, border, -1);
   INFO("contact band: 128 raw " << c_raw << ", denoised " << c_dn << "; chart borders: " << b_raw << ", " << b_dn);
