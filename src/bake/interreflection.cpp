@@ -102,7 +102,7 @@ class BounceWorker {
                std::vector<float>& next, const std::vector<mesh::TriangleColour>& colours)
       : ctx_(ctx), albedo_(albedo), channels_(channels), prev_(prev), next_(next),
         n_(static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands), stride_(n_ * channels),
-        at_hits_(albedo_at_hits(*ctx.mesh)), weights_(4 * ctx.samples->directions.size()), gathered_(stride_),
+        at_hits_(albedo_at_hits(*ctx.mesh)), weights_(4 * ctx.samples->per_point()), gathered_(stride_),
         colours_(colours) {}
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
@@ -146,7 +146,7 @@ class BounceWorker {
       for (int ch = 0; ch < channels_; ++ch)
         for (std::size_t c = ch * n_; c < (ch + 1) * n_; ++c) gathered_[c] += w[ch] * p[c];
     }
-    const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
+    const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->per_point());
     float* o = next_.data() + static_cast<std::size_t>(v) * stride_;
     for (int ch = 0; ch < channels_; ++ch) {
       const float scale = (at_hits_ ? 1.0f : albedo_[v][ch]) * inv_samples;

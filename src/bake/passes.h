@@ -64,18 +64,23 @@ struct PassContext {
   /// With `points` and `footprints`: points from this one on are the mesh's vertices (a mixed scene's,
   /// trace::VertexRays::footprint_first); their rays leave from their footprints.
   std::size_t footprint_first = static_cast<std::size_t>(-1);
+  /// Per point: which of samples->sets sets it traces (LocalSampleSet); null: set 0 (samples->sets 1).
+  const std::vector<std::uint8_t>* point_set = nullptr;
 
   /// The per-point ray loop of this context (trace/vertex_rays.h) with query `query`, over this
   /// rank's share of the order.
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
     return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
-                             share.begin, share.end, footprints, points.geometric_normals, frame_angles, footprint_first};
+                             share.begin, share.end, footprints, points.geometric_normals, frame_angles, footprint_first,
+                             point_set, static_cast<std::size_t>(samples->sets)};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }
   std::size_t point_count() const { return points.positions ? points.positions->size() : mesh->positions.size(); }
   /// What the loop calls a point in its progress bar.
   const char* point_unit() const { return points.positions ? "texels" : "vertices"; }
+  /// The first of point v's directions in samples->directions (and rows in samples->basis).
+  std::size_t first_sample(std::uint32_t v) const { return point_set ? (*point_set)[v] * samples->per_point() : 0; }
 };
 
 /// (1/pi) A_l, l < bands: the clamped-cosine factors of the unshadowed transfer.

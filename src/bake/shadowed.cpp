@@ -21,8 +21,9 @@ class ShadowedWorker {
     any_occluded_ = false;
   }
 
-  void batch(std::uint32_t, const trace::RayBatch& batch, std::size_t first) {
-    if (rows_.add(batch, first, local_sum_.data()) > 0) any_occluded_ = true;
+  // `first` counts from the point's own set (ctx.point_set): its rows start at first_sample(v).
+  void batch(std::uint32_t v, const trace::RayBatch& batch, std::size_t first) {
+    if (rows_.add(batch, ctx_.first_sample(v) + first, local_sum_.data()) > 0) any_occluded_ = true;
   }
 
   void finish(std::uint32_t v, const glm::mat3& frame) {
@@ -30,7 +31,7 @@ class ShadowedWorker {
     float* o = out_.data() + static_cast<std::size_t>(v) * n_;
     unshadowed_vertex(bands, factors_, ctx_.point_normals()[v], o);
     if (!any_occluded_) return;
-    const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->directions.size());
+    const float inv_samples = 1.0f / static_cast<float>(ctx_.samples->per_point());
     sh::rotate(bands, frame, local_sum_.data(), world_sum_.data());
     for (int c = 0; c < n_; ++c) o[c] -= inv_samples * world_sum_[c];
   }

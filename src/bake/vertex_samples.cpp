@@ -119,6 +119,13 @@ LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed)
   return sample_set_from(sh::hemisphere_directions_cosine(static_cast<std::size_t>(samples), seed), bands);
 }
 
+LocalSampleSet make_interleaved_sample_sets(int samples, int bands, std::uint32_t seed, int sets) {
+  const std::size_t total = static_cast<std::size_t>(samples) * static_cast<std::size_t>(sets);
+  LocalSampleSet set = sample_set_from(sh::hemisphere_directions_cosine(total, seed), bands);
+  set.sets = sets;
+  return set;
+}
+
 LocalSampleSet make_uniform_sample_set(int samples, int bands, std::uint32_t seed) {
   return sample_set_from(sh::hemisphere_directions_uniform(static_cast<std::size_t>(samples), seed), bands);
 }

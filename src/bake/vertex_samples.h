@@ -11,11 +11,16 @@
 
 namespace prt::bake {
 
-/// S hemisphere directions about +z (local frame) and the SH basis at each of them.
+/// S hemisphere directions about +z (local frame) and the SH basis at each of them; or `sets` such
+/// sets of S one after the other (make_interleaved_sample_sets), point v tracing set k_v's directions
+/// [k_v S, (k_v + 1) S) (PassContext::point_set).
 struct LocalSampleSet {
   int bands = 0;
-  std::vector<glm::vec3> directions;  ///< S unit vectors, z >= 0
-  std::vector<float> basis;           ///< S x bands^2, sample-major: basis[s * bands^2 + i] = Y_i(directions[s])
+  int sets = 1;                       ///< sets of S directions; >= 1
+  std::vector<glm::vec3> directions;  ///< sets x S unit vectors, z >= 0
+  std::vector<float> basis;           ///< sets x S x bands^2, sample-major: basis[s * bands^2 + i] = Y_i(directions[s])
+  /// S: the directions one point traces.
+  std::size_t per_point() const { return directions.size() / static_cast<std::size_t>(sets); }
 };
 
 /// A visibility worker of trace::trace_vertex_rays that sums per occluded ray (the glossy direct pass's
@@ -76,6 +81,14 @@ class OccludedRowSums {
 
 /// Builds the set for (samples, seed): sh::hemisphere_directions_cosine, basis in float.
 LocalSampleSet make_local_sample_set(int samples, int bands, std::uint32_t seed);
+
+/// `sets` sets of `samples` cosine-distributed directions (interleaved sampling, Keller and Heidrich,
+/// "Interleaved Sampling", EGWR 2001): set k is the points [k S, (k + 1) S) of the Sobol sequence
+/// of make_local_sample_set (sh::hemisphere_directions_cosine(sets x S, seed)), so set 0 is
+/// make_local_sample_set's and, for S a power of two, each set alone and every 2^m consecutive sets
+/// aligned on 2^m together are (0,k,2)-nets of the unit square: points that trace different sets
+/// sample complementary strata in both dimensions (elevation and azimuth). sets in 1..256, sets x S < 2^32.
+LocalSampleSet make_interleaved_sample_sets(int samples, int bands, std::uint32_t seed, int sets);
 
 /// S directions uniform on the hemisphere about +z (sh::hemisphere_directions_uniform) and the SH
 /// basis of `bands` bands at each (the glossy passes, which weight by the BRDF rather than the cosine).

@@ -108,19 +108,20 @@ std::vector<float> initial_variance(const std::vector<float>& values, std::size_
 
 // Turns the weights w of taps at grid offsets (in steps) into the equivalent kernel of a weighted local
 // linear fit T(q) ~ a + b . offset, evaluated at the centre (a): w_q (c0 + c1 dx + c2 dy) with
-// c = M^-1 e0, M = sum w [1 dx dy]^T [1 dx dy] (ridge 1e-3 sum w on the slopes against collinear taps),
+// c = M^-1 e0, M = sum w [1 dx dy]^T [1 dx dy] + ridge sum w on the slopes (against collinear taps, and
+// a pull towards the weighted mean where one-sided taps would extrapolate noise),
 // renormalised to sum 1. A weighted mean is biased by one-sided neighbourhoods (a chart border, a
 // contact line, taps cut off by the range weight) wherever the transfer has a gradient; the linear
 // fit is not, for gradients that are linear over the taps.
-void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<float, 9>& w) {
+void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<float, 9>& w, double ridge) {
   double m[3][3] = {};
   for (int k = 0; k < n; ++k) {
     const double x[3] = {1.0, offsets[std::size_t(k)].x, offsets[std::size_t(k)].y};
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) m[a][b] += w[std::size_t(k)] * x[a] * x[b];
   }
-  m[1][1] += 1e-3 * m[0][0];
-  m[2][2] += 1e-3 * m[0][0];
+  m[1][1] += ridge * m[0][0];
+  m[2][2] += ridge * m[0][0];
   // First column of the inverse of the symmetric 3 x 3 matrix (cofactors / determinant).
   const double c0 = m[1][1] * m[2][2] - m[1][2] * m[2][1], c1 = m[1][2] * m[2][0] - m[1][0] * m[2][2],
                c2 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
@@ -155,6 +156,7 @@ struct Iteration {
   const DenoiseGuides& g;
   const DenoiseOptions& o;
   long step;
+  float level_floor;  // value_floor x floor_decay^level
   const std::vector<float>& variance;
 
   // The taps' weights of covered texel p at (i, j), from `in` (the previous iteration); returns how
@@ -169,7 +171,7 @@ struct Iteration {
     const float plane = o.plane_sigma * g.size[p];
     const float inv_plane2 = plane > 0.0f ? 1.0f / (plane * plane) : 0.0f;
     const float* tp = in.data() + p * stride;
-    const float norm2 = o.value_floor * o.value_floor * std::inner_product(tp, tp + stride, tp, 0.0f) + 1e-30f;
+    const float norm2 = level_floor * level_floor * std::inner_product(tp, tp + stride, tp, 0.0f) + 1e-30f;
     const bool value_weight = !std::isinf(o.value_sigma);
     int n = 0;
     for (long dj = -r; dj <= r; ++dj)
@@ -198,7 +200,7 @@ struct Iteration {
         offsets[std::size_t(n)] = {float(di), float(dj)};
         w[std::size_t(n++)] = wq;
       }
-    if (o.linear) local_linear(n, offsets, w);
+    if (o.linear) local_linear(n, offsets, w, o.slope_ridge);
     return n;
   }
 
@@ -285,17 +287,28 @@ DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples
   return g;
 }
 
-std::vector<double> interleaved_frame_angles(const TexelSamples& samples, std::uint32_t seed) {
-  static constexpr int kBayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
-  const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), tiles_across = (width + 3) / 4;
-  std::vector<double> angles;
-  angles.reserve(samples.samples.size());
+int interleaved_tile_bits(int sample_count) {
+  int bits = 0;
+  while (bits < 4 && (std::uint64_t(sample_count) << (2 * (bits + 1))) <= (std::uint64_t(1) << 18)) ++bits;
+  return bits;
+}
+
+InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed) {
+  InterleavedSampling out;
+  out.tile_bits = interleaved_tile_bits(sample_count);
+  const std::uint32_t bits = std::uint32_t(out.tile_bits), side = 1u << bits;
+  const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), tiles_across = (width + side - 1) / side;
+  out.set.reserve(samples.samples.size());
+  out.angle.assign(samples.samples.size(), 0.0);
   for (const TexelSample& s : samples.samples) {
-    const std::uint32_t i = s.texel % width, j = s.texel / width;
-    const double tile = hash_to_unit(seed, std::uint64_t(i / 4) + std::uint64_t(j / 4) * tiles_across, 0x1ea5e);
-    angles.push_back(2.0 * kPi * (tile + kBayer[j % 4][i % 4] / 16.0));
+    const std::uint32_t i = s.texel % width, j = s.texel / width, x = (i ^ j) % side, y = i % side;
+    std::uint32_t set = 0;
+    for (std::uint32_t b = 0; b < bits; ++b) set |= (((x >> b) & 1u) << (2 * b)) | (((y >> b) & 1u) << (2 * b + 1));
+    // XOR with a constant maps every aligned block of consecutive sets onto another one.
+    const double tile = hash_to_unit(seed, std::uint64_t(i / side) + std::uint64_t(j / side) * tiles_across, 0x5e7);
+    out.set.push_back(std::uint8_t(set ^ std::uint32_t(tile * double(side * side))));
   }
-  return angles;
+  return out;
 }
 
 void validate_denoise_options(const DenoiseOptions& o) {
@@ -305,6 +318,8 @@ void validate_denoise_options(const DenoiseOptions& o) {
     fail_option("normal_power", " " + std::to_string(o.normal_power) + " must be finite and >= 0");
   if (!(o.value_sigma > 0.0f)) fail_option("value_sigma", " " + std::to_string(o.value_sigma) + " must be > 0");
   if (!(o.twicing >= 0.0f && o.twicing <= 1.0f)) fail_option("twicing", " " + std::to_string(o.twicing) + " is out of range 0..1");
+  if (!(o.floor_decay > 0.0f && o.floor_decay <= 1.0f)) fail_option("floor_decay", " " + std::to_string(o.floor_decay) + " is out of range (0, 1]");
+  if (!(o.slope_ridge >= 1e-3f && o.slope_ridge <= 10.0f)) fail_option("slope_ridge", " " + std::to_string(o.slope_ridge) + " is out of range 0.001..10");
   if (!(o.value_floor >= 0.0f) || std::isinf(o.value_floor))
     fail_option("value_floor", " " + std::to_string(o.value_floor) + " must be finite and >= 0");
 }
@@ -322,7 +337,7 @@ void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only,
   // Written at every covered texel by each level before it is read (uninitialised: no pass over it).
   const std::unique_ptr<float[]> stored(new float[guides.covered.size() * 9 * std::size_t(options.iterations)]);
   for (int it = 0; it < options.iterations; ++it) {
-    const Iteration iteration{guides, options, 1L << it, variance};
+    const Iteration iteration{guides, options, 1L << it, options.value_floor * std::pow(options.floor_decay, float(it)), variance};
     iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance,
                     stored.get() + std::size_t(it) * guides.covered.size() * 9);
     values.swap(next_values);

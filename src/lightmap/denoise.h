@@ -13,7 +13,7 @@
 // are covered texels of p's chart (the centre q = p always with weight 1/4), with
 //   w(p,q) = h(dx) h(dy)                                         h = (1/4, 1/2, 1/4): B-spline taps
 //          * exp(-(n_p . (x_q - x_p))^2 / (plane_sigma * size_p)^2   off p's tangent plane
-//                - D(p,q) / (value_sigma^2 (v_p + v_q) + value_floor^2 |T_p|^2))
+//                - D(p,q) / (value_sigma^2 (v_p + v_q) + f_i^2 |T_p|^2))    f_i = value_floor floor_decay^i
 //          * max(0, n_p . n_q)^normal_power                           normals turning
 // where x, n are the texel's sample position and unit normal, size_p the world size of a texel there
 // (charts.h), T the texel's whole transfer vector (every coefficient of every channel; the bounce-only
@@ -26,15 +26,15 @@
 // each texel's difference from the mean of its chart's 3 x 3 neighbours (x k/(k-1) for k texels);
 // each iteration propagates it as v_p <- sum w^2 v_q / (sum w)^2. Gutter and empty texels are not
 // read or written (refill the gutters afterwards, gutter.h). The weights of each texel then become
-// those of a weighted local linear fit (`linear`).
+// those of a weighted local linear fit (`linear`), its slopes damped by a ridge (`slope_ridge`).
 // TWICING (Tukey 1977). The levels S above, with their weights kept, filter the residual once more:
 // T <- S T + twicing x S (T - S T). At equal settings this about halves S's bias (curvature, one-sided
 // taps) and leaves more noise: on the test's box scene (a 4096-sample bake filtered and compared with
 // itself, sunrise) 0.27% -> 0.15% at value_floor 0.01. The defaults spend the gain on a wider range
-// weight (value_floor 0.1; bias 0.41%, but less noise left: docs/conventions.md has the figures).
+// weight (docs/conventions.md has the figures).
 // Still one fixed linear map per texel: linear in the lighting.
-// INTERLEAVED FRAMES. A bake that will be denoised turns its texels' sample frames in a 4 x 4
-// interleaved pattern (interleaved_frame_angles), so that neighbouring texels' noise partly cancels
+// INTERLEAVED SAMPLES. A bake that will be denoised gives the 16 texels of each 4 x 4 tile 16
+// complementary sample sets (interleaved_sampling), so that neighbouring texels' noise largely cancels
 // in the filter's sums.
 // Deterministic: each iteration reads only the previous one's values, so the bytes do not depend on
 // the thread count.
@@ -54,10 +54,12 @@ struct DenoiseOptions {
   int iterations = 4;          ///< a-trous levels (steps 1, 2, 4, ...): footprint 2^(iterations+1) - 1 texels; 0..12
   float plane_sigma = 0.5f;    ///< tangent-plane distance scale, in texels' world size; > 0
   float normal_power = 64.0f;  ///< exponent of the normal weight; >= 0
-  float value_sigma = 2.0f;    ///< transfer distance scale, in noise standard deviations; > 0 (infinity: no range weight)
-  float value_floor = 0.1f;    ///< transfer distance scale floor, relative to |T_p| (noise-free regions); >= 0
+  float value_sigma = 1.0f;    ///< transfer distance scale, in noise standard deviations; > 0 (infinity: no range weight)
+  float value_floor = 0.25f;   ///< transfer distance scale floor at level 0, relative to |T_p| (noise-free regions); >= 0
+  float floor_decay = 0.6f;    ///< value_floor shrinks by this factor per level (wider steps see larger real differences); (0, 1]
+  float slope_ridge = 0.1f;    ///< ridge on the linear fit's slopes, relative to the weight sum; 0.001..10
   float twicing = 1.0f;        ///< add this share of the filtered residual (input - filtered) back; 0..1 (0: off)
-  bool interleave = true;      ///< the bake turns the texels' sample frames by interleaved_frame_angles
+  bool interleave = true;      ///< the bake gives the texels interleaved sample sets and frames (interleaved_sampling)
   int threads = 0;             ///< 0 = all cores; the output does not depend on it
 };
 
@@ -73,15 +75,30 @@ struct DenoiseGuides {
 /// The guides of `samples`, the texel samples of `mesh`'s lightmap (texel_bake.h, texel_samples).
 DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples);
 
-/// The sample-frame turn (radians) of each texel sample of a bake that will be denoised (interleaved
-/// sampling, Keller and Heidrich, "Interleaved Sampling", EGWR 2001): texel (i, j) turns its frame by
-/// 2 pi (u_tile + B(i mod 4, j mod 4) / 16), B the 4 x 4 Bayer matrix (every aligned 2 x 2 block holds
-/// 4 turns a quarter turn apart, every 4 x 4 tile 16 a sixteenth apart) and u_tile in [0, 1) hashed
-/// from (seed, the 4 x 4 tile). On a plane the 16 texels of a tile together sample 16 x S directions
-/// whose azimuths interleave, so the noise of neighbouring texels partly cancels in the filter's sums;
-/// each texel alone keeps an S-direction set as good as the hashed frame's. One angle per sample, in
-/// the order of samples.samples.
-std::vector<double> interleaved_frame_angles(const TexelSamples& samples, std::uint32_t seed);
+/// Interleaved sampling for a bake that will be denoised (Keller and Heidrich, "Interleaved Sampling",
+/// EGWR 2001): per texel sample, in the order of samples.samples, the sample set it traces and its
+/// frame's turn. The grid is cut into tiles of 2^L x 2^L texels, L = interleaved_tile_bits(S) (16 x 16
+/// up to S = 1024 samples per texel), and the 4^L texels of a tile trace the 4^L different sets of
+/// bake::make_interleaved_sample_sets (consecutive blocks of S points of one Sobol sequence): texel
+/// (i, j) traces set k = k0 xor h_tile: the bits of k0 interleave those of x = (i xor j) mod 2^L
+/// (bits 0, 2, ...) and y = i mod 2^L (bits 1, 3, ...) (k0 is the bit-reversed Bayer index), h_tile in
+/// 0..4^L - 1 is hashed from (seed, tile). So every aligned 2 x 2 block traces 4 consecutive sets (for
+/// S = 2^m together a (0,m+2,2)-net), every aligned 4 x 4 block 16 (a (0,m+4,2)-net), and so on up to
+/// the tile (a XOR maps aligned blocks of sets onto aligned blocks): neighbouring texels sample
+/// complementary strata in elevation and azimuth alike, and their noise largely cancels in the filter's
+/// sums; h_tile keeps tiles from repeating one another's pattern. The frames are not turned (angle 0,
+/// sh::turned_frame): a turn per tile measured worse (docs/conventions.md). Each texel alone keeps an
+/// S-direction set as good as an undenoised bake's.
+struct InterleavedSampling {
+  int tile_bits = 0;              ///< L
+  std::vector<std::uint8_t> set;  ///< 0..4^L - 1
+  std::vector<double> angle;      ///< radians, all 0 (the frames of PassContext::frame_angles)
+};
+InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed);
+
+/// L: the largest in 0..4 with 4^L x sample_count <= 2^18 (the sets' directions and basis rows stay
+/// under ~60 MB at 5 bands).
+int interleaved_tile_bits(int sample_count);
 
 /// Throws prt::OptionError naming the field for options out of range.
 void validate_denoise_options(const DenoiseOptions& options);

@@ -50,11 +50,16 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
   // Per texel: raster state and coverage (~40 bytes), the sample (~80), and transfer buffers: values;
   // with bounces also bounce-only, prev grid, next and the per-sample sums (5 more).
   // --denoise: per section a second copy and the twicing residual, then the variances (2 floats) and the
-  // stored weights (9 floats per level); --stitch: the seams' system, small.
+  // stored weights (9 floats per level), and the interleaved sample sets (interleaved_tile_bits: 4^L x S
+  // directions, each with its basis row and its padded copy: at most 12 + 8 bands^2 bytes); --stitch:
+  // the seams' system, small.
   const std::uint64_t sections = o.kind == transfer::Kind::interreflected ? 2 : 1;
   const std::uint64_t buffers = (o.kind == transfer::Kind::interreflected ? 6 : 2) + (l.denoise ? 2 * sections : 0);
   const std::uint64_t denoise_bytes = l.denoise ? 8 + 36ull * std::uint64_t(std::max(0, l.denoise_options.iterations)) : 0;
-  return texels * (120 + denoise_bytes + buffers * stride_bytes);
+  const std::uint64_t set_bytes = l.denoise ? (std::uint64_t(std::max(0, o.samples)) << (2 * interleaved_tile_bits(o.samples))) *
+                                                  (12 + 8ull * std::uint64_t(o.bands) * std::uint64_t(o.bands))
+                                            : 0;
+  return texels * (120 + denoise_bytes + buffers * stride_bytes) + set_bytes;
 }
 
 void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t available) {
@@ -207,7 +212,8 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
   if (l.denoise) {
     const DenoiseOptions& d = l.denoise_options;
     j["lightmap"]["denoise"] = {{"iterations", d.iterations}, {"plane_sigma", d.plane_sigma}, {"normal_power", d.normal_power},
-                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"twicing", d.twicing},
+                                {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"floor_decay", d.floor_decay},
+                                {"slope_ridge", d.slope_ridge}, {"twicing", d.twicing},
                                 {"interleave", d.interleave && std::find(l.vertex_triangles.begin(), l.vertex_triangles.end(), 1) == l.vertex_triangles.end()}};
   }
   return j.dump();
@@ -282,17 +288,21 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const GridWriter to_grid{samples, coverage, rounds, stride, mixed ? mesh.vertex_count() : 0};
 
   const std::vector<std::uint32_t> order = trace::morton_order(points.positions);
-  const bake::LocalSampleSet set = bake::make_local_sample_set(options.samples, options.bands, options.seed);
+  // Interleaved sample sets and frames per texel sample (denoise.h); a mixed scene's points go on with
+  // its vertices, whose sets and frames stay a vertex bake's, so a mixed bake does not interleave.
+  const bool interleave = lightmap.denoise && lightmap.denoise_options.interleave && !mixed;
+  const InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
+  const bake::LocalSampleSet set = interleave ? bake::make_interleaved_sample_sets(options.samples, options.bands, options.seed,
+                                                                                   1 << (2 * interleaved.tile_bits))
+                                              : bake::make_local_sample_set(options.samples, options.bands, options.seed);
   const bake::TexelGrid grid{&mesh.lightmap_uv, &coverage, lightmap.width, lightmap.height, mixed ? &lightmap.vertex_triangles : nullptr};
   bake::PassContext ctx{&mesh, &scene, &set, &order, options.seed, options.threads, options.progress,
                         {&points.positions, &points.normals, &points.geometric_normals}, &grid};
   ctx.dist = options.dist;
-  // Interleaved frames per texel sample; a mixed scene's points go on with its vertices, whose frames
-  // stay a vertex bake's (hashed), so a mixed bake does not interleave.
-  const std::vector<double> angles = lightmap.denoise && lightmap.denoise_options.interleave && !mixed
-                                         ? interleaved_frame_angles(samples, options.seed)
-                                         : std::vector<double>();
-  if (!angles.empty()) ctx.frame_angles = &angles;
+  if (interleave) {
+    ctx.frame_angles = &interleaved.angle;
+    ctx.point_set = &interleaved.set;
+  }
   // Mixed: the vertices' rays leave from their footprints (--footprint), as in a vertex bake.
   const std::unique_ptr<mesh::VertexFootprints> footprints = mixed ? mesh::footprints_for(mesh, options.footprint) : nullptr;
   ctx.footprints = footprints.get();

@@ -20,7 +20,10 @@ namespace prt::sh {
 /// a nested uniform scramble, then each coordinate by its own one, each a Laine-Karras permutation
 /// of the reversed bits). Coordinates are (k + 1/2) / 2^32 for 32-bit integers k: strictly inside
 /// (0, 1). Any prefix of length 2^k (k <= 32) is a (0,k,2)-net: every elementary interval
-/// [a/2^i, (a+1)/2^i) x [b/2^j, (b+1)/2^j) with i + j = k holds exactly one point.
+/// [a/2^i, (a+1)/2^i) x [b/2^j, (b+1)/2^j) with i + j = k holds exactly one point. So is every aligned
+/// block of indices [m 2^k, (m + 1) 2^k): bit i of the scrambled index depends only on the index's bits
+/// >= i, so the scramble maps aligned blocks onto aligned blocks of the (0,2)-sequence (the interleaved
+/// sample sets of bake/vertex_samples.h rely on it).
 /// Different seeds give independent-looking randomisations of the same net structure.
 glm::dvec2 sobol_2d(std::uint32_t index, std::uint32_t seed);
 

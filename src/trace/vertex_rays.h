@@ -74,7 +74,7 @@ struct VertexRays {
   const Scene* scene = nullptr;
   const mesh::Mesh* mesh = nullptr;                   ///< unit normals
   const std::vector<std::uint32_t>* order = nullptr;  ///< vertices to visit, in this order (Morton)
-  const std::vector<glm::vec3>* directions = nullptr; ///< S local directions about +z
+  const std::vector<glm::vec3>* directions = nullptr; ///< S local directions about +z (direction_sets x S with direction_set)
   std::uint32_t seed = 0;                             ///< of sh::vertex_frame
   int threads = 0;
   Query query = Query::closest_hit;
@@ -99,6 +99,11 @@ struct VertexRays {
   const std::vector<double>* frame_angles = nullptr;
   /// With `positions` and `footprints`: the first point that is a mesh vertex (see footprints).
   std::size_t footprint_first = static_cast<std::size_t>(-1);
+  /// Per point (indexed like `positions`): which of the direction_sets sets of S = directions->size() /
+  /// direction_sets directions it traces, k: directions [k S, (k + 1) S). Null: every point traces all
+  /// of `directions` (direction_sets must then be 1).
+  const std::vector<std::uint8_t>* direction_set = nullptr;
+  std::size_t direction_sets = 1;
 };
 
 /// Runs the loop above. `make_worker()` makes one worker per chunk (its state is kept across the
@@ -115,8 +120,7 @@ template <class MakeWorker>
 std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWorker make_worker) {
   const std::vector<glm::vec3>& positions = r.positions ? *r.positions : r.mesh->positions;
   const std::vector<glm::vec3>& normals = r.normals ? *r.normals : r.mesh->normals;
-  const std::vector<glm::vec3>& local = *r.directions;
-  const std::size_t samples = local.size();
+  const std::size_t samples = r.directions->size() / r.direction_sets;
   // Closest hits always go through robust mode (a scene without it builds its robust BVH on first use):
   // without it ~5e-6 of vertex rays name a wrong triangle (trace/scene.h, ROBUST MODE), and a bounce
   // pass reads transfer at the hit. Occlusion takes robust mode only for contact points.
@@ -158,6 +162,7 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
         rules[0].geometric_normal = glm::dvec3((*r.geometric_normals)[v]);
       }
       const bool ruled = spread || rules[0].geometric_normal != glm::dvec3(0.0);
+      const glm::vec3* local = r.directions->data() + (r.direction_set ? (*r.direction_set)[v] * samples : 0);
       worker.start(v, frame);
       for (std::size_t first = 0; first < samples; first += batch.capacity()) {
         const std::size_t count = std::min(batch.capacity(), samples - first);

@@ -56,24 +56,46 @@ TEST_CASE("sobol_2d is deterministic, seed-dependent and strictly inside the uni
   CHECK(same01 == 0);
 }
 
-TEST_CASE("every prefix of length 2^k is a (0,k,2)-net", "[sh][sampling]") {
-  for (std::uint32_t seed : {0u, 1u, 12345u}) {
-    for (int k = 0; k <= 10; ++k) {
-      const std::uint32_t n = 1u << k;
-      for (int i = 0; i <= k; ++i) {
-        // Cells of size 2^-i x 2^-(k-i): each must hold exactly one of the first 2^k points.
-        std::vector<int> cells(n, 0);
-        for (std::uint32_t p = 0; p < n; ++p) {
-          const glm::dvec2 u = prt::sh::sobol_2d(p, seed);
-          const auto cx = static_cast<std::uint32_t>(u.x * (1u << i));
-          const auto cy = static_cast<std::uint32_t>(u.y * (1u << (k - i)));
-          ++cells[cx * (1u << (k - i)) + cy];
-        }
-        INFO("seed " << seed << ", k = " << k << ", i = " << i);
-        for (int count : cells) REQUIRE(count == 1);
-      }
+namespace {
+
+// True if points first .. first + 2^k - 1 of sobol_2d(., seed) put exactly one point in every cell of
+// size 2^-i x 2^-(k-i), for every i in 0..k: a (0,k,2)-net, counted by brute force.
+bool is_net(std::uint32_t first, int k, std::uint32_t seed) {
+  const std::uint32_t n = 1u << k;
+  for (int i = 0; i <= k; ++i) {
+    std::vector<int> cells(n, 0);
+    for (std::uint32_t p = first; p < first + n; ++p) {
+      const glm::dvec2 u = prt::sh::sobol_2d(p, seed);
+      ++cells[static_cast<std::uint32_t>(u.x * (1u << i)) * (1u << (k - i)) + static_cast<std::uint32_t>(u.y * (1u << (k - i)))];
     }
+    for (int count : cells)
+      if (count != 1) return false;
   }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("every prefix of length 2^k is a (0,k,2)-net", "[sh][sampling]") {
+  for (std::uint32_t seed : {0u, 1u, 12345u})
+    for (int k = 0; k <= 10; ++k) {
+      INFO("seed " << seed << ", k = " << k);
+      REQUIRE(is_net(0, k, seed));
+    }
+}
+
+// The interleaved sample sets (bake/vertex_samples.h) take aligned blocks of the sequence, not prefixes;
+// a block that is not aligned is in general no net (the check can fail).
+TEST_CASE("every aligned block [m 2^k, (m + 1) 2^k) is a (0,k,2)-net", "[sh][sampling]") {
+  for (std::uint32_t seed : {1u, 777u})
+    for (int k = 2; k <= 7; ++k)
+      for (std::uint32_t m : {1u, 2u, 3u, 5u, 15u, 1000u}) {
+        INFO("seed " << seed << ", k = " << k << ", m = " << m);
+        REQUIRE(is_net(m << k, k, seed));
+      }
+  int misaligned_nets = 0;
+  for (std::uint32_t seed : {1u, 777u}) misaligned_nets += is_net((3u << 6) + 32u, 6, seed);
+  CHECK(misaligned_nets < 2);
 }
 
 TEST_CASE("directions lie in their domains", "[sh][sampling]") {
