@@ -12,10 +12,10 @@ namespace prt::mesh {
 /// Level 0 is the texture itself (not copied: the pyramid holds a pointer, so the texture must outlive
 /// it and not move). Level k >= 1 is width_k x height_k, width_k = max(1, floor(width_{k-1} / 2)) (the
 /// same for height), linear RGB floats (Texture::rgb; codes empty); its texel (x, y) is the mean, summed
-/// in double in row order, of the level k-1 texels with column in [floor(x width_{k-1} / width_k),
+/// in float in row order, of the level k-1 texels with column in [floor(x width_{k-1} / width_k),
 /// floor((x + 1) width_{k-1} / width_k)) and row likewise: blocks of 2 x 2 texels, 3 where a size was
-/// odd, 1 along an axis already 1 texel wide. For a power-of-two texture, a level-k texel is the exact
-/// mean of the 2^k x 2^k level-0 texels it covers. Levels stop at 1 x 1.
+/// odd, 1 along an axis already 1 texel wide. For a power-of-two texture, a level-k texel is the mean
+/// (up to float rounding) of the 2^k x 2^k level-0 texels it covers. Levels stop at 1 x 1.
 class TextureMips {
  public:
   /// Builds levels 1.. from `texture` (rgb or codes; width, height >= 1). Cost: about 4/3 x the
