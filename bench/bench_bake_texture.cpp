@@ -12,8 +12,13 @@
 // copy of its folder (spider.mtl's ".\" image paths as "./"), and the load (mesh::load_mesh) of that
 // copy is timed against a copy without the map_Kd lines: decoding the images and the per-vertex
 // footprint averages of the texture (mesh/texture.h).
+// --box CELLS: instead of a file, a closed room (bench::box's [-1, 1]^3, CELLS x CELLS quads per face,
+// turned inward: 12 CELLS^2 triangles) whose every face maps the whole of one SIZE x SIZE texture
+// (--texture SIZE, default 1024) of 8-bit sRGB codes in a fixed pseudo-random pattern: the case where
+// bounce hits land all over a texture far larger than the CPU caches (--box 37: 16,428 triangles).
 // A timed program, not Google Benchmark: on a shared machine the ratio of bests is the figure to read.
-// Usage: bench_bake_texture [--mesh PATH] [--rounds R] [--samples S] [--bands N] [--bounces B] [--threads T]
+// Usage: bench_bake_texture [--mesh PATH | --box CELLS [--texture SIZE]] [--rounds R] [--samples S] [--bands N]
+//                           [--bounces B] [--threads T]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -28,8 +33,10 @@
 #include <vector>
 
 #include "bake/bake.h"
+#include "bench_meshes.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
+#include "mesh/texture.h"
 
 using namespace prt;
 namespace fs = std::filesystem;
@@ -85,6 +92,32 @@ std::string copy_obj(const fs::path& obj, const fs::path& dir, bool textured) {
   return (dir / obj.filename()).string();
 }
 
+// The --box room: bench::box turned inward, each face's UVs the whole texture, a size^2 texture of codes.
+mesh::Mesh textured_room(int cells, int size) {
+  mesh::Mesh m = bench::box(glm::vec3(-1.0f), glm::vec3(1.0f), cells);
+  for (std::size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+  for (glm::vec3& n : m.normals) n = -n;
+  for (std::size_t t = 0; t < m.indices.size(); t += 3) {
+    const int axis = std::abs(m.normals[m.indices[t]].x) > 0.5f ? 0 : std::abs(m.normals[m.indices[t]].y) > 0.5f ? 1 : 2;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const glm::vec3& p = m.positions[m.indices[t + k]];
+      m.base_color_uv.emplace_back(0.5f * (p[(axis + 1) % 3] + 1.0f), 0.5f * (p[(axis + 2) % 3] + 1.0f));
+    }
+  }
+  m.materials.emplace_back();
+  m.materials[0].base_color.image = 0;
+  m.triangle_material.assign(m.triangle_count(), 0u);
+  mesh::Texture texture;
+  texture.width = texture.height = size;
+  texture.codes.resize(3 * std::size_t(size) * std::size_t(size));
+  for (std::size_t i = 0; i < texture.codes.size(); ++i) texture.codes[i] = std::uint8_t(64 + (i * 2654435761u >> 7) % 160);
+  m.textures.push_back(std::move(texture));
+  m.albedo.assign(m.vertex_count(), glm::vec3(1.0f));
+  mesh::texture_albedo(m, 0, &m.albedo);
+  m.albedo_source = mesh::AlbedoSource::texture;
+  return m;
+}
+
 struct Pair {
   std::vector<Seconds> a, b;  // textured, untextured
 };
@@ -110,7 +143,7 @@ void print(const char* what, const Pair& p) {
 
 int main(int argc, char** argv) {
   std::string path = "/usr/share/assimp/models/OBJ/spider.obj";
-  int rounds = 5;
+  int rounds = 5, box_cells = 0, texture_size = 1024;
   bake::BakeOptions options;
   options.kind = transfer::Kind::interreflected;
   options.bands = 3;
@@ -122,6 +155,8 @@ int main(int argc, char** argv) {
     const int value = std::atoi(argv[i + 1]);
     if (flag == "--mesh") path = argv[i + 1];
     else if (flag == "--rounds") rounds = std::max(1, value);
+    else if (flag == "--box") box_cells = std::max(1, value);
+    else if (flag == "--texture") texture_size = std::max(1, value);
     else if (flag == "--samples") options.samples = value;
     else if (flag == "--bands") options.bands = value;
     else if (flag == "--bounces") options.bounces = value;
@@ -132,12 +167,13 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    if (!fs::is_regular_file(path)) fail(path + ": cannot open: no such file");
-    const bool obj = fs::path(path).extension() == ".obj";
+    if (box_cells) path = "room of " + std::to_string(box_cells) + "^2 quads a face, " + std::to_string(texture_size) + "^2 texture";
+    else if (!fs::is_regular_file(path)) fail(path + ": cannot open: no such file");
+    const bool obj = !box_cells && fs::path(path).extension() == ".obj";
     const fs::path temp = fs::temp_directory_path() / "prt_bench_bake_texture";
     const std::string textured_file = obj ? copy_obj(path, temp / "textured", true) : path;
     const std::string plain_file = obj ? copy_obj(path, temp / "plain", false) : "";
-    const mesh::Mesh textured = mesh::load_mesh(textured_file, nullptr, true);
+    const mesh::Mesh textured = box_cells ? textured_room(box_cells, texture_size) : mesh::load_mesh(textured_file, nullptr, true);
     if (!textured.textured()) fail(path + ": the mesh has no base colour texture");
     const mesh::Mesh plain = untextured(textured);
     std::printf("bench_bake_texture: %s, %zu vertices, %zu triangles, %zu textures; interreflected, %d bands, %d samples, "

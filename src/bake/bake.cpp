@@ -93,9 +93,10 @@ void interreflect(const PassContext& ctx, const std::vector<glm::vec3>& albedo, 
   const bool at_hits = albedo_at_hits(*ctx.mesh);
   std::vector<float> next, shaded;
   bounce_only.assign(values.size(), 0.0f);
+  const HitColours hit_colours(ctx);
   for (int b = 1; b <= max_passes; ++b) {
     const std::string label = "bake bounce " + std::to_string(b);
-    rep.rays_traced += bounce_pass(ctx, albedo, channels, prev, next, label.c_str());
+    rep.rays_traced += bounce_pass(ctx, hit_colours, albedo, channels, prev, next, label.c_str());
     // Distributed: the next pass and the stopping rule need every point's result.
     dist::allgather_items(dist::or_single(ctx.dist), next, stride, ctx.order);
     // At hits: next is albedo-free (the following pass gathers it); the receivers' albedo goes in here.

@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include "bake/passes.h"
+#include "core/constants.h"
 #include "core/parallel.h"
 #include "mesh/texture.h"
 
@@ -97,13 +98,13 @@ void add_texel_weights(const TexelGrid& grid, std::size_t triangle, float u, flo
 // the hit and the result stays albedo-free (interreflect folds the receiver's albedo in).
 class BounceWorker {
  public:
-  // `colours`: every triangle's base colour lookup (triangle_colours), empty unless albedo_at_hits.
+  // `colours`: every triangle's base colour lookup (HitColours), empty unless albedo_at_hits.
   BounceWorker(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels, const std::vector<float>& prev,
                std::vector<float>& next, const std::vector<mesh::TriangleColour>& colours)
       : ctx_(ctx), albedo_(albedo), channels_(channels), prev_(prev), next_(next),
         n_(static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands), stride_(n_ * channels),
         at_hits_(albedo_at_hits(*ctx.mesh)), weights_(4 * ctx.samples->per_point()), gathered_(stride_),
-        colours_(colours) {}
+        colours_(colours), cone_(sample_cone_width(ctx.samples->per_point())) {}
 
   void start(std::uint32_t, const glm::mat3&) { weights_.clear(); }
 
@@ -113,6 +114,8 @@ class BounceWorker {
     const mesh::Mesh& mesh = *ctx_.mesh;
     front_.clear();
     requests_.clear();
+    // The hit triangles' lookups (two cache lines each, read at random) start loading now.
+    if (at_hits_) batch.hit_count(colours_.data(), sizeof(mesh::TriangleColour));
     for (std::size_t i = 0; i < batch.size(); ++i) {
       if (!batch.is_hit(i)) continue;
       const trace::HitResult hit = batch.hit(i);
@@ -121,7 +124,9 @@ class BounceWorker {
       const glm::vec3 face_normal = glm::cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
       if (glm::dot(face_normal, batch.direction(i)) >= 0.0f) continue;  // back face: black
       front_.push_back(hit);
-      if (at_hits_) requests_.push_back(colours_[hit.prim_id].request(hit.u, hit.v));
+      if (!at_hits_) continue;
+      const mesh::TriangleColour& colour = colours_[hit.prim_id];
+      requests_.push_back(colour.request(hit.u, hit.v, colour.level_for(double(hit.t) * cone_)));
     }
     for (std::size_t k = 0; k < front_.size(); ++k) {
       const trace::HitResult& hit = front_[k];
@@ -167,29 +172,30 @@ class BounceWorker {
   const std::vector<mesh::TriangleColour>& colours_;  // per triangle (at_hits_ only)
   std::vector<trace::HitResult> front_;               // this batch's front-face hits
   std::vector<mesh::TriangleColour::Request> requests_;  // their base colour lookups (at_hits_ only)
+  double cone_;  // a sample's footprint width per unit of hit distance (sample_cone_width)
 };
-
-// Every triangle's base colour lookup, set up once per pass rather than once per hit (at_hits only;
-// else empty). Triangles in parallel, each writing its own entry.
-std::vector<mesh::TriangleColour> triangle_colours(const PassContext& ctx) {
-  const mesh::Mesh& mesh = *ctx.mesh;
-  if (!albedo_at_hits(mesh)) return {};
-  std::vector<mesh::TriangleColour> colours(mesh.triangle_count());
-  parallel_for(colours.size(), 4096, ctx.threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t) colours[t] = mesh::TriangleColour(mesh, static_cast<std::uint32_t>(t));
-  });
-  return colours;
-}
 
 }  // namespace
 
+HitColours::HitColours(const PassContext& ctx) {
+  const mesh::Mesh& mesh = *ctx.mesh;
+  if (!albedo_at_hits(mesh)) return;
+  mips_ = mesh::build_mips(mesh.textures, std::vector<bool>(mesh.textures.size(), true), ctx.threads);
+  triangles_.resize(mesh.triangle_count());
+  parallel_for(triangles_.size(), 4096, ctx.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) triangles_[t] = mesh::TriangleColour(mesh, static_cast<std::uint32_t>(t), &mips_);
+  });
+}
+
 bool albedo_at_hits(const mesh::Mesh& mesh) { return mesh.textured(); }
 
-std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
+double sample_cone_width(std::size_t samples) { return std::sqrt(2.0 * kPi / static_cast<double>(samples)); }
+
+std::uint64_t bounce_pass(const PassContext& ctx, const HitColours& hit_colours, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label) {
   const std::size_t stride = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands * static_cast<std::size_t>(channels);
   next.assign(ctx.point_count() * stride, 0.0f);
-  const std::vector<mesh::TriangleColour> colours = triangle_colours(ctx);
+  const std::vector<mesh::TriangleColour>& colours = hit_colours.triangles();
   Progress progress(label, ctx.point_unit(), ctx.point_count(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::closest_hit), progress,
                                   [&] { return BounceWorker(ctx, albedo, channels, prev, next, colours); });

@@ -16,6 +16,7 @@
 #include "core/progress.h"
 #include "dist/exchange.h"
 #include "mesh/mesh.h"
+#include "mesh/texture.h"
 #include "trace/scene.h"
 #include "trace/vertex_rays.h"
 
@@ -101,14 +102,39 @@ std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out
 /// (docs/conventions.md, "Albedo and textures"). Other meshes keep the vertex rule below.
 bool albedo_at_hits(const mesh::Mesh& mesh);
 
+/// The width of the surface a bounce sample stands for, per unit of hit distance: each of a point's S
+/// hemisphere samples stands for a solid angle of about 2 pi / S, a cone that at distance t covers a
+/// disc of width t sqrt(2 pi / S) seen head-on (Akenine-Moller et al., "Texture Level of Detail
+/// Strategies for Real-Time Ray Tracing", Ray Tracing Gems, 2019). Not divided by the cosine of
+/// incidence: the disc's narrow axis, so a hit's base colour (mesh::TriangleColour::level_for) is never
+/// filtered beyond the sample's footprint.
+double sample_cone_width(std::size_t samples);
+
+/// The base colour lookups of a bake's bounce hits, set up once per bake rather than once per pass or
+/// hit: the mip pyramids of the mesh's textures (mesh::build_mips) and every triangle's
+/// mesh::TriangleColour reading them; empty unless albedo_at_hits(*ctx.mesh). Triangles and textures in
+/// parallel on ctx.threads, each entry written by one thread. Holds pointers into *ctx.mesh.
+class HitColours {
+ public:
+  explicit HitColours(const PassContext& ctx);
+  const std::vector<mesh::TriangleColour>& triangles() const { return triangles_; }
+
+ private:
+  mesh::MeshMips mips_;  // heap-allocated pyramids: triangles_ points at them, moves keep them in place
+  std::vector<mesh::TriangleColour> triangles_;
+};
+
 /// One interreflection pass. Vertex rule: next[v] = albedo_v / S * sum over front-face hits of prev
 /// interpolated at the hit (barycentrically over the hit triangle's vertices, or bilinearly in
 /// ctx.grid), prev being the previous pass's channel transfer. With albedo_at_hits(*ctx.mesh):
 /// next[v] = 1 / S * sum over front-face hits q of rho(q) * prev interpolated at q, rho(q) the base
-/// colour at q, prev and next albedo-free (the receiver's albedo is not applied). `albedo` has one
+/// colour at q averaged over the sample's footprint (TriangleColour::level_for(t sample_cone_width(S)),
+/// t the hit distance: the texture's box-filtered mip level whose texels fit in the footprint, level 0
+/// where the footprint spans under 2 texels), prev and next albedo-free (the receiver's albedo is not applied). `albedo` has one
 /// entry per point; `channels` is 1 (grey: red values are used) or 3. `prev` has a block per vertex
-/// (per texel of ctx.grid); `next` gets one per point. Returns the number of rays traced.
-std::uint64_t bounce_pass(const PassContext& ctx, const std::vector<glm::vec3>& albedo, int channels,
+/// (per texel of ctx.grid); `next` gets one per point. `hit_colours` made from ctx. Returns the number
+/// of rays traced.
+std::uint64_t bounce_pass(const PassContext& ctx, const HitColours& hit_colours, const std::vector<glm::vec3>& albedo, int channels,
                           const std::vector<float>& prev, std::vector<float>& next, const char* label);
 
 /// Shared by the vertex and the texel (src/lightmap) bakes.

@@ -183,8 +183,8 @@ std::size_t RayBatch::hit_count(const void* rows, std::size_t row_bytes) const {
     ++count;
     if (base) {
       const char* row = base + static_cast<std::size_t>(h.prim_id) * row_bytes;
-      __builtin_prefetch(row);
-      __builtin_prefetch(row + row_bytes - 1);  // a row may straddle two cache lines
+      for (std::size_t offset = 0; offset < row_bytes; offset += 64) __builtin_prefetch(row + offset);
+      __builtin_prefetch(row + row_bytes - 1);  // a row may straddle one more cache line
     }
   }
   return count;

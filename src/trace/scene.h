@@ -155,7 +155,7 @@ class RayBatch {
   }
 
   /// After Scene::intersect: the number of the size() rays that hit a triangle; with `rows` given, also
-  /// prefetches rows + prim_id * `row_bytes` (its first and last byte) of every hit triangle into the
+  /// prefetches rows + prim_id * `row_bytes` (every 64-byte cache line it touches) of every hit triangle into the
   /// cache, for callers that next read per-triangle data in hit order (random reads otherwise).
   std::size_t hit_count(const void* rows = nullptr, std::size_t row_bytes = 0) const;
 
