@@ -166,10 +166,11 @@ const glm::dvec2 kWholeTriangle[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
 
 std::array<glm::dvec3, 3> hat_moments(const Mesh& mesh, std::uint32_t triangle, const MeshMips& mips) {
   const TriangleColour lookup(mesh, triangle, &mips);
-  const auto [n, level] = quadrature_rule(lookup, kWholeTriangle);
+  const Quadrature rule = quadrature_rule(lookup, kWholeTriangle);
+  const int n = rule.n;  // (named copies: C++17 lambdas cannot capture structured bindings)
   std::array<glm::dvec3, 3> sums{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
   for_each_centroid(kWholeTriangle, n, [&](const glm::dvec2& b) {
-    const glm::dvec3 colour(lookup.at(b.x, b.y, level));
+    const glm::dvec3 colour(lookup.at(b.x, b.y, rule.level));
     sums[0] += (1.0 - b.x - b.y) * colour;
     sums[1] += b.x * colour;
     sums[2] += b.y * colour;
@@ -319,9 +320,10 @@ glm::vec3 region_average(const Mesh& mesh, std::uint32_t triangle, const glm::dv
     mips = build_mips(mesh.textures, needed, 1);
   }
   const TriangleColour lookup(mesh, triangle, &mips);
-  const auto [n, level] = quadrature_rule(lookup, corners);
+  const Quadrature rule = quadrature_rule(lookup, corners);
+  const int n = rule.n;
   glm::dvec3 sum(0.0);
-  for_each_centroid(corners, n, [&](const glm::dvec2& b) { sum += glm::dvec3(lookup.at(b.x, b.y, level)); });
+  for_each_centroid(corners, n, [&](const glm::dvec2& b) { sum += glm::dvec3(lookup.at(b.x, b.y, rule.level)); });
   return glm::vec3(sum / (double(n) * double(n)));
 }
 
