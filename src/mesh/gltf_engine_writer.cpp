@@ -252,13 +252,16 @@ class SourceWriter {
     std::vector<glm::vec2> uv;          // per vertex: its lightmap UV
     std::vector<std::uint32_t> indices;  // 3 per loaded triangle of the primitive, in mesh order
   };
-  SplitVertices split_by_uv(const SourcePrimitive& baked) const {
-    const std::uint32_t index = std::uint32_t(&baked - mesh_.source_primitives.data());
+  SplitVertices split_by_uv(const SourcePrimitive& baked) {
+    const std::size_t index = std::size_t(&baked - mesh_.source_primitives.data());
+    if (primitive_triangles_.empty()) {  // each source primitive's loaded triangles, in mesh order, once
+      primitive_triangles_.resize(mesh_.source_primitives.size());
+      for (std::uint32_t t = 0; t < mesh_.triangle_count(); ++t) primitive_triangles_[mesh_.triangle_source[t].primitive].push_back(t);
+    }
     SplitVertices out;
     std::map<std::pair<std::uint32_t, std::uint64_t>, std::uint32_t> seen;
-    for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
-      if (mesh_.triangle_source[t].primitive != index) continue;
-      for (std::size_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+    for (const std::uint32_t t : primitive_triangles_[index]) {
+      for (std::size_t corner = 3 * std::size_t(t); corner < 3 * std::size_t(t) + 3; ++corner) {
         const glm::vec2 uv = mesh_.lightmap_uv[corner];
         const std::uint32_t v = mesh_.indices[corner] - baked.first_vertex;
         std::uint64_t key = 0;
@@ -323,6 +326,7 @@ class SourceWriter {
   std::vector<int> mesh_source_;  // per output mesh: the source mesh it copies
   std::vector<std::map<int, const SourcePrimitive*>> baked_;  // per output mesh: primitive -> baked slice
   std::map<int, int> copied_, copied_indices_;
+  std::vector<std::vector<std::uint32_t>> primitive_triangles_;  // per source primitive (split_by_uv)
 };
 
 }  // namespace
