@@ -61,7 +61,7 @@ struct PassContext {
   const TexelGrid* grid = nullptr;  ///< null: bounce passes gather per vertex (barycentric)
   const dist::Context* dist = nullptr;  ///< the job's ranks; each traces its share of `order`
   const mesh::VertexFootprints* footprints = nullptr;  ///< null: rays leave from the vertices themselves
-  const std::vector<double>* frame_angles = nullptr;  ///< per point: its sample frame's turn (trace::VertexRays); null: hashed
+  bool unturned_frames = false;  ///< every point's sample frame unturned (trace::VertexRays); false: hashed turns
   /// With `points` and `footprints`: points from this one on are the mesh's vertices (a mixed scene's,
   /// trace::VertexRays::footprint_first); their rays leave from their footprints.
   std::size_t footprint_first = static_cast<std::size_t>(-1);
@@ -73,7 +73,7 @@ struct PassContext {
   trace::VertexRays rays(trace::Query query) const {
     const dist::Range share = dist::my_range(dist::or_single(dist), order->size());
     return trace::VertexRays{scene, mesh, order, &samples->directions, seed, threads, query, points.positions, points.normals,
-                             share.begin, share.end, footprints, points.geometric_normals, frame_angles, footprint_first,
+                             share.begin, share.end, footprints, points.geometric_normals, unturned_frames, footprint_first,
                              point_set, static_cast<std::size_t>(samples->sets)};
   }
   const std::vector<glm::vec3>& point_normals() const { return points.normals ? *points.normals : mesh->normals; }

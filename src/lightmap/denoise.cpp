@@ -299,7 +299,6 @@ InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample
   const std::uint32_t bits = std::uint32_t(out.tile_bits), side = 1u << bits;
   const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), tiles_across = (width + side - 1) / side;
   out.set.reserve(samples.samples.size());
-  out.angle.assign(samples.samples.size(), 0.0);
   for (const TexelSample& s : samples.samples) {
     const std::uint32_t i = s.texel % width, j = s.texel / width, x = (i ^ j) % side, y = i % side;
     std::uint32_t set = 0;

@@ -76,8 +76,7 @@ struct DenoiseGuides {
 DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples);
 
 /// Interleaved sampling for a bake that will be denoised (Keller and Heidrich, "Interleaved Sampling",
-/// EGWR 2001): per texel sample, in the order of samples.samples, the sample set it traces and its
-/// frame's turn. The grid is cut into tiles of 2^L x 2^L texels, L = interleaved_tile_bits(S) (16 x 16
+/// EGWR 2001): per texel sample, in the order of samples.samples, the sample set it traces. The grid is cut into tiles of 2^L x 2^L texels, L = interleaved_tile_bits(S) (16 x 16
 /// up to S = 1024 samples per texel), and the 4^L texels of a tile trace the 4^L different sets of
 /// bake::make_interleaved_sample_sets (consecutive blocks of S points of one Sobol sequence): texel
 /// (i, j) traces set k = k0 xor h_tile: the bits of k0 interleave those of x = (i xor j) mod 2^L
@@ -86,13 +85,12 @@ DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples
 /// S = 2^m together a (0,m+2,2)-net), every aligned 4 x 4 block 16 (a (0,m+4,2)-net), and so on up to
 /// the tile (a XOR maps aligned blocks of sets onto aligned blocks): neighbouring texels sample
 /// complementary strata in elevation and azimuth alike, and their noise largely cancels in the filter's
-/// sums; h_tile keeps tiles from repeating one another's pattern. The frames are not turned (angle 0,
-/// sh::turned_frame): a turn per tile measured worse (docs/conventions.md). Each texel alone keeps an
+/// sums; h_tile keeps tiles from repeating one another's pattern. The frames are not turned (the bake sets
+/// PassContext::unturned_frames): a turn per tile measured worse (docs/conventions.md). Each texel alone keeps an
 /// S-direction set as good as an undenoised bake's.
 struct InterleavedSampling {
   int tile_bits = 0;              ///< L
   std::vector<std::uint8_t> set;  ///< 0..4^L - 1
-  std::vector<double> angle;      ///< radians, all 0 (the frames of PassContext::frame_angles)
 };
 InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed);
 

@@ -288,7 +288,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const GridWriter to_grid{samples, coverage, rounds, stride, mixed ? mesh.vertex_count() : 0};
 
   const std::vector<std::uint32_t> order = trace::morton_order(points.positions);
-  // Interleaved sample sets and frames per texel sample (denoise.h); a mixed scene's points go on with
+  // Interleaved sample sets per texel sample, frames unturned (denoise.h); a mixed scene's points go on with
   // its vertices, whose sets and frames stay a vertex bake's, so a mixed bake does not interleave.
   const bool interleave = lightmap.denoise && lightmap.denoise_options.interleave && !mixed;
   const InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
@@ -300,7 +300,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
                         {&points.positions, &points.normals, &points.geometric_normals}, &grid};
   ctx.dist = options.dist;
   if (interleave) {
-    ctx.frame_angles = &interleaved.angle;
+    ctx.unturned_frames = true;
     ctx.point_set = &interleaved.set;
   }
   // Mixed: the vertices' rays leave from their footprints (--footprint), as in a vertex bake.

@@ -94,9 +94,9 @@ struct VertexRays {
   /// With `positions`: the unit geometric normal of each sample point's triangle (the true-surface
   /// rule's; a zero entry: none). Null: no rule at the sample points.
   const std::vector<glm::vec3>* geometric_normals = nullptr;
-  /// Per point (indexed like `positions`): the angle in radians that turns its sample frame about the
-  /// normal, sh::turned_frame(n, angle), instead of sh::vertex_frame's hashed one. Null: hashed.
-  const std::vector<double>* frame_angles = nullptr;
+  /// Every point's sample frame unturned, sh::turned_frame(n, 0), instead of sh::vertex_frame's hashed
+  /// turn (interleaved sample sets, whose strata a turn would scramble).
+  bool unturned_frames = false;
   /// With `positions` and `footprints`: the first point that is a mesh vertex (see footprints).
   std::size_t footprint_first = static_cast<std::size_t>(-1);
   /// Per point (indexed like `positions`): which of the direction_sets sets of S = directions->size() /
@@ -150,7 +150,7 @@ std::uint64_t trace_vertex_rays(const VertexRays& r, Progress& progress, MakeWor
     }
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t v = (*r.order)[k];
-      const glm::mat3 frame = r.frame_angles ? sh::turned_frame(normals[v], (*r.frame_angles)[v]) : sh::vertex_frame(normals[v], r.seed, v);
+      const glm::mat3 frame = r.unturned_frames ? sh::turned_frame(normals[v], 0.0) : sh::vertex_frame(normals[v], r.seed, v);
       const SpawnPoint& spawn = spawns[k - begin];
       rules[0] = TrueSurface{};
       const bool spread = v >= first_spread;

@@ -187,10 +187,8 @@ TEST_CASE("denoise: interleaved sampling: every aligned 2^k x 2^k block of a til
     INFO(count << " samples: tiles of " << tile);
     REQUIRE(a.tile_bits == lightmap::interleaved_tile_bits(count));
     REQUIRE(a.set.size() == samples.samples.size());
-    REQUIRE(a.angle.size() == samples.samples.size());
     CHECK(a.set == lightmap::interleaved_sampling(samples, count, 3).set);
     CHECK(a.set != lightmap::interleaved_sampling(samples, count, 4).set);  // each tile's sets are permuted by seed
-    CHECK(std::all_of(a.angle.begin(), a.angle.end(), [](double angle) { return angle == 0.0; }));  // frames not turned
     // The sets of every aligned block of b x b texels, b = 2, 4, ..., tile, sorted: m b^2 .. m b^2 + b^2 - 1.
     for (int b = 2; b <= tile; b *= 2)
       for (int j0 = 0; j0 + b <= side; j0 += b)
