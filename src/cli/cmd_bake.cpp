@@ -73,12 +73,13 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
 // Bytes a per-vertex bake of `vertices` needs at most: the sample set's basis (samples x bands^2
 // floats), per vertex the transfer (three channels; glossy: bands_out^2 x bands^2 per channel) in up
 // to four buffers with bounces (values, bounce-only, previous and next pass), and the file's copy.
-std::uint64_t estimated_bake_bytes(const bake::BakeOptions& b, std::uint64_t vertices) {
+std::uint64_t estimated_bake_bytes(const bake::BakeOptions& b, const mesh::Mesh& mesh) {
   const std::uint64_t n = std::uint64_t(b.bands) * std::uint64_t(b.bands);
   const std::uint64_t out = transfer::is_glossy(b.kind) ? std::uint64_t(b.bands_out ? b.bands_out : b.bands) : 1;
   const std::uint64_t per_vertex = 4 * 3 * n * out * out;
   const bool bounces = b.kind == transfer::Kind::interreflected || b.kind == transfer::Kind::glossy_interreflected;
-  return std::uint64_t(b.samples) * n * 4 + saturating_product(vertices, per_vertex * (bounces ? 5 : 2));
+  return std::uint64_t(b.samples) * n * 4 + saturating_product(mesh.positions.size(), per_vertex * (bounces ? 5 : 2)) +
+         (bounces ? bake::hit_colour_bytes(mesh) : 0);
 }
 
 // The bake's summary line: what was baked, rays, bounces, time, output.
@@ -144,7 +145,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
                                (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
                                " --samples " + std::to_string(o.samples) + " for " +
                                std::to_string(mesh.positions.size()) + " vertices";
-  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh.positions.size()));
+  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh));
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   bake::BakeReport report;

@@ -62,8 +62,8 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
   return texels * (120 + denoise_bytes + buffers * stride_bytes) + set_bytes;
 }
 
-void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t available) {
-  check_memory_need("lightmap", size_text(l), estimated_bytes(l, o, channels), available);
+void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t extra_bytes, std::uint64_t available) {
+  check_memory_need("lightmap", size_text(l), estimated_bytes(l, o, channels) + extra_bytes, available);
 }
 
 TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, const std::vector<glm::vec3>& albedo,
@@ -124,7 +124,8 @@ void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, co
     fail_option("lightmap", " " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
   if (lightmap.denoise) validate_denoise_options(lightmap.denoise_options);
-  check_memory(lightmap, options, bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo)));
+  check_memory(lightmap, options, bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo)),
+               options.kind == transfer::Kind::interreflected ? bake::hit_colour_bytes(mesh) : 0);
 }
 
 namespace {

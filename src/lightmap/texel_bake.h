@@ -64,9 +64,9 @@ void parse_lightmap_size(const std::string& text, int& width, int& height);
 /// Bytes a bake of this size needs at most (texel grids, samples, pass buffers), for the memory check.
 std::uint64_t estimated_bytes(const LightmapOptions& lightmap, const bake::BakeOptions& options, int channels);
 
-/// Throws prt::Error naming the lightmap size unless estimated_bytes fits in 80% of `available_bytes`
-/// (physical memory by default, sysconf).
-void check_memory(const LightmapOptions& lightmap, const bake::BakeOptions& options, int channels,
+/// Throws prt::Error naming the lightmap size unless estimated_bytes plus `extra_bytes` (what the mesh
+/// adds: bake::hit_colour_bytes) fits in 80% of `available_bytes` (physical memory by default, sysconf).
+void check_memory(const LightmapOptions& lightmap, const bake::BakeOptions& options, int channels, std::uint64_t extra_bytes = 0,
                   std::uint64_t available_bytes = 0);
 
 /// The texel sample points of `mesh` for `lightmap`: UVs checked (prt::Error "lightmap UVs: ..."
