@@ -14,7 +14,7 @@
 // engine glTF) against prt render of its .prt pair.
 //
 // Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
-//        [--nodes <glTF>] [--work DIR]
+//        [--nodes <glTF>] [--mixed-asset <ClearCoatTest.gltf>] [--work DIR]
 //        [--dump DIR] (PPM images of each case); PRT_ONLY=<text> runs the cases whose name contains it
 //        [--break order|rotation|albedo|mips|model]  (a deliberately wrong runtime: swapped SH coefficients, no rotation,
 //                                   the lightmap's _PRT_ALBEDO dropped or its level 0 alone sampled,
@@ -65,6 +65,14 @@ const texturedLightmap = once(() => bakeGlb({ prt, mesh: texturedPath, work, nam
 const mixedScene = writeMixedScene(work);
 const mixed = once(() => bakeGlb({ prt, mesh: mixedScene, work, name: 'mixed', samples: 64,
                                    extra: ['--lightmap', '64x64', '--texel-parts', 'Floor,Wall'] }));
+// A real mixed scene: Khronos's ClearCoatTest (CC-BY 4.0, from Debian's assimp-testmodels when installed),
+// its nine two-sided label planes per texel on generated UVs (their own UVs overlap), its 18 spheres per
+// vertex; prt renders the pair with the mesh that carries the UVs, ROOM.mesh.glb.
+const clearCoatPath = resolve(argument('mixed-asset', '/nonexistent'));
+const clearCoatLabels = 'X0_Label_BaseLayer,X1_Label_Coated,X2_Label_CoatingOnly,Y0_Label_SimpleCoating,Y1_Label_PartialCoating,' +
+                        'Y2_Label_Roughness,Y3_Label_BaseNormals,Y4_Label_CoatNormals,Y5_Label_SharedNormals';
+const clearCoat = once(() => bakeGlb({ prt, mesh: clearCoatPath, work, name: 'clearcoat', samples: 32,
+                                       extra: ['--lightmap', '128', '--uv', 'auto', '--texel-parts', clearCoatLabels] }));
 const plain = () => bake.glb;
 
 const cases = [
@@ -81,6 +89,9 @@ const cases = [
     camera: [20, 30], rotate: [30, 0, 0], sun: false },
   { name: 'mixed scene (Floor, Wall per texel; Box per vertex), sun on', glb: mixed, render: [mixedScene, join(work, 'mixed.prt')], light: 'disc.json',
     camera: [20, 30], rotate: [30, 0, 0], sun: true },
+  ...(existsSync(clearCoatPath) ? [{ name: 'mixed real scene (ClearCoatTest: labels per texel, generated UVs; spheres per vertex), sun on', glb: clearCoat,
+                                     render: [join(work, 'clearcoat.mesh.glb'), join(work, 'clearcoat.prt')], light: 'disc.json', camera: [0, 10],
+                                     rotate: [0, 0, 0], sun: true }] : []),
   ...(existsSync(nodesPath) ? [{ name: 'glTF with many nodes (2CylinderEngine), sun on', glb: nodes, light: 'disc.json', camera: [10, 30], rotate: [0, 0, 0], sun: true }] : []),
 ];
 
