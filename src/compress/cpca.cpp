@@ -318,7 +318,7 @@ std::vector<std::uint32_t> fit_rounds(const float* x, std::size_t P, const CpcaO
 std::vector<float> strided_subset(const float* x, std::size_t P, std::size_t D, std::size_t S) {
   std::vector<float> subset(S * D);
   for (std::size_t i = 0; i < S; ++i) {
-    const std::size_t p = static_cast<std::size_t>((static_cast<unsigned __int128>(i) * P) / S);
+    const std::size_t p = i * (P / S) + (i * (P % S)) / S;  // floor(i P / S) without overflow (i, P % S < S)
     std::copy(x + p * D, x + (p + 1) * D, subset.begin() + static_cast<std::ptrdiff_t>(i * D));
   }
   return subset;
