@@ -150,6 +150,40 @@ ColumnProfile chart_profile(const FlatChart& chart, const glm::dvec2& extent, do
   return column_profile(corners, extent * scale + glm::dvec2(2.0 * kMargin), padding);
 }
 
+// A lower bound of the height at which profile `p` rests at each offset x of the skyline `sky`: the
+// maximum of the skyline over p's columns from its first to its last non-empty one (a sliding-window
+// maximum, computed once), less p's highest bottom; where p's non-empty columns have gaps, 0 (no bound).
+class SkylineBound {
+ public:
+  SkylineBound(const std::vector<int>& sky, const ColumnProfile& p) {
+    int first = -1, last = -1, highest_bottom = 0;
+    bool gaps = false;
+    for (int c = 0; c < p.width; ++c) {
+      if (!(p.bottom[std::size_t(c)] < p.top[std::size_t(c)])) continue;
+      gaps |= last >= 0 && last != c - 1;
+      if (first < 0) first = c;
+      last = c;
+      highest_bottom = std::max(highest_bottom, p.bottom[std::size_t(c)]);
+    }
+    if (first < 0 || gaps) return;
+    const int window = last - first + 1, positions = int(sky.size()) - p.width + 1;
+    if (positions <= 0) return;
+    bound_.resize(std::size_t(positions));
+    std::deque<int> maxima;  // indices of sky, values decreasing
+    for (int i = first, x = 0; x < positions; ++i) {
+      while (!maxima.empty() && sky[std::size_t(maxima.back())] <= sky[std::size_t(i)]) maxima.pop_back();
+      maxima.push_back(i);
+      if (i - first + 1 < window) continue;
+      while (maxima.front() < i - window + 1) maxima.pop_front();
+      bound_[std::size_t(x++)] = sky[std::size_t(maxima.front())] - highest_bottom;
+    }
+  }
+  int lower(int x) const { return bound_.empty() ? 0 : bound_[std::size_t(x)]; }
+
+ private:
+  std::vector<int> bound_;
+};
+
 // Where `p` rests on the skyline `sky` within `height` rows: the lowest position, then the one that
 // leaves the least area between the skyline and p's bottom profile (`*gap`, texels), then the
 // leftmost; y = -1 when it fits nowhere.
@@ -162,15 +196,23 @@ Placement resting_place(const std::vector<int>& sky, const ColumnProfile& p, int
     reach = std::max(reach, p.top[std::size_t(c)]);
     columns += p.bottom[std::size_t(c)] < p.top[std::size_t(c)];
   }
+  // A position whose y exceeds the best one's can neither win nor tie: its scan stops there, and a
+  // position is skipped whole when the skyline's maximum over its columns, less p's highest bottom,
+  // already exceeds it (exact: the result is the full scan's).
+  const SkylineBound bound(sky, p);
   for (int x = 0; x + p.width <= int(sky.size()); ++x) {
+    if (best.y >= 0 && bound.lower(x) > best.y) continue;
     int y = 0;
     long long under = 0;  // sum over columns of bottom - sky: the gap is under + columns * y
-    for (int c = 0; c < p.width; ++c)
+    bool beaten = false;
+    for (int c = 0; c < p.width && !beaten; ++c)
       if (p.bottom[std::size_t(c)] < p.top[std::size_t(c)]) {
         const int s = sky[std::size_t(x + c)];
         y = std::max(y, s - p.bottom[std::size_t(c)]);
         under += p.bottom[std::size_t(c)] - s;
+        beaten = best.y >= 0 && y > best.y;
       }
+    if (beaten) continue;
     const long long g = under + columns * y;
     if (y + reach <= height && (best.y < 0 || y < best.y || (y == best.y && g < best_gap))) best = {x, y, false}, best_gap = g;
   }
