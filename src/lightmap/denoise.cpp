@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/big_buffer.h"
 #include "core/constants.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -329,12 +330,15 @@ void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only,
   if (options.iterations == 0 || stride == 0) return;
   const bool bounce = !bounce_only.empty();
   // Twicing keeps the input: the residual input - S input is filtered by the same levels S.
-  std::vector<float> residual = options.twicing > 0.0f ? values : std::vector<float>(),
-                     residual_bounce = options.twicing > 0.0f ? bounce_only : std::vector<float>();
-  std::vector<float> next_values(values), next_bounce(bounce_only);
+  // The copies are full-size, written at once: huge pages (core/big_buffer.h).
+  std::vector<float> residual = options.twicing > 0.0f ? copy_big(values) : std::vector<float>(),
+                     residual_bounce = options.twicing > 0.0f ? copy_big(bounce_only) : std::vector<float>();
+  std::vector<float> next_values = copy_big(values), next_bounce = copy_big(bounce_only);
   std::vector<float> variance = noise ? *noise : initial_variance(values, stride, guides, options.threads), next_variance = variance;
   // Written at every covered texel by each level before it is read (uninitialised: no pass over it).
-  const std::unique_ptr<float[]> stored(new float[guides.covered.size() * 9 * std::size_t(options.iterations)]);
+  const std::size_t stored_floats = guides.covered.size() * 9 * std::size_t(options.iterations);
+  const std::unique_ptr<float[]> stored(new float[stored_floats]);
+  advise_huge_pages(stored.get(), stored_floats * sizeof(float));
   for (int it = 0; it < options.iterations; ++it) {
     const Iteration iteration{guides, options, 1L << it, options.value_floor * std::pow(options.floor_decay, float(it)), variance};
     iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance,

@@ -10,6 +10,7 @@
 
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
+#include "core/big_buffer.h"
 #include "core/error.h"
 #include "core/memory_check.h"
 #include "core/stopwatch.h"
@@ -139,7 +140,7 @@ struct GridWriter {
   std::size_t vertex_points = 0;  // after the texel samples in the per-point buffers
 
   void operator()(const std::vector<float>& per_point, std::vector<float>& grid) const {
-    grid.assign((coverage.size() + vertex_points) * stride, 0.0f);
+    assign_big(grid, (coverage.size() + vertex_points) * stride, 0.0f);
     for (std::size_t k = 0; k < samples.samples.size(); ++k)
       std::copy_n(per_point.begin() + std::ptrdiff_t(k * stride), stride, grid.begin() + std::ptrdiff_t(samples.samples[k].texel * stride));
     fill_gutter(grid, stride, coverage, rounds, samples.width, samples.height);
