@@ -54,6 +54,21 @@ float squared_distance(const float* a, const float* b, std::size_t stride) {
   return ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
 }
 
+// The element of rank n / 2 of values[0..n) in ascending order (n <= 25): the value std::nth_element
+// gives, found without branches on the data: the element with n / 2 elements before it, counting
+// smaller ones and, among equal ones, those at smaller indices.
+float median_of(const std::array<float, 25>& values, std::size_t n) {
+  const std::size_t rank = n / 2;
+  float found = values[0];
+  for (std::size_t a = 0; a < n; ++a) {
+    std::size_t before = 0;
+    for (std::size_t b = 0; b < n; ++b)
+      before += std::size_t(values[b] < values[a]) + std::size_t(b < a && values[b] == values[a]);
+    if (before == rank) found = values[a];
+  }
+  return found;
+}
+
 // The initial noise variance of each covered texel's transfer vector (denoise.h): the median over p's
 // 5 x 5 chart window of the squared norm of each texel's difference from the mean of its chart's 3 x 3
 // neighbours, corrected for the mean's share of the noise (x k / (k - 1) for k texels).
@@ -86,22 +101,19 @@ std::vector<float> initial_variance(const std::vector<float>& values, std::size_
       }
   });
   parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> window;
+    std::array<float, 25> window;
     for (std::size_t j = begin; j < end; ++j)
       for (std::size_t i = 0; i < w; ++i) {
         const std::size_t p = i + j * w;
         if (!g.covered[p]) continue;
-        window.clear();
+        std::size_t k = 0;
         for (long dj = -2; dj <= 2; ++dj)
           for (long di = -2; di <= 2; ++di)
             if (grid.same_chart(p, long(i) + di, long(j) + dj)) {
               const float r = residual[std::size_t(long(p) + di + dj * long(w))];
-              if (r >= 0.0f) window.push_back(r);
+              if (r >= 0.0f) window[k++] = r;
             }
-        if (window.empty()) continue;
-        const auto mid = window.begin() + std::ptrdiff_t(window.size() / 2);
-        std::nth_element(window.begin(), mid, window.end());
-        variance[p] = *mid;
+        if (k > 0) variance[p] = median_of(window, k);
       }
   });
   return variance;
