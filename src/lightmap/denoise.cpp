@@ -149,19 +149,35 @@ void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<flo
   for (int k = 0; k < n; ++k) w[std::size_t(k)] = float(out[std::size_t(k)] / sum);
 }
 
-// out[p] = sum over the 9 slots of w[slot] in[p + step (di + dj width)] (slot 3 (dj + 1) + di + 1; a zero
-// weight reads nothing), in slot order: the same float operations whichever thread runs p.
+// d = sum over the 9 slots of w[slot] centre[(di step + dj row) floats] (slot 3 (dj + 1) + di + 1; a zero
+// weight reads nothing), in slot order. kStride > 0: `stride` == kStride, the sum held in registers
+// across the slots (the same float operations).
+template <std::size_t kStride>
+void weighted_sum_fixed(const float* centre, float* d, const float* w, long step, long row, std::size_t stride) {
+  const std::size_t n = kStride > 0 ? kStride : stride;
+  float held[kStride > 0 ? kStride : 1];
+  float* acc = kStride > 0 ? held : d;
+  for (std::size_t c = 0; c < n; ++c) acc[c] = w[4] * centre[c];  // the centre is always a tap
+  for (int slot = 0; slot < 9; ++slot) {
+    if (slot == 4 || w[slot] == 0.0f) continue;
+    const float* s = centre + ((slot % 3) - 1) * step + ((slot / 3) - 1) * row;
+    const float ws = w[slot];
+    for (std::size_t c = 0; c < n; ++c) acc[c] += ws * s[c];
+  }
+  if (kStride > 0) std::copy_n(held, n, d);
+}
+
+// out[p] = sum over the 9 slots of w[slot] in[p + step (di + dj width)], in slot order: the same float
+// operations whichever thread runs p.
 void weighted_sum(const std::vector<float>& in, std::vector<float>& out, std::size_t p, const float* w, long step, int width,
                   std::size_t stride) {
   float* d = out.data() + p * stride;
   const float* centre = in.data() + p * stride;
-  for (std::size_t c = 0; c < stride; ++c) d[c] = w[4] * centre[c];  // the centre is always a tap
-  for (int slot = 0; slot < 9; ++slot) {
-    if (slot == 4 || w[slot] == 0.0f) continue;
-    const long offset = ((slot % 3) - 1 + ((slot / 3) - 1) * long(width)) * step;
-    const float* s = in.data() + std::size_t(long(p) + offset) * stride;
-    const float ws = w[slot];
-    for (std::size_t c = 0; c < stride; ++c) d[c] += ws * s[c];
+  const long step_floats = step * long(stride), row_floats = step_floats * long(width);
+  switch (stride) {
+    case 25: return weighted_sum_fixed<25>(centre, d, w, step_floats, row_floats, stride);
+    case 75: return weighted_sum_fixed<75>(centre, d, w, step_floats, row_floats, stride);
+    default: return weighted_sum_fixed<0>(centre, d, w, step_floats, row_floats, stride);
   }
 }
 
