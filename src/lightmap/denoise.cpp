@@ -181,6 +181,27 @@ void weighted_sum(const std::vector<float>& in, std::vector<float>& out, std::si
   }
 }
 
+// The normalised tap weights of every level, 9 per covered texel (slot 3 (dj + 1) + di + 1, 0 for no
+// tap), covered texels only, in row-major order: a level's weights of the texels of row j start at
+// row_first[j] x 9.
+struct StoredWeights {
+  std::vector<std::size_t> row_first;  // covered texels before each row; height + 1 entries
+  std::unique_ptr<float[]> data;       // written by each level at every covered texel before it is read
+
+  StoredWeights(const DenoiseGuides& g, int levels) : row_first(std::size_t(g.height) + 1, 0) {
+    const std::size_t width = std::size_t(g.width);
+    for (std::size_t j = 0; j < std::size_t(g.height); ++j)
+      row_first[j + 1] = row_first[j] + std::size_t(std::count_if(g.covered.begin() + std::ptrdiff_t(j * width),
+                                                                   g.covered.begin() + std::ptrdiff_t((j + 1) * width),
+                                                                   [](std::uint8_t c) { return c != 0; }));
+    const std::size_t floats = row_first.back() * 9 * std::size_t(levels);
+    data.reset(new float[floats]);  // uninitialised: no pass over it
+    advise_huge_pages(data.get(), floats * sizeof(float));
+  }
+  // The first weight of `level` for row j.
+  float* row(int level, std::size_t j) const { return data.get() + (std::size_t(level) * row_first.back() + row_first[j]) * 9; }
+};
+
 struct Iteration {
   const DenoiseGuides& g;
   const DenoiseOptions& o;
@@ -233,15 +254,17 @@ struct Iteration {
     return n;
   }
 
-  // One level: out = the filtered `in` (and bounce_out of bounce_in), next_variance, and each covered
-  // texel's normalised weights in `stored` (9 per texel by slot 3 (dj + 1) + di + 1, 0 for no tap).
+  // One level (`level`): out = the filtered `in` (and bounce_out of bounce_in), next_variance, and each
+  // covered texel's normalised weights in `stored`.
   void apply(const std::vector<float>& in, std::vector<float>& out, const std::vector<float>* bounce_in,
-             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance, float* stored) const {
+             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance, const StoredWeights& stored,
+             int level) const {
     const std::size_t width = std::size_t(g.width);
     parallel_for(std::size_t(g.height), kRowGrain, o.threads, [&](std::size_t begin, std::size_t end) {
       std::array<std::size_t, 9> taps{};
       std::array<float, 9> w{};
       std::array<int, 9> slots{};
+      float* slot_w = stored.row(level, begin);
       for (std::size_t j = begin; j < end; ++j)
         for (std::size_t i = 0; i < width; ++i) {
           const std::size_t p = i + j * width;
@@ -254,23 +277,27 @@ struct Iteration {
           }
           const float inv_sum = 1.0f / sum;
           next_variance[p] = var * inv_sum * inv_sum;
-          float* slot_w = stored + p * 9;
           std::fill(slot_w, slot_w + 9, 0.0f);
           for (int k = 0; k < n; ++k) slot_w[slots[std::size_t(k)]] = w[std::size_t(k)] * inv_sum;
           weighted_sum(in, out, p, slot_w, step, g.width, stride);
           if (bounce_in) weighted_sum(*bounce_in, *bounce_out, p, slot_w, step, g.width, stride);
+          slot_w += 9;
         }
     });
   }
 };
 
 // Applies the stored weights of one level (Iteration::apply) to `in`, into `out`.
-void apply_stored(const DenoiseGuides& g, const float* stored, long step, const std::vector<float>& in, std::vector<float>& out,
+void apply_stored(const DenoiseGuides& g, const StoredWeights& stored, int level, const std::vector<float>& in, std::vector<float>& out,
                   std::size_t stride, int threads) {
   const std::size_t width = std::size_t(g.width);
   parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
+    const float* slot_w = stored.row(level, begin);
     for (std::size_t p = begin * width; p < end * width; ++p)
-      if (g.covered[p]) weighted_sum(in, out, p, stored + p * 9, step, g.width, stride);
+      if (g.covered[p]) {
+        weighted_sum(in, out, p, slot_w, 1L << level, g.width, stride);
+        slot_w += 9;
+      }
   });
 }
 
@@ -281,10 +308,10 @@ namespace {
 // Twicing (Tukey, "Exploratory Data Analysis", 1977): smooth += twicing x S (input - smooth), S the
 // levels whose weights are `stored`. `input` and `scratch` are overwritten.
 void twice(std::vector<float>& smooth, std::vector<float>& input, std::vector<float>& scratch, std::size_t stride,
-           const DenoiseGuides& g, const float* stored, const DenoiseOptions& o) {
+           const DenoiseGuides& g, const StoredWeights& stored, const DenoiseOptions& o) {
   for (std::size_t k = 0; k < input.size(); ++k) input[k] -= smooth[k];
   for (int it = 0; it < o.iterations; ++it) {
-    apply_stored(g, stored + std::size_t(it) * g.covered.size() * 9, 1L << it, input, scratch, stride, o.threads);
+    apply_stored(g, stored, it, input, scratch, stride, o.threads);
     input.swap(scratch);
   }
   for (std::size_t t = 0; t < g.covered.size(); ++t)
@@ -363,21 +390,18 @@ void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only,
                      residual_bounce = options.twicing > 0.0f ? copy_big(bounce_only) : std::vector<float>();
   std::vector<float> next_values = copy_big(values), next_bounce = copy_big(bounce_only);
   std::vector<float> variance = noise ? *noise : initial_variance(values, stride, guides, options.threads), next_variance = variance;
-  // Written at every covered texel by each level before it is read (uninitialised: no pass over it).
-  const std::size_t stored_floats = guides.covered.size() * 9 * std::size_t(options.iterations);
-  const std::unique_ptr<float[]> stored(new float[stored_floats]);
-  advise_huge_pages(stored.get(), stored_floats * sizeof(float));
+  const StoredWeights stored(guides, options.iterations);
   for (int it = 0; it < options.iterations; ++it) {
     const Iteration iteration{guides, options, 1L << it, options.value_floor * std::pow(options.floor_decay, float(it)), variance};
     iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance,
-                    stored.get() + std::size_t(it) * guides.covered.size() * 9);
+                    stored, it);
     values.swap(next_values);
     if (bounce) bounce_only.swap(next_bounce);
     variance.swap(next_variance);
   }
   if (options.twicing > 0.0f) {
-    twice(values, residual, next_values, stride, guides, stored.get(), options);
-    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored.get(), options);
+    twice(values, residual, next_values, stride, guides, stored, options);
+    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored, options);
   }
 }
 
