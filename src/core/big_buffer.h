@@ -3,8 +3,9 @@
 // pages are asked for as transparent huge pages (Linux madvise MADV_HUGEPAGE; the kernel's
 // /sys/kernel/mm/transparent_hugepage/enabled "madvise" or "always"), so that the first write faults
 // once per 2 MiB instead of once per 4 KiB. The values are those of std::vector::assign; only the
-// cost of the first touch changes (half the time of the denoiser on a 1024 x 1024 lightmap on a
-// virtual machine, docs/performance.md). Elsewhere, or under the size where it pays, a plain assign.
+// cost of the first touch changes (about 40% of the denoiser's CPU time on a 1024 x 1024 lightmap on
+// a 2-core virtual machine, docs/performance.md). Elsewhere, or under the size where it pays, a plain
+// assign.
 #include <cstddef>
 #include <vector>
 
