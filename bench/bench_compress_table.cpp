@@ -50,9 +50,8 @@ struct Case {
   Shaded shade(const transfer::TransferData& t) const {
     Shaded out;
     if (eyes.empty()) return {shade::shade_diffuse_split(*mesh, t, lighting, "bench")};
-    const brdf::Brdf surface = shade::baked_brdf(t.header, "bench");
-    const brdf::BrdfMatrix matrix = brdf::project(surface, static_cast<int>(t.header.bands_out));
-    for (const glm::vec3& eye : eyes) out.push_back(shade::shade_glossy_split(*mesh, t, surface, matrix, lighting, eye, "bench"));
+    const brdf::VertexBrdfs brdfs = shade::baked_brdfs(t.header, "bench");
+    for (const glm::vec3& eye : eyes) out.push_back(shade::shade_glossy_vertex_brdfs(*mesh, t, brdfs, lighting, eye, "bench"));
     return out;
   }
 };

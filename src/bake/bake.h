@@ -134,6 +134,11 @@ transfer::TransferData bake(const mesh::Mesh& mesh, const BakeOptions& options, 
 /// MODE; docs/conventions.md, "Robust mode").
 trace::SceneOptions bake_scene_options(int threads);
 
+/// Bytes that the bounce passes' base colour lookups hold for `mesh` (HitColours, passes.h: the mip
+/// pyramids of its textures, mesh::TextureMips::coarse_bytes, and one lookup per triangle); 0 unless
+/// its bounce hits read textures (albedo_at_hits). For the memory checks of interreflected bakes.
+std::uint64_t hit_colour_bytes(const mesh::Mesh& mesh);
+
 /// Per-vertex albedo the bake uses: the mesh's own, or options.albedo for every vertex.
 std::vector<glm::vec3> effective_albedo(const mesh::Mesh& mesh, const glm::vec3& fallback);
 

@@ -7,6 +7,7 @@
 #include "core/constants.h"
 #include "core/parallel.h"
 #include "mesh/texture.h"
+#include "mesh/texture_mips.h"
 
 namespace prt::bake {
 
@@ -188,6 +189,13 @@ HitColours::HitColours(const PassContext& ctx) {
 }
 
 bool albedo_at_hits(const mesh::Mesh& mesh) { return mesh.textured(); }
+
+std::uint64_t hit_colour_bytes(const mesh::Mesh& mesh) {
+  if (!albedo_at_hits(mesh)) return 0;
+  std::uint64_t bytes = std::uint64_t(mesh.triangle_count()) * sizeof(mesh::TriangleColour);
+  for (const mesh::Texture& t : mesh.textures) bytes += mesh::TextureMips::coarse_bytes(t.width, t.height);
+  return bytes;
+}
 
 double sample_cone_width(std::size_t samples) { return std::sqrt(2.0 * kPi / static_cast<double>(samples)); }
 

@@ -73,12 +73,13 @@ std::string canonical_options(const BakeCommandOptions& o, const bake::BakeOptio
 // Bytes a per-vertex bake of `vertices` needs at most: the sample set's basis (samples x bands^2
 // floats), per vertex the transfer (three channels; glossy: bands_out^2 x bands^2 per channel) in up
 // to four buffers with bounces (values, bounce-only, previous and next pass), and the file's copy.
-std::uint64_t estimated_bake_bytes(const bake::BakeOptions& b, std::uint64_t vertices) {
+std::uint64_t estimated_bake_bytes(const bake::BakeOptions& b, const mesh::Mesh& mesh) {
   const std::uint64_t n = std::uint64_t(b.bands) * std::uint64_t(b.bands);
   const std::uint64_t out = transfer::is_glossy(b.kind) ? std::uint64_t(b.bands_out ? b.bands_out : b.bands) : 1;
   const std::uint64_t per_vertex = 4 * 3 * n * out * out;
   const bool bounces = b.kind == transfer::Kind::interreflected || b.kind == transfer::Kind::glossy_interreflected;
-  return std::uint64_t(b.samples) * n * 4 + saturating_product(vertices, per_vertex * (bounces ? 5 : 2));
+  return std::uint64_t(b.samples) * n * 4 + saturating_product(mesh.positions.size(), per_vertex * (bounces ? 5 : 2)) +
+         (bounces ? bake::hit_colour_bytes(mesh) : 0);
 }
 
 // The bake's summary line: what was baked, rays, bounces, time, output.
@@ -144,7 +145,7 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
                                (transfer::is_glossy(options.kind) ? " --bands-out " + std::to_string(bands_out) : "") +
                                " --samples " + std::to_string(o.samples) + " for " +
                                std::to_string(mesh.positions.size()) + " vertices";
-  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh.positions.size()));
+  check_memory_need("bands", sized_by, estimated_bake_bytes(options, mesh));
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();
   bake::BakeReport report;
@@ -167,17 +168,17 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
 }
 
 // --texel-parts: which parts are baked per texel (lightmap/part_choice.h); for a mixed scene sets
-// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair, no --gltf, no --compress;
+// lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair and the --gltf, no --compress;
 // with generated UVs also the mesh that carries them, pipeline/mixed_uv_mesh.h).
 lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh::Mesh& mesh, lightmap::LightmapOptions& lightmap,
                                         bool uv_generated) {
   lightmap::PartChoice parts = lightmap::choose_parts(mesh, o.texel_parts, lightmap.width, lightmap.height, o.mesh_path);
   if (!parts.mixed()) return parts;
-  if (!o.gltf_output.empty()) fail("--gltf: the engine glTF of a mixed scene (--texel-parts) is not supported yet; write the .prt pair");
   if (!o.compress.empty() || lower_extension(o.output) != ".prt")
     fail("-o " + o.output + ": a mixed scene (--texel-parts) is written as a .prt pair (no --compress, no .cprt)");
-  if (job().is_root()) check_outputs({pipeline::mixed_vertex_path(o.output)}, {o.mesh_path});
-  if (uv_generated && job().is_root()) check_outputs({pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
+  if (job().is_root()) check_outputs({o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output)}, {o.mesh_path});
+  if (uv_generated && job().is_root())
+    check_outputs({o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output), pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
   lightmap.vertex_triangles = parts.vertex_triangle;
   return parts;
 }
@@ -194,22 +195,34 @@ lightmap::PartChoice choose_uvs_and_parts(const BakeCommandOptions& o, mesh::Mes
   lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, threads, &uv_source);
   if (!parts_first) parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
   if (!parts.mixed() || !uv_source.generated) return parts;
-  if (parts_first && job().is_root()) check_outputs({pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
+  if (parts_first && job().is_root())
+    check_outputs({o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output), pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
   uv_mesh.emplace(pipeline::mixed_mesh_path(o.output), o.mesh_path, mesh, parts.vertex_triangle);
   mesh = std::move(uv_mesh->loaded());
   lightmap.vertex_triangles = uv_mesh->vertex_triangle();
   return parts;
 }
 
-// A mixed scene's outputs: the mesh with generated UVs (if any) and the .prt pair, the mesh removed
-// again if the pair cannot be written.
-void write_mixed(const BakeCommandOptions& o, transfer::TransferData texels, transfer::TransferData vertices,
+// A mixed scene's outputs: the mesh with generated UVs (if any), the .prt pair and the engine glTF
+// (of the mesh with the generated UVs, if any: the mesh the pair was baked for), the mesh removed again
+// if the others cannot be written.
+void write_mixed(const BakeCommandOptions& o, const mesh::Mesh& mesh, transfer::TransferData texels, transfer::TransferData vertices,
                  const lightmap::LightmapOptions& lightmap, const lightmap::PartChoice& parts, std::optional<pipeline::MixedUvMesh>& uv_mesh,
-                 bool float16) {
+                 const pipeline::TransferOutputs& out) {
   if (uv_mesh) uv_mesh->commit();
+  pipeline::MixedOutputs outputs;
+  outputs.texel_path = o.output;
+  outputs.vertex_path = pipeline::mixed_vertex_path(o.output);
+  outputs.gltf_path = o.gltf_output;
+  outputs.gltf_source = uv_mesh ? uv_mesh->path() : o.mesh_path;
+  outputs.vertex_triangle = lightmap.vertex_triangles;
+  outputs.texel_parts = parts.texel_parts;
+  outputs.vertex_parts = parts.vertex_parts;
+  outputs.float16 = out.float16;
+  outputs.seed = out.seed;
+  outputs.threads = out.threads;
   try {
-    pipeline::write_mixed_outputs(std::move(texels), std::move(vertices), o.output, pipeline::mixed_vertex_path(o.output),
-                                  lightmap.vertex_triangles, parts.texel_parts, parts.vertex_parts, float16);
+    pipeline::write_mixed_outputs(mesh, std::move(texels), std::move(vertices), outputs);
   } catch (...) {
     std::error_code ignored;
     if (uv_mesh) std::filesystem::remove(uv_mesh->path(), ignored);
@@ -254,7 +267,7 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   pipeline::TransferOutputs outputs = out;
   outputs.uv_generated = uv_source.generated;  // the glTF then carries the generated UVs
   if (parts.mixed()) {
-    write_mixed(o, std::move(data), std::move(vertex_data), lightmap, parts, uv_mesh, out.float16);
+    write_mixed(o, mesh, std::move(data), std::move(vertex_data), lightmap, parts, uv_mesh, out);
   } else {
     const sh::RgbCoefficients prior = compress::ship_metric_sky(static_cast<int>(header.bands));
     if (ships_compressed(o, options)) set_ship_compression(data, prior, outputs);  // K and N sized to the texels

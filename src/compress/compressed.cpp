@@ -99,11 +99,32 @@ CompressedTransfer compress_transfer(const transfer::TransferData& transfer, con
   return c;
 }
 
+namespace {
+
+// A glossy transfer's BRDF matrices (at its output bands) and each vertex's index (shade::baked_brdfs).
+struct BakedMatrices {
+  std::vector<brdf::BrdfMatrix> matrices;
+  std::vector<std::uint32_t> vertex;
+};
+
+BakedMatrices baked_matrices(const transfer::Header& h, const std::string& what) {
+  const brdf::VertexBrdfs brdfs = shade::baked_brdfs(h, what);
+  BakedMatrices out;
+  for (const brdf::Brdf& b : brdfs.table) out.matrices.push_back(brdf::project(b, static_cast<int>(h.bands_out)));
+  out.vertex = brdfs.vertex;
+  return out;
+}
+
+}  // namespace
+
 Metric transfer_metric(const transfer::TransferData& transfer, const MetricLighting& lighting, const std::string& what) {
   const transfer::Header& h = transfer.header;
-  brdf::BrdfMatrix b;
-  if (transfer::is_glossy(h.kind)) b = brdf::project(shade::baked_brdf(h, what), static_cast<int>(h.bands_out));
-  return shaded_metric(h, transfer.bounce_only.empty() ? 1 : 2, lighting, &b);
+  const int sections = transfer.bounce_only.empty() ? 1 : 2;
+  if (!transfer::is_glossy(h.kind)) return shaded_metric(h, sections, lighting, nullptr);
+  const BakedMatrices baked = baked_matrices(h, what);
+  std::vector<double> shares(baked.matrices.size(), baked.vertex.empty() ? 1.0 : 0.0);
+  for (const std::uint32_t k : baked.vertex) shares[k] += 1.0 / static_cast<double>(baked.vertex.size());
+  return shaded_metric(h, sections, lighting, baked.matrices, shares);
 }
 
 void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& original, const sh::RgbCoefficients& sky,
@@ -112,14 +133,13 @@ void add_radiance_error(CompressedTransfer& c, const transfer::TransferData& ori
   for (ErrorSums& s : c.per_cluster) s.radiance_error2 = s.radiance_norm2 = 0.0;
   c.total.radiance_error2 = c.total.radiance_norm2 = 0.0;
   const bool glossy = transfer::is_glossy(original.header.kind);
-  brdf::BrdfMatrix b;
-  if (glossy) b = brdf::project(shade::baked_brdf(original.header, what), static_cast<int>(original.header.bands_out));
-  // What the transfer (or, `bounce`, its bounce-only part) shades under `lighting`.
+  const BakedMatrices baked = glossy ? baked_matrices(original.header, what) : BakedMatrices{};
+  // What the transfer (or, `bounce`, its bounce-only part) shades under `lighting`, each vertex with its BRDF.
   const auto shaded = [&](const transfer::TransferData& t, bool bounce, const sh::RgbCoefficients& lighting) {
     transfer::TransferData part;
     if (bounce) part.header = t.header, part.values = t.bounce_only;
     const transfer::TransferData& used = bounce ? part : t;
-    return glossy ? shade::glossy_outgoing_coefficients(used, b, lighting) : shade::shade_diffuse(used, lighting);
+    return glossy ? shade::glossy_outgoing_coefficients(used, baked.matrices, baked.vertex, lighting) : shade::shade_diffuse(used, lighting);
   };
   std::vector<glm::vec3> test = shaded(approximate, false, sky), reference = shaded(original, false, sky);
   if (discs && !original.bounce_only.empty() && c.bounce) {

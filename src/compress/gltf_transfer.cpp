@@ -88,6 +88,19 @@ const json* texel_extension(const std::string& path, const json& doc, const mesh
   return ext.is_object() && ext.contains("cluster") ? &ext : nullptr;
 }
 
+// prt reads one model per file: a mixed scene's (a per-texel model 0 and a per-vertex model 1 on
+// different primitives, formats.md "Mixed scenes in the engine glTF") is refused, naming its pair.
+void check_single_model(const std::string& path, const json& doc, const mesh::Mesh& mesh) {
+  for (const mesh::SourcePrimitive& sp : mesh.source_primitives) {
+    const json& prim = doc["meshes"][std::size_t(sp.mesh)]["primitives"][std::size_t(sp.primitive)];
+    const json* ext = prim.contains("extensions") && prim["extensions"].contains("PRT_transfer") ? &prim["extensions"]["PRT_transfer"] : nullptr;
+    if (ext && ext->is_object() && ext->contains("model") && (*ext)["model"] != json(0))
+      fail_file(path, "PRT_transfer: mesh " + std::to_string(sp.mesh) + " primitive " + std::to_string(sp.primitive) +
+                          " uses model " + (*ext)["model"].dump() +
+                          "; prt reads one model per file (a mixed scene's engine glTF is for engines: render its .prt pair)");
+  }
+}
+
 // Per texel: the size, UV set and images of the primitive extension `ext`; the points are the texels
 // whose coverage code (the cluster image's G) is not empty, in row-major order.
 void read_texel_points(const std::string& path, const mesh::GltfExtras& extras, const json& ext, const mesh::Mesh& mesh,
@@ -151,6 +164,7 @@ CompressedTransfer read_gltf_transfer(const std::string& path, std::vector<glm::
   check_values(path, out.means, k * d, "means");
   out.bases = extras.floats(integer_field(path, model, "bases", 0, 1 << 30), 1, "PRT_transfer bases");
   check_values(path, out.bases, k * n * d, "bases");
+  check_single_model(path, doc, mesh);
   const json* texel = texel_extension(path, doc, mesh);
   if (texel)
     read_texel_points(path, extras, *texel, mesh, &out);

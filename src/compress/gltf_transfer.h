@@ -18,8 +18,8 @@ bool is_glb_file(const std::string& path);
 /// mesh load_mesh reads from `path` (its source header: that mesh's counts and fingerprint, the model's
 /// kind, bands, channels and bake parameters, float32). *albedo gets _PRT_ALBEDO per vertex. Throws
 /// prt::Error("<path>: <problem>") for a file without the extension, a malformed model (sizes, ranges,
-/// a cluster index that is not an integer in [0, K), non-finite or too large values) or a baked
-/// primitive without the attributes.
+/// a cluster index that is not an integer in [0, K), non-finite or too large values), a baked
+/// primitive without the attributes, or one that names a model other than 0 (a mixed scene's file).
 CompressedTransfer read_gltf_transfer(const std::string& path, std::vector<glm::vec3>* albedo);
 
 }  // namespace prt::compress

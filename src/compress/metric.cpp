@@ -88,21 +88,31 @@ std::vector<double> rotation_averaged_spectrum(const sh::RgbCoefficients& lighti
 }
 
 Metric shaded_metric(const transfer::Header& h, int sections, const MetricLighting& lighting, const brdf::BrdfMatrix* brdf) {
+  if (brdf) return shaded_metric(h, sections, lighting, std::vector<brdf::BrdfMatrix>{*brdf}, {1.0});
+  return shaded_metric(h, sections, lighting, std::vector<brdf::BrdfMatrix>{}, {});
+}
+
+Metric shaded_metric(const transfer::Header& h, int sections, const MetricLighting& lighting, const std::vector<brdf::BrdfMatrix>& brdfs,
+                     const std::vector<double>& shares) {
   if (sections != 1 && sections != 2) fail("compression metric: 1 or 2 sections, not " + std::to_string(sections));
+  if (brdfs.size() != shares.size()) fail("compression metric: " + std::to_string(brdfs.size()) + " BRDFs, " + std::to_string(shares.size()) + " shares");
   Metric metric;
   metric.dimension = static_cast<std::size_t>(h.values_per_vertex()) * static_cast<std::size_t>(sections);
   const bool glossy = transfer::is_glossy(h.kind);
   if (!glossy && !lighting.sky) return metric;
-  if (glossy && !brdf) fail("compression metric: glossy transfer needs its BRDF matrix");
-  MatrixD gram[3] = {MatrixD::Ones(1, 1), MatrixD::Ones(1, 1), MatrixD::Ones(1, 1)};  // B_c^T B_c per colour
+  if (glossy && brdfs.empty()) fail("compression metric: glossy transfer needs its BRDF matrix");
+  MatrixD gram[3] = {MatrixD::Ones(1, 1), MatrixD::Ones(1, 1), MatrixD::Ones(1, 1)};  // sum_k share_k B_kc^T B_kc per colour
   if (glossy) {
     const int n_out = static_cast<int>(h.bands_out * h.bands_out);
-    if (brdf->bands != static_cast<int>(h.bands_out))
-      fail("compression metric: the BRDF matrix has " + std::to_string(brdf->bands) + " bands, the transfer's output has " +
-           std::to_string(h.bands_out));
-    for (int colour = 0; colour < 3; ++colour) {
-      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> b(brdf->for_colour(colour), n_out, n_out);
-      gram[colour] = b.transpose() * b;
+    for (int colour = 0; colour < 3; ++colour) gram[colour] = MatrixD::Zero(n_out, n_out);
+    for (std::size_t k = 0; k < brdfs.size(); ++k) {
+      if (brdfs[k].bands != static_cast<int>(h.bands_out))
+        fail("compression metric: the BRDF matrix has " + std::to_string(brdfs[k].bands) + " bands, the transfer's output has " +
+             std::to_string(h.bands_out));
+      for (int colour = 0; colour < 3; ++colour) {
+        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> b(brdfs[k].for_colour(colour), n_out, n_out);
+        gram[colour] += shares[k] * (b.transpose() * b);
+      }
     }
   }
   std::vector<RawBlock> raw = metric_blocks(h, sections, cross_spectra(h, sections, lighting), gram);

@@ -73,6 +73,14 @@ struct MetricLighting {
 /// gives the identity.
 Metric shaded_metric(const transfer::Header& h, int sections, const MetricLighting& lighting, const brdf::BrdfMatrix* brdf);
 
+/// As above for glossy transfer shaded with several BRDFs (one per material, --brdf mesh): `brdfs[k]`
+/// shades the share `shares[k]` of the points (shares >= 0, summing to 1), and the metric takes the
+/// shares' mean of the BRDFs' products sum_k shares_k B_k^T B_k per colour, so CPCA's squared error is
+/// the shaded error averaged over the points' BRDFs (exact for one BRDF; with several, the one metric
+/// weighs every point by the mean, not its own BRDF). Throws prt::Error for sizes that differ.
+Metric shaded_metric(const transfer::Header& h, int sections, const MetricLighting& lighting, const std::vector<brdf::BrdfMatrix>& brdfs,
+                     const std::vector<double>& shares);
+
 /// out = G x (inverse: G^-1 x) for `count` points of metric.dimension floats, point-major; computed in
 /// double, in place allowed. Identity copies.
 void apply_metric(const Metric& metric, const float* in, float* out, std::size_t count, bool inverse);

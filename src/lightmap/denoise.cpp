@@ -349,20 +349,61 @@ int interleaved_tile_bits(int sample_count) {
   return bits;
 }
 
-InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed) {
-  InterleavedSampling out;
-  out.tile_bits = interleaved_tile_bits(sample_count);
-  const std::uint32_t bits = std::uint32_t(out.tile_bits), side = 1u << bits;
-  const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), tiles_across = (width + side - 1) / side;
-  out.set.reserve(samples.samples.size());
-  for (const TexelSample& s : samples.samples) {
-    const std::uint32_t i = s.texel % width, j = s.texel / width, x = (i ^ j) % side, y = i % side;
+namespace {
+
+// The set texel (i, j) traces (denoise.h, interleaved_sampling): the bit-reversed Bayer index of
+// (i xor j, i) within its tile, xor the tile's hash.
+struct TileSets {
+  std::uint32_t bits, side, tiles_across;
+  std::uint32_t seed;
+  std::uint8_t operator()(std::uint32_t i, std::uint32_t j) const {
+    const std::uint32_t x = (i ^ j) % side, y = i % side;
     std::uint32_t set = 0;
     for (std::uint32_t b = 0; b < bits; ++b) set |= (((x >> b) & 1u) << (2 * b)) | (((y >> b) & 1u) << (2 * b + 1));
     // XOR with a constant maps every aligned block of consecutive sets onto another one.
     const double tile = hash_to_unit(seed, std::uint64_t(i / side) + std::uint64_t(j / side) * tiles_across, 0x5e7);
-    out.set.push_back(std::uint8_t(set ^ std::uint32_t(tile * double(side * side))));
+    return std::uint8_t(set ^ std::uint32_t(tile * double(side * side)));
   }
+};
+
+// The covered texel that traces the set of empty texel (i, j): its first covered neighbour, the four
+// edge neighbours before the four corners; -1 if none.
+std::int64_t adopting_sample(const std::vector<std::int64_t>& sample_at, std::uint32_t width, std::uint32_t height,
+                             std::uint32_t i, std::uint32_t j) {
+  static constexpr int kSteps[8][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+  for (const auto& step : kSteps) {
+    const std::int64_t x = std::int64_t(i) + step[0], y = std::int64_t(j) + step[1];
+    if (x < 0 || y < 0 || x >= std::int64_t(width) || y >= std::int64_t(height)) continue;
+    const std::int64_t k = sample_at[std::size_t(x + y * std::int64_t(width))];
+    if (k >= 0) return k;
+  }
+  return -1;
+}
+
+}  // namespace
+
+InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed) {
+  InterleavedSampling out;
+  out.tile_bits = interleaved_tile_bits(sample_count);
+  const std::uint32_t bits = std::uint32_t(out.tile_bits), side = 1u << bits;
+  const std::uint32_t width = std::uint32_t(std::max(samples.width, 1)), height = std::uint32_t(std::max(samples.height, 1));
+  const TileSets sets{bits, side, (width + side - 1) / side, seed};
+  out.set.reserve(samples.samples.size());
+  std::vector<std::int64_t> sample_at(std::size_t(width) * height, -1);
+  for (std::size_t k = 0; k < samples.samples.size(); ++k) {
+    const std::uint32_t t = samples.samples[k].texel;
+    out.set.push_back(sets(t % width, t / width));
+    sample_at[t] = std::int64_t(k);
+  }
+  // Empty texels next to covered ones: their sets, traced by a covered neighbour (extra points).
+  for (std::uint32_t j = 0; j < height; ++j)
+    for (std::uint32_t i = 0; i < width; ++i) {
+      if (sample_at[std::size_t(i) + std::size_t(j) * width] >= 0) continue;
+      const std::int64_t k = adopting_sample(sample_at, width, height, i, j);
+      if (k < 0) continue;
+      out.set.push_back(sets(i, j));
+      out.extra_sample.push_back(std::uint32_t(k));
+    }
   return out;
 }
 

@@ -33,9 +33,9 @@
 // itself, sunrise) 0.27% -> 0.15% at value_floor 0.01. The defaults spend the gain on a wider range
 // weight (docs/conventions.md has the figures).
 // Still one fixed linear map per texel: linear in the lighting.
-// INTERLEAVED SAMPLES. A bake that will be denoised gives the 16 texels of each 4 x 4 tile 16
-// complementary sample sets (interleaved_sampling), so that neighbouring texels' noise largely cancels
-// in the filter's sums.
+// INTERLEAVED SAMPLES. A bake that will be denoised gives the texels of each tile complementary sample
+// sets, and border texels also their empty neighbours' sets (interleaved_sampling), so that
+// neighbouring texels' noise largely cancels in the filter's sums.
 // Deterministic: each iteration reads only the previous one's values, so the bytes do not depend on
 // the thread count.
 #include <cstdint>
@@ -88,9 +88,15 @@ DenoiseGuides denoise_guides(const mesh::Mesh& mesh, const TexelSamples& samples
 /// sums; h_tile keeps tiles from repeating one another's pattern. The frames are not turned (the bake sets
 /// PassContext::unturned_frames): a turn per tile measured worse (docs/conventions.md). Each texel alone keeps an
 /// S-direction set as good as an undenoised bake's.
+/// BORDERS. An empty texel next to a covered one would have traced its set too: its covered neighbour
+/// (the first covered of its left, right, lower, upper neighbours, then its four diagonal ones, in that
+/// order) traces that set as an extra point at its own sample, and the texel's transfer is the mean of
+/// its points. So the blocks at a chart's border still trace their whole nets, and a border texel, which
+/// the filter can average only with the neighbours on one side, has 2-4 times the samples.
 struct InterleavedSampling {
   int tile_bits = 0;              ///< L
-  std::vector<std::uint8_t> set;  ///< 0..4^L - 1
+  std::vector<std::uint8_t> set;  ///< 0..4^L - 1: the texel samples' sets, then the extra points' sets
+  std::vector<std::uint32_t> extra_sample;  ///< per extra point: the texel sample (index in samples.samples) it adds to
 };
 InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed);
 

@@ -63,8 +63,8 @@ std::uint64_t estimated_bytes(const LightmapOptions& l, const bake::BakeOptions&
   return texels * (120 + denoise_bytes + buffers * stride_bytes) + set_bytes;
 }
 
-void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t available) {
-  check_memory_need("lightmap", size_text(l), estimated_bytes(l, o, channels), available);
+void check_memory(const LightmapOptions& l, const bake::BakeOptions& o, int channels, std::uint64_t extra_bytes, std::uint64_t available) {
+  check_memory_need("lightmap", size_text(l), estimated_bytes(l, o, channels) + extra_bytes, available);
 }
 
 TexelSamples texel_samples(const mesh::Mesh& mesh, const trace::Scene& scene, const std::vector<glm::vec3>& albedo,
@@ -125,44 +125,71 @@ void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, co
     fail_option("lightmap", " " + size_text(lightmap) + ": each side must be 1.." + std::to_string(side_max) + " texels");
   if (!mesh.has_lightmap_uv()) fail_file(lightmap.mesh_path, "has no lightmap UVs (" + lightmap.missing_uv_reason + ")");
   if (lightmap.denoise) validate_denoise_options(lightmap.denoise_options);
-  check_memory(lightmap, options, bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo)));
+  check_memory(lightmap, options, bake::transfer_channels(mesh, bake::effective_albedo(mesh, options.albedo)),
+               options.kind == transfer::Kind::interreflected ? bake::hit_colour_bytes(mesh) : 0);
 }
 
 namespace {
 
 // Per-sample blocks into the texel grid (empty texels zero), then the gutters filled; in a mixed bake
 // the vertex points' blocks follow the grid's (TexelGrid::vertex_base), in vertex order.
+// A texel with extra points (InterleavedSampling::extra_sample, which follow the texel samples) gets the
+// mean of its points, summed in point order.
 struct GridWriter {
   const TexelSamples& samples;
   const std::vector<std::uint8_t>& coverage;  // grown by grow_gutter
   const std::vector<std::vector<std::uint32_t>>& rounds;
   std::size_t stride;
-  std::size_t vertex_points = 0;  // after the texel samples in the per-point buffers
+  std::size_t vertex_points = 0;  // after the texel samples (and extra points) in the per-point buffers
+  const std::vector<std::uint32_t>* extra_sample = nullptr;
 
   void operator()(const std::vector<float>& per_point, std::vector<float>& grid) const {
     assign_big(grid, (coverage.size() + vertex_points) * stride, 0.0f);
-    for (std::size_t k = 0; k < samples.samples.size(); ++k)
+    const std::size_t count = samples.samples.size(), extras = extra_sample ? extra_sample->size() : 0;
+    for (std::size_t k = 0; k < count; ++k)
       std::copy_n(per_point.begin() + std::ptrdiff_t(k * stride), stride, grid.begin() + std::ptrdiff_t(samples.samples[k].texel * stride));
+    if (extras) average_extras(per_point, grid);
     fill_gutter(grid, stride, coverage, rounds, samples.width, samples.height);
-    std::copy_n(per_point.begin() + std::ptrdiff_t(samples.samples.size() * stride), vertex_points * stride,
+    std::copy_n(per_point.begin() + std::ptrdiff_t((count + extras) * stride), vertex_points * stride,
                 grid.begin() + std::ptrdiff_t(coverage.size() * stride));
+  }
+
+ private:
+  void average_extras(const std::vector<float>& per_point, std::vector<float>& grid) const {
+    std::vector<std::uint8_t> points(samples.samples.size(), 1);
+    for (std::size_t e = 0; e < extra_sample->size(); ++e) {
+      const std::uint32_t k = (*extra_sample)[e];
+      ++points[k];
+      float* out = grid.data() + samples.samples[k].texel * stride;
+      const float* in = per_point.data() + (samples.samples.size() + e) * stride;
+      for (std::size_t c = 0; c < stride; ++c) out[c] += in[c];
+    }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (points[k] == 1) continue;
+      float* out = grid.data() + samples.samples[k].texel * stride;
+      for (std::size_t c = 0; c < stride; ++c) out[c] /= float(points[k]);
+    }
   }
 };
 
-// The bake's points: the texel samples, then (mixed) every mesh vertex with a zero geometric normal
+// The bake's points: the texel samples, then the extra points of border texels (copies of the samples
+// they add to, interleaved_sampling), then (mixed) every mesh vertex with a zero geometric normal
 // (no true-surface rule: its rays leave from the vertex) and the vertex's albedo.
 struct BakePoints {
   std::vector<glm::vec3> positions, normals, geometric_normals, albedo;
 };
 
-BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<glm::vec3>& vertex_albedo, bool vertices) {
+BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<std::uint32_t>& extra_sample,
+                       const std::vector<glm::vec3>& vertex_albedo, bool vertices) {
   BakePoints p;
-  for (const TexelSample& s : samples.samples) {
+  auto add = [&](const TexelSample& s) {
     p.positions.push_back(s.position);
     p.normals.push_back(s.normal);
     p.geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
     p.albedo.push_back(s.albedo);
-  }
+  };
+  for (const TexelSample& s : samples.samples) add(s);
+  for (const std::uint32_t k : extra_sample) add(samples.samples[k]);
   if (!vertices) return p;
   p.positions.insert(p.positions.end(), mesh.positions.begin(), mesh.positions.end());
   p.normals.insert(p.normals.end(), mesh.normals.begin(), mesh.normals.end());
@@ -212,10 +239,13 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
                                {"samples_per_texel", l.stitch_options.samples_per_texel}, {"seams", rep.stitch.seams}};
   if (l.denoise) {
     const DenoiseOptions& d = l.denoise_options;
+    const bool interleave = d.interleave && std::find(l.vertex_triangles.begin(), l.vertex_triangles.end(), 1) == l.vertex_triangles.end();
     j["lightmap"]["denoise"] = {{"iterations", d.iterations}, {"plane_sigma", d.plane_sigma}, {"normal_power", d.normal_power},
                                 {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"floor_decay", d.floor_decay},
-                                {"slope_ridge", d.slope_ridge}, {"twicing", d.twicing},
-                                {"interleave", d.interleave && std::find(l.vertex_triangles.begin(), l.vertex_triangles.end(), 1) == l.vertex_triangles.end()}};
+                                {"slope_ridge", d.slope_ridge}, {"twicing", d.twicing}, {"interleave", interleave}};
+    if (interleave)
+      j["sample_set"] = "owen-scrambled sobol, cosine-weighted hemisphere, interleaved blocks per texel, unturned frames, "
+                        "border texels also trace their empty neighbours' blocks";
   }
   return j.dump();
 }
@@ -278,7 +308,11 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
   rep.bake.seconds_build = seconds_since(start);
   const TexelSamples samples = texel_samples(mesh, scene, vertex_albedo, lightmap, options.seed, options.threads, &rep);
-  const BakePoints points = bake_points(mesh, samples, vertex_albedo, mixed);
+  // Interleaved sample sets per texel sample, frames unturned (denoise.h); a mixed scene's points go on with
+  // its vertices, whose sets and frames stay a vertex bake's, so a mixed bake does not interleave.
+  const bool interleave = lightmap.denoise && lightmap.denoise_options.interleave && !mixed;
+  const InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
+  const BakePoints points = bake_points(mesh, samples, interleaved.extra_sample, vertex_albedo, mixed);
   const std::vector<glm::vec3>& normals = points.normals;
   const std::vector<glm::vec3>& albedo = points.albedo;
   std::vector<std::uint8_t> coverage = samples.coverage;
@@ -286,13 +320,9 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   rep.gutter = 0;
   for (const auto& round : rounds) rep.gutter += round.size();
   const std::size_t n = std::size_t(options.bands) * std::size_t(options.bands), stride = n * std::size_t(channels);
-  const GridWriter to_grid{samples, coverage, rounds, stride, mixed ? mesh.vertex_count() : 0};
+  const GridWriter to_grid{samples, coverage, rounds, stride, mixed ? mesh.vertex_count() : 0, &interleaved.extra_sample};
 
   const std::vector<std::uint32_t> order = trace::morton_order(points.positions);
-  // Interleaved sample sets per texel sample, frames unturned (denoise.h); a mixed scene's points go on with
-  // its vertices, whose sets and frames stay a vertex bake's, so a mixed bake does not interleave.
-  const bool interleave = lightmap.denoise && lightmap.denoise_options.interleave && !mixed;
-  const InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
   const bake::LocalSampleSet set = interleave ? bake::make_interleaved_sample_sets(options.samples, options.bands, options.seed,
                                                                                    1 << (2 * interleaved.tile_bits))
                                               : bake::make_local_sample_set(options.samples, options.bands, options.seed);
@@ -307,7 +337,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   // Mixed: the vertices' rays leave from their footprints (--footprint), as in a vertex bake.
   const std::unique_ptr<mesh::VertexFootprints> footprints = mixed ? mesh::footprints_for(mesh, options.footprint) : nullptr;
   ctx.footprints = footprints.get();
-  ctx.footprint_first = samples.samples.size();
+  ctx.footprint_first = samples.samples.size() + interleaved.extra_sample.size();
   const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();
   std::vector<float> geometric;

@@ -4,9 +4,10 @@
 // texel samples instead of the vertices (bake.h describes the estimators):
 //   - unshadowed: closed form at each sample's normal;
 //   - shadowed: the same S cosine-distributed Owen-scrambled Sobol directions per sample, in the
-//     frame sh::vertex_frame(n, seed, texel index) (with --denoise: turned by
-//     interleaved_sampling, denoise.h, which also gives each texel one of up to 256 sample sets), with the
-//     unshadowed control variate;
+//     frame sh::vertex_frame(n, seed, texel index) (with --denoise: unturned frames and one of up to 256
+//     sample sets per texel, interleaved_sampling, denoise.h; a texel at a chart's border also traces the
+//     sets of its empty neighbours, and its transfer is the mean of its points), with the unshadowed
+//     control variate;
 //   - interreflected: each bounce pass gathers, at a front-face hit, the previous pass's texel
 //     transfer at the hit's lightmap UV, filtered bilinearly in the texel grid (bake/passes.h,
 //     TexelGrid; the grid's gutters are filled before each pass); the bounce-only part is kept in
@@ -63,9 +64,9 @@ void parse_lightmap_size(const std::string& text, int& width, int& height);
 /// Bytes a bake of this size needs at most (texel grids, samples, pass buffers), for the memory check.
 std::uint64_t estimated_bytes(const LightmapOptions& lightmap, const bake::BakeOptions& options, int channels);
 
-/// Throws prt::Error naming the lightmap size unless estimated_bytes fits in 80% of `available_bytes`
-/// (physical memory by default, sysconf).
-void check_memory(const LightmapOptions& lightmap, const bake::BakeOptions& options, int channels,
+/// Throws prt::Error naming the lightmap size unless estimated_bytes plus `extra_bytes` (what the mesh
+/// adds: bake::hit_colour_bytes) fits in 80% of `available_bytes` (physical memory by default, sysconf).
+void check_memory(const LightmapOptions& lightmap, const bake::BakeOptions& options, int channels, std::uint64_t extra_bytes = 0,
                   std::uint64_t available_bytes = 0);
 
 /// The texel sample points of `mesh` for `lightmap`: UVs checked (prt::Error "lightmap UVs: ..."

@@ -1,6 +1,7 @@
 // write_engine_glb's checks and the parts its two sources share; GltfExtras (engine_gltf.h).
 #include "mesh/engine_gltf.h"
 
+#include <algorithm>
 #include <set>
 
 #include "core/atomic_file.h"
@@ -57,6 +58,22 @@ void check_attribute_count(const std::string& path, std::size_t count, const std
                         std::to_string(kMaxVertexAttributes));
 }
 
+std::vector<int> source_primitive_groups(const std::string& path, const Mesh& mesh, const EngineExtras& extras) {
+  std::vector<int> groups(mesh.source_primitives.size(), extras.triangle_group.empty() ? 0 : -1);
+  for (std::size_t t = 0; t < extras.triangle_group.size() && t < mesh.triangle_source.size(); ++t) {
+    int& group = groups[mesh.triangle_source[t].primitive];
+    const int g = extras.triangle_group[t];
+    if (group >= 0 && group != g) {
+      const SourcePrimitive& sp = mesh.source_primitives[mesh.triangle_source[t].primitive];
+      fail_file(path, "cannot write glTF: mesh " + std::to_string(sp.mesh) + " primitive " + std::to_string(sp.primitive) +
+                          " has triangles of two kinds; a primitive is written whole, of one kind");
+    }
+    group = g;
+  }
+  for (int& group : groups) group = std::max(group, 0);  // a primitive whose triangles were all dropped
+  return groups;
+}
+
 }  // namespace detail
 
 void write_engine_glb(const std::string& path, const std::string& source_path, const Mesh& mesh, const EngineExtras& extras) {
@@ -76,6 +93,9 @@ void write_engine_glb(const std::string& path, const std::string& source_path, c
   if (extras.corner_uvs && (extras.lightmap_set < 0 || mesh.lightmap_uv.size() != mesh.indices.size() ||
                             (gltf && mesh.triangle_source.size() != mesh.triangle_count())))
     fail_file(path, "cannot write glTF: generated lightmap UVs need a UV set and one UV per triangle corner");
+  if (!extras.triangle_group.empty() && (extras.triangle_group.size() != mesh.triangle_count() ||
+                                         (gltf && mesh.triangle_source.size() != mesh.triangle_count())))
+    fail_file(path, "cannot write glTF: the primitives' groups need one entry per triangle");
   if (gltf && mesh.source_primitives.empty()) fail_file(path, "cannot write glTF: the mesh does not say which glTF primitives it came from");
   write_file_atomically(path, gltf ? detail::engine_glb_from_gltf(path, source_path, mesh, extras)
                                    : detail::engine_glb_from_mesh(path, source_path, mesh, extras));

@@ -25,6 +25,7 @@ struct EngineAttribute {
   std::string name;  ///< application-specific: '_' then A-Z, 0-9, '_'
   int components = 4;
   std::vector<float> values;  ///< components x mesh.vertex_count()
+  int group = -1;  ///< -1: every baked primitive carries it; g >= 0: only the baked primitives of group g (EngineExtras::triangle_group)
 };
 
 /// Index of what write_engine_glb added, for the extension objects: the accessor of each of
@@ -40,7 +41,13 @@ struct EngineExtras {
   std::vector<GlbImage> images;            ///< appended after the source's images
   std::string extension;                   ///< vendor extension name: in extensionsUsed, not extensionsRequired; empty: none (root and primitive unused)
   std::function<nlohmann::json(const EngineIndices&)> root;       ///< the document's extension object
-  std::function<nlohmann::json(const EngineIndices&)> primitive;  ///< each baked primitive's extension object
+  /// Each baked primitive's extension object, given the primitive's group (0 without triangle_group).
+  std::function<nlohmann::json(const EngineIndices&, int group)> primitive;
+  /// A mixed export (e.g. some primitives per texel, the others per vertex): per triangle of the mesh,
+  /// the group (0..255) of the primitive it is drawn in. A glTF source's baked primitive takes the group
+  /// of its triangles, which must all have the same; the OBJ/PLY layout writes one primitive per
+  /// (material, group), material-major. Empty: every triangle of group 0.
+  std::vector<std::uint8_t> triangle_group;
   /// Per texel: the baked primitives' lightmap UVs are written as TEXCOORD_<lightmap_set> (an OBJ/PLY
   /// source's corner UVs split its vertices); -1: per vertex.
   int lightmap_set = -1;
@@ -64,7 +71,7 @@ struct EngineExtras {
 /// EXT_mesh_gpu_instancing are dropped (a static bake); each node instance the bake saw
 /// (mesh.source_primitives) gets its own copy of its mesh when that mesh is used by another node too;
 /// its triangle primitives get the attributes' slices and extras.primitive.
-/// OBJ/PLY source (or extras.as_loaded): one scene, one node, one mesh, one primitive per material
+/// OBJ/PLY source (or extras.as_loaded): one scene, one node, one mesh, one primitive per material (and group)
 /// (triangles in mesh order; a vertex per distinct (mesh vertex, UVs) in order of first use), POSITION,
 /// NORMAL, TEXCOORD_0 (the base colour UVs, else the lightmap UVs unless they are of set 1), TEXCOORD_1 (the
 /// lightmap UVs when they are of set 1, as generated ones are, or other than the base colour UVs; the primitive
@@ -72,6 +79,7 @@ struct EngineExtras {
 /// pbrMetallicRoughness factors and base colour textures (PNG or JPEG files embedded; others dropped
 /// with a note on stderr).
 /// Throws prt::Error naming `path` when a primitive would have more than kMaxVertexAttributes attributes,
+/// triangle_group has a length other than the triangle count or a glTF primitive's triangles in two groups,
 /// an attribute's length or name is wrong, a node is baked twice (a node in two scenes loaded together),
 /// an image's bytes are missing, or writing fails.
 void write_engine_glb(const std::string& path, const std::string& source_path, const Mesh& mesh, const EngineExtras& extras);

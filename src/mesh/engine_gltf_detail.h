@@ -25,6 +25,10 @@ std::string image_mime_type(const std::string& bytes, const std::string& hint);
 /// Throws prt::Error("<path>: cannot write glTF: <what> would have N vertex attributes, more than 16").
 void check_attribute_count(const std::string& path, std::size_t count, const std::string& what);
 
+/// Per source primitive of `mesh` (a glTF source's), its group by extras.triangle_group (all 0 without);
+/// throws prt::Error naming `path` for a primitive whose triangles are in two groups.
+std::vector<int> source_primitive_groups(const std::string& path, const Mesh& mesh, const EngineExtras& extras);
+
 /// The GLB bytes of write_engine_glb for a glTF source (gltf_engine_writer.cpp).
 std::string engine_glb_from_gltf(const std::string& path, const std::string& source, const Mesh& mesh,
                                  const EngineExtras& extras);

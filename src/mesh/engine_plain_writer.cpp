@@ -23,6 +23,8 @@ using nlohmann::json;
 // The triangles of one primitive, with a vertex per distinct (mesh vertex, corner UVs) in order of
 // first use by the corners.
 struct Part {
+  std::size_t material = 0;
+  int group = 0;                      // EngineExtras::triangle_group
   std::vector<std::uint32_t> source;  // per output vertex: the mesh vertex
   std::vector<glm::vec2> uv0, uv1;    // per output vertex (empty without those UVs)
   std::vector<std::uint32_t> indices;
@@ -49,14 +51,17 @@ CornerUvs corner_uvs(const Mesh& mesh) {
   return out;
 }
 
-// One part per material in material order (the triangles of material m, in mesh order); one part for
-// a mesh without materials. Parts without triangles are left empty.
-std::vector<Part> split(const Mesh& mesh) {
+// One part per (material, group) in material order, then group order (the triangles of material m and
+// group g, in mesh order); one material for a mesh without materials. Parts without triangles are left empty.
+std::vector<Part> split(const Mesh& mesh, const std::vector<std::uint8_t>& triangle_group) {
   const CornerUvs uvs = corner_uvs(mesh);
-  std::vector<Part> parts(std::max<std::size_t>(mesh.materials.size(), 1));
+  const std::size_t groups = triangle_group.empty() ? 1 : std::size_t(*std::max_element(triangle_group.begin(), triangle_group.end())) + 1;
+  std::vector<Part> parts(std::max<std::size_t>(mesh.materials.size(), 1) * groups);
+  for (std::size_t p = 0; p < parts.size(); ++p) parts[p].material = p / groups, parts[p].group = int(p % groups);
   std::vector<std::map<std::tuple<std::uint32_t, std::uint64_t, std::uint64_t>, std::uint32_t>> seen(parts.size());
   for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
-    const std::size_t m = mesh.materials.empty() ? 0 : mesh.triangle_material[corner / 3];
+    const std::size_t material = mesh.materials.empty() ? 0 : mesh.triangle_material[corner / 3];
+    const std::size_t m = material * groups + (triangle_group.empty() ? 0 : triangle_group[corner / 3]);
     std::uint64_t key0 = 0, key1 = 0;
     if (uvs.uv0 && !uvs.uv0->empty()) std::memcpy(&key0, &(*uvs.uv0)[corner], sizeof key0);
     if (uvs.uv1) std::memcpy(&key1, &(*uvs.uv1)[corner], sizeof key1);
@@ -141,11 +146,12 @@ json primitive(glb::Builder& glb, const Mesh& mesh, const Part& part, const Engi
   // glTF's texture coordinate sets start at 0: without base colour UVs, set 0 is the same accessor.
   if (part.uv0.empty() && !part.uv1.empty()) attributes["TEXCOORD_0"] = attributes["TEXCOORD_1"];
   if (!colours.empty()) attributes["COLOR_0"] = glb.add_floats(&colours[0].x, colours.size(), 3, "VEC3");
-  for (const EngineAttribute& a : extras.attributes) attributes[a.name] = add_attribute_gather(glb, a, part.source);
+  for (const EngineAttribute& a : extras.attributes)
+    if (a.group < 0 || a.group == part.group) attributes[a.name] = add_attribute_gather(glb, a, part.source);
   json out = {{"attributes", attributes}, {"indices", glb.add_indices(part.indices)}, {"mode", 4}};
   if (extras.extension.empty()) return out;
-  json ext = extras.primitive(added);
-  if (extras.lightmap_set >= 0) ext["texCoord"] = part.uv1.empty() ? 0 : 1;  // the set the lightmap UVs are written as
+  json ext = extras.primitive(added, part.group);
+  if (extras.lightmap_set >= 0 && ext.contains("texCoord")) ext["texCoord"] = part.uv1.empty() ? 0 : 1;  // the set the lightmap UVs are written as
   out["extensions"][extras.extension] = ext;
   return out;
 }
@@ -167,12 +173,12 @@ std::string engine_glb_from_mesh(const std::string& path, const std::string& sou
   }
   if (!images.empty()) out["images"] = images;
   json primitives = json::array();
-  const std::vector<Part> parts = split(mesh);
-  for (std::size_t m = 0; m < parts.size(); ++m) {
-    if (parts[m].indices.empty()) continue;
-    json p = primitive(glb, mesh, parts[m], extras, added);
+  const std::vector<Part> parts = split(mesh, extras.triangle_group);
+  for (const Part& part : parts) {
+    if (part.indices.empty()) continue;
+    json p = primitive(glb, mesh, part, extras, added);
     check_attribute_count(path, p["attributes"].size(), "primitive " + std::to_string(primitives.size()));
-    if (!mesh.materials.empty()) p["material"] = m;
+    if (!mesh.materials.empty()) p["material"] = part.material;
     primitives.push_back(p);
   }
   out["meshes"] = {{{"primitives", primitives}}};

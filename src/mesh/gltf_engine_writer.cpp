@@ -69,6 +69,7 @@ class SourceWriter {
     model_ = read_gltf_model(source_, lower_extension(source_) == ".glb", &warn, &images_, &doc_);
     reader_ = std::make_unique<GltfReader>(source_, model_);
     added_.arrays = add_arrays(glb_, extras_.arrays);
+    groups_ = source_primitive_groups(path_, mesh_, extras_);
     assign_meshes();
     json out = {{"asset", doc_.value("asset", json::object())}};
     out["asset"]["version"] = "2.0";
@@ -179,7 +180,9 @@ class SourceWriter {
       out["indices"] = copy_indices(prim.indices, what + " indices");
     }
     if (baked) {
+      const int group = groups_[std::size_t(baked - mesh_.source_primitives.data())];
       for (const EngineAttribute& a : extras_.attributes) {
+        if (a.group >= 0 && a.group != group) continue;
         if (!split) {
           attributes[a.name] = add_attribute_slice(glb_, a, baked->first_vertex, baked->vertex_count);
           continue;
@@ -188,7 +191,7 @@ class SourceWriter {
         for (std::size_t i = 0; i < loaded.size(); ++i) loaded[i] = baked->first_vertex + vertices.source[i];
         attributes[a.name] = add_attribute_gather(glb_, a, loaded);
       }
-      if (!extras_.extension.empty()) out["extensions"][extras_.extension] = extras_.primitive(added_);
+      if (!extras_.extension.empty()) out["extensions"][extras_.extension] = extras_.primitive(added_, group);
     }
     check_attribute_count(path_, attributes.size(), what);
     out["attributes"] = attributes;
@@ -327,6 +330,7 @@ class SourceWriter {
   std::vector<std::map<int, const SourcePrimitive*>> baked_;  // per output mesh: primitive -> baked slice
   std::map<int, int> copied_, copied_indices_;
   std::vector<std::vector<std::uint32_t>> primitive_triangles_;  // per source primitive (split_by_uv)
+  std::vector<int> groups_;  // per source primitive: its group (EngineExtras::triangle_group)
 };
 
 }  // namespace

@@ -65,6 +65,16 @@ TextureMips::TextureMips(const Texture& texture) : base_(&texture) {
   }
 }
 
+std::uint64_t TextureMips::coarse_bytes(int width, int height) {
+  std::uint64_t bytes = 0;
+  for (std::uint64_t w = std::uint64_t(std::max(width, 1)), h = std::uint64_t(std::max(height, 1)); w > 1 || h > 1;) {
+    w = std::max<std::uint64_t>(1, w / 2);
+    h = std::max<std::uint64_t>(1, h / 2);
+    bytes += 12 * w * h;
+  }
+  return bytes;
+}
+
 MeshMips build_mips(const std::vector<Texture>& textures, const std::vector<bool>& needed, int threads) {
   MeshMips mips(textures.size());
   parallel_for(textures.size(), 1, threads, [&](std::size_t begin, std::size_t end) {

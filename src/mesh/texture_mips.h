@@ -2,6 +2,7 @@
 // Box-filtered mip levels of a base colour texture: the texture at coarser resolutions, each texel the
 // mean of the texels it covers, for lookups whose footprint spans many texels (a bounce hit's ray cone,
 // a large triangle's quadrature: mesh/texture.h). One pyramid per texture, built once, deterministically.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -19,8 +20,12 @@ namespace prt::mesh {
 class TextureMips {
  public:
   /// Builds levels 1.. from `texture` (rgb or codes; width, height >= 1). Cost: about 4/3 x the
-  /// texture's texel count of reads; memory about 4 bytes per level-0 texel.
+  /// texture's texel count of reads; memory coarse_bytes(width, height).
   explicit TextureMips(const Texture& texture);
+
+  /// The bytes that levels 1.. of a width x height texture's pyramid hold (each side halved, rounded
+  /// down, at least 1; 3 floats per texel): about 4 per level-0 texel, up to 12 for a texture one texel thin.
+  static std::uint64_t coarse_bytes(int width, int height);
 
   /// The number of levels, level 0 included: floor(log2(max(width, height))) + 1.
   int level_count() const { return static_cast<int>(coarse_.size()) + 1; }

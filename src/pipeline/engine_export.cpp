@@ -1,5 +1,7 @@
 #include "pipeline/engine_export.h"
 
+#include <functional>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -24,9 +26,8 @@ mesh::EngineAttribute albedo_attribute(const mesh::Mesh& mesh, const compress::C
   return albedo;
 }
 
-// The per-vertex attributes of `model`: the cluster index, the weights four per VEC4, the albedo.
-std::vector<mesh::EngineAttribute> transfer_attributes(const mesh::Mesh& mesh, const compress::CompressedTransfer& model,
-                                                       const std::string& path) {
+// The per-vertex attributes of `model`: the cluster index, the weights four per VEC4.
+std::vector<mesh::EngineAttribute> transfer_attributes(const mesh::Mesh& mesh, const compress::CompressedTransfer& model) {
   const std::size_t n = mesh.vertex_count(), terms = std::size_t(model.pca);
   std::vector<mesh::EngineAttribute> out;
   mesh::EngineAttribute cluster{"_PRT_CLUSTER", 1, std::vector<float>(n)};
@@ -38,7 +39,6 @@ std::vector<mesh::EngineAttribute> transfer_attributes(const mesh::Mesh& mesh, c
       for (std::size_t j = 0; j < 4 && 4 * a + j < terms; ++j) weights.values[4 * v + j] = model.weights[v * terms + 4 * a + j];
     out.push_back(std::move(weights));
   }
-  out.push_back(albedo_attribute(mesh, model, path));
   return out;
 }
 
@@ -63,7 +63,8 @@ std::vector<mesh::GlbImage> texel_images(const compress::CompressedTransfer& mod
   return images;
 }
 
-json model_json(const compress::CompressedTransfer& model, const mesh::EngineIndices& added) {
+// Model `index` of the root extension; its means and bases are arrays 2 index and 2 index + 1.
+json model_json(const compress::CompressedTransfer& model, const mesh::EngineIndices& added, int index) {
   const transfer::Header& h = model.source;
   json parameters = json::parse(h.parameters_json, nullptr, false);
   if (!parameters.is_object()) parameters = json::object();
@@ -73,41 +74,79 @@ json model_json(const compress::CompressedTransfer& model, const mesh::EngineInd
           {"clusters", model.clusters},
           {"terms", model.pca},
           {"bounce", model.bounce},
-          {"means", added.arrays[0]},
-          {"bases", added.arrays[1]},
+          {"means", added.arrays[std::size_t(2 * index)]},
+          {"bases", added.arrays[std::size_t(2 * index + 1)]},
           {"layout", model.bounce ? "per point [T, T_bounce], each channel-major then SH index (prt basis)"
                                   : "per point T, channel-major then SH index (prt basis)"},
           {"parameters", parameters}};
+}
+
+void check_model(const std::string& path, const mesh::Mesh& mesh, const compress::CompressedTransfer& model) {
+  const transfer::Header& h = model.source;
+  if (transfer::is_glossy(h.kind)) fail_file(path, "cannot write glTF: the engine glTF carries diffuse transfer only");
+  transfer::check_mesh_match(path, h, mesh.vertex_count(), mesh.triangle_count(), mesh::fingerprint(mesh));
+}
+
+using PrimitiveObject = std::function<json(const mesh::EngineIndices&)>;
+
+// Adds model `index` to `extras` for the primitives of `group` (-1: all): its means and bases, per texel
+// its images, per vertex its attributes. Returns its primitives' extension object.
+PrimitiveObject add_model(mesh::EngineExtras& extras, const mesh::Mesh& mesh, const compress::CompressedTransfer& model, int index,
+                          int group) {
+  const transfer::Header& h = model.source;
+  extras.arrays.push_back(model.means);
+  extras.arrays.push_back(model.bases);
+  if (!h.is_texel()) {
+    for (mesh::EngineAttribute& a : transfer_attributes(mesh, model)) {  // (_PRT_ALBEDO: the caller's, on every primitive)
+      a.group = group;
+      extras.attributes.push_back(std::move(a));
+    }
+    return [index](const mesh::EngineIndices&) { return json{{"model", index}}; };
+  }
+  const std::size_t first = extras.images.size();
+  for (mesh::GlbImage& image : texel_images(model)) extras.images.push_back(std::move(image));
+  const bool weights = extras.images.size() > first + 1;
+  extras.lightmap_set = int(h.uv_set);
+  return [index, first, weights, &h](const mesh::EngineIndices& added) {
+    json ext = {{"model", index}, {"texCoord", h.uv_set}, {"width", h.texel_width}, {"height", h.texel_height},
+                {"cluster", added.images[first]}};
+    if (weights) ext["weights"] = added.images[first + 1];
+    return ext;
+  };
 }
 
 }  // namespace
 
 void write_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
                        const compress::CompressedTransfer& model, bool uv_generated) {
-  const transfer::Header& h = model.source;
-  if (transfer::is_glossy(h.kind)) fail_file(path, "cannot write glTF: the engine glTF carries diffuse transfer only");
-  transfer::check_mesh_match(path, h, mesh.vertex_count(), mesh.triangle_count(), mesh::fingerprint(mesh));
+  check_model(path, mesh, model);
   mesh::EngineExtras extras;
-  extras.arrays = {model.means, model.bases};
   extras.extension = kTransferExtension;
   extras.corner_uvs = uv_generated;
+  const PrimitiveObject primitive = add_model(extras, mesh, model, 0, -1);
+  extras.attributes.push_back(albedo_attribute(mesh, model, path));
+  extras.root = [&](const mesh::EngineIndices& added) { return json{{"version", 1}, {"models", {model_json(model, added, 0)}}}; };
+  extras.primitive = [&](const mesh::EngineIndices& added, int) { return primitive(added); };
+  mesh::write_engine_glb(path, source_path, mesh, extras);
+}
+
+void write_mixed_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
+                             const compress::CompressedTransfer& texels, const compress::CompressedTransfer& vertices,
+                             const std::vector<std::uint8_t>& vertex_triangle) {
+  check_model(path, mesh, texels);
+  check_model(path, mesh, vertices);
+  if (!texels.source.is_texel() || vertices.source.is_texel())
+    fail_file(path, "cannot write glTF: a mixed scene needs a per-texel and a per-vertex model");
+  mesh::EngineExtras extras;
+  extras.extension = kTransferExtension;
+  extras.triangle_group = vertex_triangle;  // group 0: per texel (model 0), 1: per vertex (model 1)
+  const PrimitiveObject texel = add_model(extras, mesh, texels, 0, 0);
+  const PrimitiveObject vertex = add_model(extras, mesh, vertices, 1, 1);
+  extras.attributes.push_back(albedo_attribute(mesh, vertices, path));
   extras.root = [&](const mesh::EngineIndices& added) {
-    return json{{"version", 1}, {"models", {model_json(model, added)}}};
+    return json{{"version", 1}, {"models", {model_json(texels, added, 0), model_json(vertices, added, 1)}}};
   };
-  if (h.is_texel()) {
-    extras.images = texel_images(model);
-    extras.attributes = {albedo_attribute(mesh, model, path)};
-    extras.lightmap_set = int(h.uv_set);
-    extras.primitive = [&](const mesh::EngineIndices& added) {
-      json ext = {{"model", 0}, {"texCoord", h.uv_set}, {"width", h.texel_width}, {"height", h.texel_height},
-                  {"cluster", added.images[0]}};
-      if (added.images.size() > 1) ext["weights"] = added.images[1];
-      return ext;
-    };
-  } else {
-    extras.attributes = transfer_attributes(mesh, model, path);
-    extras.primitive = [](const mesh::EngineIndices&) { return json{{"model", 0}}; };
-  }
+  extras.primitive = [&](const mesh::EngineIndices& added, int group) { return group == 0 ? texel(added) : vertex(added); };
   mesh::write_engine_glb(path, source_path, mesh, extras);
 }
 

@@ -5,7 +5,9 @@
 // vertex's transfer, which the discs' direct light takes); per texel a KTX2 cluster texture (cluster,
 // coverage) and weights texture array, and _PRT_ALBEDO per vertex as well;
 // per model the cluster means and directions as float accessors under the root extension PRT_transfer.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "compress/compressed.h"
 #include "mesh/mesh.h"
@@ -27,5 +29,15 @@ inline constexpr int kExportPca = 8;
 /// them (mesh::EngineExtras::corner_uvs).
 void write_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
                        const compress::CompressedTransfer& model, bool uv_generated = false);
+
+/// Writes `path` (atomically): the engine glTF of a mixed scene (docs/formats.md, "Mixed scenes in the
+/// engine glTF"): `source_path` with model 0 `texels` (per texel) on the primitives whose triangles
+/// are all per texel and model 1 `vertices` (per vertex, every mesh vertex) on those whose triangles
+/// are all per vertex (`vertex_triangle`: per triangle of `mesh`, 1 per vertex), _PRT_ALBEDO on both.
+/// Throws prt::Error naming the file for models of another mesh or kind, a primitive with triangles of
+/// both kinds, or what mesh::write_engine_glb refuses.
+void write_mixed_engine_gltf(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
+                             const compress::CompressedTransfer& texels, const compress::CompressedTransfer& vertices,
+                             const std::vector<std::uint8_t>& vertex_triangle);
 
 }  // namespace prt::pipeline

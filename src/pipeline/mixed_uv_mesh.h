@@ -22,8 +22,8 @@ class MixedUvMesh {
  public:
   /// Writes `mesh` (its generated lightmap UVs of set 1) into a temporary of `path` (AtomicFile)
   /// and loads it back (quietly), carrying `vertex_triangle` (one per triangle of `mesh`, 1: per
-  /// vertex) to the loaded triangles, which the file groups by material (one primitive per material,
-  /// each in mesh order). Throws prt::Error naming `path` if it cannot be written or the loaded
+  /// vertex) to the loaded triangles, which the file groups by material and kind (one primitive per
+  /// material and kind, each in mesh order, so that every primitive is of one kind). Throws prt::Error naming `path` if it cannot be written or the loaded
   /// triangles are not `mesh`'s in that order (corner positions compared bit for bit).
   MixedUvMesh(const std::string& path, const std::string& source_path, const mesh::Mesh& mesh,
               const std::vector<std::uint8_t>& vertex_triangle);

@@ -11,11 +11,7 @@
 
 namespace prt::pipeline {
 
-namespace {
-
-// The CPCA model of `transfer` as the .cprt file and the engine glTF carry it: the bake's --compress
-// K,N, else (glTF only) the export's defaults (engine_export.h).
-compress::CompressedTransfer compressed_model(const transfer::TransferData& transfer, const TransferOutputs& o) {
+compress::CompressedTransfer transfer_model(const transfer::TransferData& transfer, const TransferOutputs& o) {
   compress::CompressionRequest request;
   const std::size_t points = compress::point_blocks(transfer.header, transfer.coverage).size();
   const std::size_t dimension = std::size_t(transfer.header.values_per_vertex()) * (transfer.bounce_only.empty() ? 1 : 2);
@@ -27,14 +23,12 @@ compress::CompressedTransfer compressed_model(const transfer::TransferData& tran
   return compress::compress_for_shading(transfer, o.clusters > 0 ? o.transfer_path : o.gltf_path, request);
 }
 
-}  // namespace
-
 void write_transfer_outputs(const mesh::Mesh& mesh, transfer::TransferData transfer, const TransferOutputs& o) {
   if (transfer::is_glossy(transfer.header.kind) && !o.gltf_path.empty())
     fail_file(o.gltf_path, "glTF export of glossy transfer matrices is not supported; use the .prt file");
   if (o.float16) transfer.header.scalar = transfer::Scalar::float16;
   std::unique_ptr<compress::CompressedTransfer> model;
-  if (o.clusters > 0 || !o.gltf_path.empty()) model = std::make_unique<compress::CompressedTransfer>(compressed_model(transfer, o));
+  if (o.clusters > 0 || !o.gltf_path.empty()) model = std::make_unique<compress::CompressedTransfer>(transfer_model(transfer, o));
   AtomicFile transfer_file(o.transfer_path);
   write_staged(transfer_file, [&](const std::string& path) {
     if (o.clusters == 0) return transfer::write_transfer(path, transfer);

@@ -5,6 +5,7 @@
 // lightmap::bake_lightmap.
 #include <string>
 
+#include "compress/compressed.h"
 #include "mesh/mesh.h"
 #include "sh/coefficients.h"
 #include "transfer/transfer_file.h"
@@ -24,6 +25,11 @@ struct TransferOutputs {
   const sh::RgbCoefficients* metric_sky = nullptr;  ///< compression: the metric's spectrum (null: flat; shaded_compression.h)
   int threads = 0;            ///< for the compression (0 = all cores); the output does not depend on it
 };
+
+/// The CPCA model of `transfer` that the .cprt file and the engine glTF carry: `outputs`' clusters and
+/// pca when set, else the export's defaults (engine_export.h: K = min(64, points), N = min(8, values
+/// per point)); in the shaded metric of outputs.metric_sky. Throws as write_transfer_outputs does.
+compress::CompressedTransfer transfer_model(const transfer::TransferData& transfer, const TransferOutputs& outputs);
 
 /// Writes `transfer` (baked for `mesh`) to the outputs, each through its temporary, and commits them
 /// together: a failing second output leaves no first one. The compression runs in the shaded metric

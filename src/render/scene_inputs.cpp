@@ -32,6 +32,10 @@ image::Image equirect_from_cube(const light::Environment& environment) {
   return out;
 }
 
+bool several_brdfs(const transfer::Header& header, const std::string& path) {
+  return transfer::is_glossy(header.kind) && shade::baked_brdfs(header, path).table.size() > 1;
+}
+
 }  // namespace
 
 SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths, int scene_index) {
@@ -44,8 +48,9 @@ SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::stri
     transfer::check_mesh_match(path, header, scene.mesh.vertex_count(), scene.mesh.triangle_count(), fingerprint);
     transfer::check_uv_match(path, header, mesh::uv_fingerprint(scene.mesh));  // texel files only
     compress::use_baked_albedo(file, &scene.mesh);  // an engine glTF: the albedo its transfer was baked with
-    // A model is drawn as it is: per vertex by the CPCA pass, per texel by the compressed lightmap pass.
-    if (file.compressed()) {
+    // A model is drawn as it is: per vertex by the CPCA pass, per texel by the compressed lightmap pass;
+    // glossy transfer with one BRDF per material decompressed (the CPCA pass holds one BRDF).
+    if (file.compressed() && !several_brdfs(header, path)) {
       scene.compressed.push_back(std::make_shared<const compress::CompressedTransfer>(std::get<compress::CompressedTransfer>(std::move(file.contents))));
       scene.transfers.emplace_back().header = header;
     } else {

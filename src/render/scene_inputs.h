@@ -29,7 +29,8 @@ struct SceneInputs {
 };
 
 /// Loads the mesh (its scene `scene`, mesh::LoadOptions::scene; quietly: no notes on stderr, as `prt shade`) and each transfer (compress::open_transfer:
-/// .prt, or .cprt: compressed, per vertex or per texel), checks every transfer against the mesh
+/// .prt, or .cprt: compressed, per vertex or per texel, kept compressed except glossy transfer with one BRDF
+/// per material, which is decompressed: the CPCA pass holds one BRDF), checks every transfer against the mesh
 /// (transfer::check_mesh_match with mesh::fingerprint). Throws prt::Error("<file>: <problem>") for the
 /// first file that fails.
 SceneInputs load_scene(const std::string& mesh_path, const std::vector<std::string>& transfer_paths,

@@ -28,14 +28,25 @@ void check_inputs(const transfer::TransferData& transfer, const brdf::BrdfMatrix
 
 std::vector<glm::vec3> glossy_outgoing_coefficients(const transfer::TransferData& transfer, const brdf::BrdfMatrix& b,
                                                     const sh::RgbCoefficients& lighting) {
-  check_inputs(transfer, b);
+  return glossy_outgoing_coefficients(transfer, std::vector<brdf::BrdfMatrix>{b}, {}, lighting);
+}
+
+std::vector<glm::vec3> glossy_outgoing_coefficients(const transfer::TransferData& transfer, const std::vector<brdf::BrdfMatrix>& matrices,
+                                                    const std::vector<std::uint32_t>& vertex, const sh::RgbCoefficients& lighting) {
+  if (matrices.empty()) fail("glossy shading needs a BRDF matrix");
+  for (const brdf::BrdfMatrix& b : matrices) check_inputs(transfer, b);
   const transfer::Header& h = transfer.header;
+  if (!vertex.empty() && vertex.size() != h.vertex_count)
+    fail("glossy shading: " + std::to_string(vertex.size()) + " BRDF indices for " + std::to_string(h.vertex_count) + " vertices");
   const int n_in = static_cast<int>(h.bands * h.bands), n_out = static_cast<int>(h.bands_out * h.bands_out);
   const int used = std::min<int>(n_in, static_cast<int>(lighting.values.size()));
   const std::size_t matrix_size = static_cast<std::size_t>(n_out) * n_in;
   std::vector<glm::vec3> out(h.vertex_count * static_cast<std::size_t>(n_out));
   std::vector<double> t(static_cast<std::size_t>(n_out)), o(static_cast<std::size_t>(n_out));
-  for (std::size_t v = 0; v < h.vertex_count; ++v)
+  for (std::size_t v = 0; v < h.vertex_count; ++v) {
+    const std::uint32_t index = vertex.empty() ? 0u : vertex[v];
+    if (index >= matrices.size()) fail("glossy shading: vertex " + std::to_string(v) + " has BRDF " + std::to_string(index) + " of " + std::to_string(matrices.size()));
+    const brdf::BrdfMatrix& b = matrices[index];
     for (int c = 0; c < 3; ++c) {
       const float* m = transfer.values.data() + (v * h.channels + (h.channels == 3 ? c : 0)) * matrix_size;
       for (int k = 0; k < n_out; ++k) {
@@ -46,6 +57,7 @@ std::vector<glm::vec3> glossy_outgoing_coefficients(const transfer::TransferData
       brdf::apply(b, b.channels == 3 ? c : 0, t.data(), o.data());
       for (int k = 0; k < n_out; ++k) out[v * n_out + k][c] = static_cast<float>(o[k]);
     }
+  }
   return out;
 }
 
@@ -91,13 +103,6 @@ brdf::VertexBrdfs baked_brdfs(const transfer::Header& header, const std::string&
     fail_file(what, "bake parameters are not valid JSON");
   }
   return brdf::read_vertex_brdfs(j, header.vertex_count, what);
-}
-
-brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what) {
-  brdf::VertexBrdfs brdfs = baked_brdfs(header, what);
-  if (brdfs.table.size() != 1)
-    fail_file(what, "the transfer has one BRDF per material (--brdf mesh), which prt shade, render and view apply per vertex; give one BRDF");
-  return brdfs.table[0];
 }
 
 }  // namespace prt::shade

@@ -29,6 +29,11 @@ namespace prt::shade {
 std::vector<glm::vec3> glossy_outgoing_coefficients(const transfer::TransferData& transfer, const brdf::BrdfMatrix& brdf_matrix,
                                                     const sh::RgbCoefficients& lighting);
 
+/// As above with each vertex's own BRDF: vertex v takes matrices[vertex[v]] (`vertex` empty: every
+/// vertex matrices[0]; brdf::VertexBrdfs's layout). Throws prt::Error also for an index out of range.
+std::vector<glm::vec3> glossy_outgoing_coefficients(const transfer::TransferData& transfer, const std::vector<brdf::BrdfMatrix>& matrices,
+                                                    const std::vector<std::uint32_t>& vertex, const sh::RgbCoefficients& lighting);
+
 /// Per-vertex outgoing radiance (linear RGB, the lighting's units) toward per-vertex view directions
 /// `view` (unit, world frame). `normals` are the mesh's (they define the local frames). Throws
 /// prt::Error as glossy_outgoing_coefficients, or if the sizes differ from the vertex count.
@@ -46,9 +51,5 @@ std::vector<glm::vec3> shade_glossy_eye(const transfer::TransferData& transfer, 
 /// "brdf", or a "brdfs" table with each vertex's index). Throws prt::Error("<what>: ...") naming `what`
 /// (e.g. the file) if the header has none or they are malformed.
 brdf::VertexBrdfs baked_brdfs(const transfer::Header& header, const std::string& what);
-
-/// The one BRDF a glossy transfer was baked with (baked_brdfs). Throws prt::Error("<what>: ...") as
-/// baked_brdfs, and for a transfer with one BRDF per material (the caller applies a single BRDF).
-brdf::Brdf baked_brdf(const transfer::Header& header, const std::string& what);
 
 }  // namespace prt::shade

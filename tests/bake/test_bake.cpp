@@ -11,6 +11,8 @@
 #include <glm/mat3x3.hpp>
 
 #include "bake/bake.h"
+#include "mesh/texture.h"
+#include "mesh/texture_mips.h"
 #include "core/error.h"
 #include "light/environment.h"
 #include "reference/environment_sampler.h"
@@ -325,3 +327,40 @@ TEST_CASE("a library option error names the options field and its value, never a
     CHECK(std::string(e.what()).find("--") == std::string::npos);
   }
 }
+
+namespace prt {
+
+TEST_CASE("bake memory check: the bounce lookups' estimate covers the mip pyramids built", "[bake][texture]") {
+  // Levels 1.. of a w x h texture hold 3 floats per texel (mesh/texture_mips.h): counted here level by
+  // level, the estimate (bake::hit_colour_bytes) must cover them and the per-triangle lookups, and not
+  // exceed them by more than 10%.
+  for (const auto& [w, h] : {std::pair{1024, 1024}, std::pair{640, 96}, std::pair{1, 300}}) {
+    mesh::Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    m.normals.assign(4, glm::vec3(0, 0, 1));
+    m.indices = {0, 1, 2, 0, 2, 3};
+    mesh::TextureRef ref;
+    ref.image = 0;
+    m.materials = {mesh::Material{"tex", glm::vec3(1.0f), ref}};
+    m.triangle_material = {0, 0};
+    for (std::uint32_t i : m.indices) m.base_color_uv.emplace_back(m.positions[i].x, m.positions[i].y);
+    mesh::Texture texture;
+    texture.width = w;
+    texture.height = h;
+    texture.rgb.assign(3 * std::size_t(w) * std::size_t(h), 0.5f);
+    m.textures = {texture};
+    const mesh::TextureMips mips(m.textures[0]);
+    std::uint64_t built = 2 * sizeof(mesh::TriangleColour);
+    for (int k = 1; k < mips.level_count(); ++k) built += 12 * std::uint64_t(mips.level(k).width) * std::uint64_t(mips.level(k).height);
+    const std::uint64_t estimate = bake::hit_colour_bytes(m);
+    INFO(w << " x " << h << ": built " << built << " bytes, estimate " << estimate);
+    CHECK(estimate >= built);
+    CHECK(double(estimate) <= 1.1 * double(built) + 64.0);
+    m.textures.clear();
+    m.base_color_uv.clear();
+    m.materials[0].base_color.image = -1;
+    CHECK(bake::hit_colour_bytes(m) == 0);
+  }
+}
+
+}  // namespace prt

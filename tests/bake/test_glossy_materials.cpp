@@ -169,16 +169,24 @@ TEST_CASE("prt bake --brdf mesh: a two-material glTF shades each vertex as the b
   // Any thread count gives the same bytes.
   REQUIRE(test::run_prt(common + " --brdf mesh --threads 1 -o " + dir + "/one.prt").exit_code == 0);
   CHECK(read_bytes(dir + "/one.prt") == read_bytes(dir + "/multi.prt"));
-  // A reader of one BRDF refuses the file in one line; so does --brdf mesh on a mesh without materials.
-  CHECK(test::fails_in_one_line(test::run_prt("compress " + dir + "/multi.prt --clusters 2 --pca 1 -o " + dir + "/c.cprt"),
-                                "one BRDF per material"));
+  // prt compress keeps each vertex's BRDF: a lossless CPCA (one cluster, as many directions as the 72
+  // vertices need) shades as the .prt, vertex by vertex, in prt shade (prt render: test_render_cpca.cpp).
+  const test::RunResult compressed = test::run_prt("compress " + dir + "/multi.prt --clusters 1 --pca 71 --light " + light + " -o " + dir + "/c.cprt");
+  INFO(compressed.output);
+  REQUIRE(compressed.exit_code == 0);
+  REQUIRE(test::run_prt("shade " + gltf + " " + dir + "/c.cprt --light " + light + " --eye 0.5,2,3 --window none -o " + dir +
+                        "/c.ply").exit_code == 0);
+  const mesh::Mesh from_cprt = mesh::load_mesh(dir + "/c.ply", nullptr, true);
+  REQUIRE(from_cprt.albedo.size() == 72);
+  for (std::size_t v = 0; v < 72; ++v)
+    for (int c = 0; c < 3; ++c) CHECK(from_cprt.albedo[v][c] == Approx(shaded[0].albedo[v][c]).margin(2e-4 * largest));
+  // --brdf mesh on a mesh without materials is refused in one line.
   const mesh::Mesh plain = test::bowl(3, 6);
   mesh::write_ply(dir + "/plain.ply", plain.positions, {}, plain.indices);
   for (const char* brdf : {"", " --brdf mesh"})
     CHECK(test::fails_in_one_line(test::run_prt("bake " + dir + "/plain.ply --transfer glossy-shadowed" + brdf + " -o " + dir + "/p.prt"),
                                   "plain.ply: has no materials"));
   CHECK(!std::filesystem::exists(dir + "/p.prt"));
-  CHECK(!std::filesystem::exists(dir + "/c.cprt"));
 }
 
 TEST_CASE("mesh_brdfs: a vertex takes its first triangle's BRDF, equal materials share an entry, notes", "[glossy][materials]") {

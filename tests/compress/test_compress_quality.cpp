@@ -85,7 +85,7 @@ glm::vec3 eye_point(const mesh::Mesh& m, const glm::vec3& direction) {
 double glossy_error(const mesh::Mesh& m, const transfer::TransferData& original, const compress::CompressedTransfer& c,
                     const light::SceneLighting& lighting) {
   const transfer::TransferData approximate = compress::decompress(c);
-  const brdf::Brdf surface = shade::baked_brdf(original.header, "original");
+  const brdf::Brdf surface = shade::baked_brdfs(original.header, "original").table.at(0);
   const brdf::BrdfMatrix b = brdf::project(surface, 5);
   double worst = 0;
   for (const glm::vec3& direction : kEyeDirections) {
@@ -99,7 +99,7 @@ double glossy_error(const mesh::Mesh& m, const transfer::TransferData& original,
 // The same with the whole lighting as SH (no disc), for the record.
 double glossy_error_unsplit(const mesh::Mesh& m, const transfer::TransferData& original, const compress::CompressedTransfer& c) {
   const transfer::TransferData approximate = compress::decompress(c);
-  const brdf::BrdfMatrix b = brdf::project(shade::baked_brdf(original.header, "original"), 5);
+  const brdf::BrdfMatrix b = brdf::project(shade::baked_brdfs(original.header, "original").table.at(0), 5);
   double worst = 0;
   for (const glm::vec3& direction : kEyeDirections) {
     const glm::vec3 eye = eye_point(m, direction);

@@ -158,3 +158,22 @@ TEST_CASE("Compression metric: glossy through the BRDF, and G^-1 undoes G", "[co
   INFO("row (1,0): " << metric_norm2(metric, seen) << ", row (1,1): " << metric_norm2(metric, unseen));
   CHECK(metric_norm2(metric, unseen) < 1e-5 * metric_norm2(metric, seen));
 }
+
+TEST_CASE("Compression metric: several BRDFs weigh the shaded error by their shares of the points", "[compress][metric]") {
+  // The metric of two BRDFs with shares 0.3 and 0.7 is the shares' mean of each BRDF's rotation-averaged
+  // shaded error (Monte Carlo here, through each BRDF's matrix); shares (1, 0) give the first BRDF's metric.
+  std::mt19937_64 rng(23);
+  const brdf::BrdfMatrix shiny = brdf::project(brdf::parse_brdf("phong:exponent=12,ks=0.7,kd=0.2"), 3);
+  const brdf::BrdfMatrix matte = brdf::project(brdf::parse_brdf("lambert:albedo=0.5/0.7/0.9"), 3);
+  const transfer::Header h = header(transfer::Kind::glossy_shadowed, 3, 3, 3);
+  const sh::RgbCoefficients l = random_lighting(rng, 3);
+  const compress::Metric mixed = compress::shaded_metric(h, 1, {&l, nullptr}, {shiny, matte}, {0.3, 0.7});
+  const std::vector<float> dm = random_values(rng, mixed.dimension);
+  const double expected = 0.3 * rotation_average(h, dm, l, nullptr, &shiny, rng) + 0.7 * rotation_average(h, dm, l, nullptr, &matte, rng);
+  CHECK(metric_norm2(mixed, dm) == Approx(expected).epsilon(0.04));
+  const double shiny_only = rotation_average(h, dm, l, nullptr, &shiny, rng);
+  CHECK(std::abs(expected - shiny_only) > 0.1 * shiny_only);  // the shares matter on this draw
+  const compress::Metric first = compress::shaded_metric(h, 1, {&l, nullptr}, {shiny, matte}, {1.0, 0.0});
+  CHECK(metric_norm2(first, dm) == Approx(metric_norm2(compress::shaded_metric(h, 1, {&l, nullptr}, &shiny), dm)).epsilon(1e-9));
+  CHECK_THROWS_WITH(compress::shaded_metric(h, 1, {&l, nullptr}, {shiny, matte}, {1.0}), Catch::Contains("2 BRDFs, 1 shares"));
+}

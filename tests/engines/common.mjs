@@ -153,3 +153,21 @@ export function glslFunction(source, name, direction, vectors) {
   const channel = new Function(direction, 'I', 'c', js);
   return (d, inputs) => [0, 1, 2].map((c) => channel(d, inputs, c));
 }
+
+/** GLB: rewrites the JSON chunk of the file at `path` with `edit(json)`, keeping the BIN chunk. */
+export function editGlb(path, edit) {
+  const glb = readFileSync(path);
+  const jsonLength = glb.readUInt32LE(12);
+  const json = JSON.parse(glb.toString('utf8', 20, 20 + jsonLength));
+  const bin = glb.subarray(20 + jsonLength);
+  edit(json);
+  let text = JSON.stringify(json);
+  while (text.length % 4) text += ' ';
+  const header = Buffer.alloc(20);
+  header.write('glTF', 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(20 + text.length + bin.length, 8);
+  header.writeUInt32LE(text.length, 12);
+  header.writeUInt32LE(0x4e4f534a, 16);
+  writeFileSync(path, Buffer.concat([header, Buffer.from(text), bin]));
+}

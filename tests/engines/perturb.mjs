@@ -6,30 +6,13 @@ import { spawnSync } from 'node:child_process';
 import { cpSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { Checker, argument, fixtureFolders } from './common.mjs';
+import { Checker, argument, editGlb, fixtureFolders } from './common.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const work = argument('work');
 const first = fixtureFolders(work)[0].name;
 const check = new Checker('engines_perturbed');
 
-// GLB: rewrite the JSON chunk with `edit(json)`, keeping the BIN chunk.
-function editGlb(path, edit) {
-  const glb = readFileSync(path);
-  const jsonLength = glb.readUInt32LE(12);
-  const json = JSON.parse(glb.toString('utf8', 20, 20 + jsonLength));
-  const bin = glb.subarray(20 + jsonLength);
-  edit(json);
-  let text = JSON.stringify(json);
-  while (text.length % 4) text += ' ';
-  const header = Buffer.alloc(20);
-  header.write('glTF', 0);
-  header.writeUInt32LE(2, 4);
-  header.writeUInt32LE(20 + text.length + bin.length, 8);
-  header.writeUInt32LE(text.length, 12);
-  header.writeUInt32LE(0x4e4f534a, 16);
-  writeFileSync(path, Buffer.concat([header, Buffer.from(text), bin]));
-}
 const editJson = (path, edit) => { const j = JSON.parse(readFileSync(path, 'utf8')); edit(j); writeFileSync(path, JSON.stringify(j)); };
 
 const cases = [

@@ -5,7 +5,8 @@
 // primitive of the export with at most 16 vertex attributes (WebGL2's MAX_VERTEX_ATTRIBS), its
 // _PRT_CLUSTER values integers in [0, K) and its weights attributes as many as the model's terms need.
 // A per-texel export (prt bake --lightmap --gltf) carries one vertex attribute, _PRT_ALBEDO (values in
-// [0, 1]: the discs' direct light's albedo), and KTX2 textures, read
+// [0, 1]: the discs' direct light's albedo), and KTX2 textures; a mixed scene's (--texel-parts) has both
+// kinds of primitive, each checked against the model it names. The textures are read
 // here with ktx-parse: RGBA16F of the stated size, the cluster texture's R an integer in [0, K) and G a
 // coverage code (0, 1, 2), the weights texture an array of ceil(N / 4) layers; the validator's only
 // warnings are about the KTX2 images it does not know (it predates KHR_texture_basisu).
@@ -57,8 +58,8 @@ function half(bits) {
   return sign * (1 + fraction / 1024) * 2 ** (exponent - 15);
 }
 
-// The texel textures of a per-texel export, by the GLB layout and formats.md.
-function checkTexels(out, bytes, model) {
+// The texel textures of the per-texel primitives of an export, by the GLB layout and formats.md.
+function checkTexels(out, bytes, models) {
   const jsonLength = bytes.readUInt32LE(12);
   const doc = JSON.parse(bytes.toString('utf8', 20, 20 + jsonLength));
   const bin = bytes.subarray(20 + jsonLength + 8);
@@ -69,6 +70,8 @@ function checkTexels(out, bytes, model) {
   for (const mesh of doc.meshes)
     for (const p of mesh.primitives) {
       const ext = p.extensions.PRT_transfer;
+      if (!('width' in ext)) continue;  // a mixed scene's per-vertex primitive
+      const model = models[ext.model];
       check.check(`${out}: TEXCOORD_${ext.texCoord} present`, `TEXCOORD_${ext.texCoord}` in p.attributes);
       const cluster = ktx(ext.cluster);
       check.check(`${out}: cluster texture RGBA16F ${ext.width}x${ext.height}`, cluster.vkFormat === 97 && cluster.pixelWidth === ext.width &&
@@ -101,9 +104,10 @@ async function checkPair(out, source) {
   for (const key of ['nodes', 'materials', 'textures'])
     check.check(`${out}: ${key} as in the source`, s[key] === t[key], `${s[key]} vs ${t[key]}`);
   check.check(`${out}: as many meshes drawn as in the source`, s.meshes.length === t.meshes.length, `${s.meshes.length} vs ${t.meshes.length}`);
-  const model = a.parser.json.extensions.PRT_transfer.models[0];
+  const models = a.parser.json.extensions.PRT_transfer.models;
   const texel = a.parser.json.meshes.some((m) => m.primitives.some((p) => 'cluster' in ((p.extensions || {}).PRT_transfer || {})));
-  if (texel) checkTexels(out, bytes, model);
+  if (texel) checkTexels(out, bytes, models);
+  const kinds = new Set();
   s.meshes.forEach((mesh, i) => {
     const other = t.meshes[i];
     if (!other) return;
@@ -115,7 +119,14 @@ async function checkPair(out, source) {
     check.check(`${out}: mesh ${i} has at most 16 attributes`, names.length <= 16, names.join(' '));
     const albedo = mesh.geometry.attributes._prt_albedo;
     check.check(`${out}: mesh ${i} has _PRT_ALBEDO in [0, 1]`, !!albedo && Array.from(albedo.array).every((v) => v >= 0 && v <= 1));
-    if (texel) {
+    // The primitive's own extension (a mixed scene has a per-texel and a per-vertex model).
+    const where = a.parser.associations.get(mesh);
+    const ext = a.parser.json.meshes[where.meshes].primitives[where.primitives].extensions.PRT_transfer;
+    const model = models[ext.model];
+    check.check(`${out}: mesh ${i} names a model of the file`, !!model, `model ${ext.model} of ${models.length}`);
+    if (!model) return;
+    kinds.add('width' in ext ? 'texel' : 'vertex');
+    if ('width' in ext) {
       check.check(`${out}: mesh ${i} (per texel) has no other _PRT_ attribute`, names.filter((n) => n.startsWith('_prt_')).length === 1, names.join(' '));
       return;
     }
@@ -127,6 +138,8 @@ async function checkPair(out, source) {
     const weights = names.filter((n) => n.startsWith('_prt_weights')).length;
     check.check(`${out}: mesh ${i} has ceil(N / 4) weight attributes`, weights === Math.ceil(model.terms / 4), `${weights}`);
   });
+  // A mixed scene (two models): per-texel and per-vertex primitives, each model used by its kind.
+  if (models.length > 1) check.check(`${out}: a mixed scene draws both kinds`, kinds.size === 2, [...kinds].join(' '));
 }
 
 for (const pair of argument('pairs').split(',').filter(Boolean)) {

@@ -209,6 +209,48 @@ TEST_CASE("denoise: interleaved sampling: every aligned 2^k x 2^k block of a til
   }
 }
 
+TEST_CASE("denoise: interleaved sampling at chart borders: each empty texel's set is traced once, by a covered neighbour",
+          "[lightmap][denoise]") {
+  // A disc of covered texels in a 40 x 40 grid, and the same grid fully covered: the disc's texels keep
+  // their sets, and the sets of the empty texels that touch the disc (8-neighbourhood) are traced as extra
+  // points, each by one of its covered neighbours (edge neighbours first), so every aligned block still
+  // traces its whole run of sets.
+  const int side = 40;
+  lightmap::TexelSamples full, disc;
+  full.width = full.height = disc.width = disc.height = side;
+  std::vector<int> sample_at(std::size_t(side * side), -1);
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const std::uint32_t t = std::uint32_t(i + side * j);
+      full.samples.push_back(lightmap::TexelSample{}), full.samples.back().texel = t;
+      if ((i - 19.5) * (i - 19.5) + (j - 17.5) * (j - 17.5) > 13.0 * 13.0) continue;
+      sample_at[t] = int(disc.samples.size());
+      disc.samples.push_back(lightmap::TexelSample{}), disc.samples.back().texel = t;
+    }
+  const lightmap::InterleavedSampling a = lightmap::interleaved_sampling(full, 128, 5), b = lightmap::interleaved_sampling(disc, 128, 5);
+  REQUIRE(a.extra_sample.empty());
+  for (std::size_t k = 0; k < disc.samples.size(); ++k) CHECK(b.set[k] == a.set[disc.samples[k].texel]);
+  // Expected: per empty texel touching the disc, its full-grid set and its first covered neighbour.
+  std::vector<std::pair<int, int>> expected, got;  // (sample, set)
+  const int steps[8][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      if (sample_at[std::size_t(i + side * j)] >= 0) continue;
+      for (const auto& st : steps) {
+        const int x = i + st[0], y = j + st[1];
+        if (x < 0 || y < 0 || x >= side || y >= side || sample_at[std::size_t(x + side * y)] < 0) continue;
+        expected.emplace_back(sample_at[std::size_t(x + side * y)], a.set[std::size_t(i + side * j)]);
+        break;
+      }
+    }
+  REQUIRE(b.set.size() == disc.samples.size() + b.extra_sample.size());
+  for (std::size_t e = 0; e < b.extra_sample.size(); ++e) got.emplace_back(int(b.extra_sample[e]), b.set[disc.samples.size() + e]);
+  std::sort(expected.begin(), expected.end());
+  std::sort(got.begin(), got.end());
+  CHECK(expected.size() > 80);  // the disc's rim
+  CHECK(got == expected);
+}
+
 namespace {
 
 struct Lit {
@@ -295,15 +337,16 @@ TEST_CASE("denoise: box on a floor vs 4096 samples, three HDRIs: 128 denoised be
   for (int e = 0; e < 3; ++e) {
     const double r128 = rel_rms(raw128, ref, all, e), r1024 = rel_rms(raw1024, ref, all, e), rdn = rel_rms(dn128, ref, all, e);
     INFO("environment " << e << ": rel_rms 128 raw " << r128 << ", 1024 raw " << r1024 << ", 128 denoised " << rdn);
-    CHECK(rdn <= r1024);  // the issue's figure: 0.99x, 0.93x, 0.97x; not on every seed (docs/conventions.md)
+    CHECK(rdn <= r1024);  // the issue's figure: 0.90x, 0.92x, 0.91x; not on every seed (docs/conventions.md)
   }
-  // Edges: the contact band and the chart borders at 128 samples, no worse than the filter of the
-  // previous stop (1.19% and 0.63%, i.e. 0.46x and 0.40x the undenoised 2.6% and 1.57%; now 0.36x and 0.27x).
+  // Edges: the contact band at 128 samples no worse than the filter of two stops ago (1.19%, i.e. 0.46x
+  // the undenoised 2.6%; now 0.36x); the chart borders, which trace their empty neighbours' sample sets
+  // too, within 0.25x the undenoised 1.57% (now 0.17x; 0.27x without those extra points).
   const double c_raw = rel_rms(raw128, ref, contact, -1), c_dn = rel_rms(dn128, ref, contact, -1);
   const double b_raw = rel_rms(raw128, ref, border, -1), b_dn = rel_rms(dn128, ref, border, -1);
   INFO("contact band: 128 raw " << c_raw << ", denoised " << c_dn << "; chart borders: " << b_raw << ", " << b_dn);
   CHECK(c_dn <= 0.46 * c_raw);
-  CHECK(b_dn <= 0.40 * b_raw);
+  CHECK(b_dn <= 0.25 * b_raw);
 }
 
 }  // namespace prt

@@ -123,7 +123,8 @@ TEST_CASE("prt bake --texel-parts: bad input gives one line, exit 1 and no file"
   };
   refused(bake(room) + "--texel-parts Floor,Chair -o " + dir + "/o.prt", "no part named \"Chair\"");
   refused(bake(room) + "--texel-parts Floor, -o " + dir + "/o.prt", "empty name");
-  refused(bake(room) + "--texel-parts Floor --gltf " + dir + "/o.glb -o " + dir + "/o.prt", "mixed scene");
+  // (--gltf of a mixed scene is written: tests/pipeline/test_mixed_gltf.cpp; a bad --gltf path is refused before the bake.)
+  refused(bake(room) + "--texel-parts Floor --gltf " + dir + "/none/o.glb -o " + dir + "/o.prt", dir + "/none/o.glb");
   refused(bake(room) + "--texel-parts Floor -o " + dir + "/o.cprt", "mixed scene");
   refused("bake " + room + " --texel-parts Floor -o " + dir + "/o.prt", "--texel-parts applies to texel bakes only");
   refused(bake(dir + "/broken.gltf") + "--texel-parts Floor,Wall -o " + dir + "/o.prt",
@@ -162,13 +163,15 @@ TEST_CASE("prt bake --texel-parts --uv auto judges the texel parts' UVs alone: t
   CHECK(transfer::read_transfer(dir + "/all.prt").header.uv_fingerprint != transfer::read_transfer(dir + "/file/t.prt").header.uv_fingerprint);
   // A texel part's own UVs unusable (a corner of the wall that only its first triangle uses, outside
   // [0, 1]: 11% of the texel parts' area skipped, beyond the 1% rule): auto generates, and the mixed
-  // bake writes the mesh that carries the UVs beside the pair (pipeline/mixed_uv_mesh.h).
+  // bake writes the mesh that carries the UVs beside the pair (pipeline/mixed_uv_mesh.h), and with
+  // --gltf the engine glTF of it (tests/pipeline/test_mixed_gltf.cpp checks its contents).
   room.lightmap_uv[3 * 14 + 1] = glm::vec2(1.7f, 0.3f);
   test::write_gltf_parts(dir + "/room.gltf", room, parts);
-  const test::RunResult generated = run("--texel-parts Floor,Wall --uv auto -o " + dir + "/gen.prt");
+  const test::RunResult generated = run("--texel-parts Floor,Wall --uv auto -o " + dir + "/gen.prt --gltf " + dir + "/gen.glb");
   CHECK(generated.exit_code == 0);
   CHECK(std::filesystem::exists(dir + "/gen.vertices.prt"));
   CHECK(std::filesystem::exists(dir + "/gen.mesh.glb"));
+  CHECK(std::filesystem::exists(dir + "/gen.glb"));
   CHECK_FALSE(std::filesystem::exists(dir + "/file/t.mesh.glb"));  // none with the file's UVs
 }
 

@@ -28,6 +28,7 @@
 #include "core/error.h"
 #include "mesh/engine_gltf.h"
 #include "mesh/mesh.h"
+#include "glb_reader.h"
 #include "support/run_prt.h"
 
 using namespace prt;
@@ -41,43 +42,9 @@ const std::string kDraco = std::string(PRT_SOURCE_DIR) + "/tests/data/gltf/box_t
 const std::string kLight = std::string(PRT_SOURCE_DIR) + "/tests/data/golden_light_sunrise_b5.json";
 const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
-// A GLB as formats.md and the glTF spec lay it out: JSON chunk, BIN chunk.
-struct Glb {
-  json doc;
-  std::string bin;
-};
-
-Glb parse_glb(const std::string& path) {
-  const std::string b = read_file(path);
-  auto u32 = [&](std::size_t at) {
-    std::uint32_t v;
-    std::memcpy(&v, b.data() + at, 4);
-    return v;
-  };
-  REQUIRE(b.compare(0, 4, "glTF") == 0);
-  REQUIRE(u32(8) == b.size());
-  const std::uint32_t json_length = u32(12);
-  Glb g{json::parse(b.substr(20, json_length)), {}};
-  if (20 + json_length < b.size()) g.bin = b.substr(28 + json_length, u32(20 + json_length));
-  return g;
-}
-
-// A float accessor's values (tightly packed or with byteStride), read by the glTF spec.
-std::vector<float> floats(const Glb& g, int index) {
-  const json& a = g.doc["accessors"][index];
-  REQUIRE(a["componentType"] == 5126);
-  const int width = a["type"] == "SCALAR" ? 1 : a["type"] == "VEC2" ? 2 : a["type"] == "VEC3" ? 3 : 4;
-  const json& view = g.doc["bufferViews"][a["bufferView"].get<int>()];
-  const std::size_t stride = view.value("byteStride", 4 * width), offset = view.value("byteOffset", 0) + a.value("byteOffset", 0);
-  std::vector<float> out;
-  for (std::size_t i = 0; i < a["count"].get<std::size_t>(); ++i)
-    for (int c = 0; c < width; ++c) {
-      float v;
-      std::memcpy(&v, g.bin.data() + offset + i * stride + 4 * std::size_t(c), 4);
-      out.push_back(v);
-    }
-  return out;
-}
+using test::Glb;
+using test::floats;
+using test::parse_glb;
 
 // Visits the triangle primitives of the default scene in the order formats.md ("Vertex order") gives:
 // nodes depth-first, each before its children, a node's mesh's primitives in order.
@@ -320,7 +287,8 @@ TEST_CASE("Bad engine glTF input is one line naming the file", "[pipeline][gltf]
   for (int a = 0; a < 14; ++a)
     extras.attributes.push_back({"_X" + std::to_string(a), 1, std::vector<float>(box.vertex_count(), 0.0f)});
   extras.extension = "PRT_test";
-  extras.root = extras.primitive = [](const mesh::EngineIndices&) { return json::object(); };
+  extras.root = [](const mesh::EngineIndices&) { return json::object(); };
+  extras.primitive = [](const mesh::EngineIndices&, int) { return json::object(); };
   CHECK_THROWS_WITH(mesh::write_engine_glb(dir + "/many.glb", kBox, box, extras), Catch::Contains("more than 16"));
   CHECK(!std::filesystem::exists(dir + "/many.glb"));
   extras.attributes.pop_back();  // 16 (POSITION, NORMAL, TEXCOORD_0 and 13) is allowed

@@ -10,13 +10,15 @@
 // own sun and a rotated environment; a textured glTF (BoxTextured: base colour texture per pixel, the
 // albedo split); a glTF of many nodes with their transforms and instanced meshes (2CylinderEngine, when
 // Debian's assimp-testmodels is installed); a lightmap (per-texel transfer, the per-texel PRT_transfer form). Every
-// export has at most 16 vertex attributes.
+// export has at most 16 vertex attributes; a mixed scene (per-texel floor and wall, a per-vertex box, one
+// engine glTF) against prt render of its .prt pair.
 //
 // Usage: node web/test/test_runtime.mjs --prt <prt> --env <sky.exr> --mesh <mesh> --textured <glTF>
-//        [--nodes <glTF>] [--work DIR]
+//        [--nodes <glTF>] [--mixed-asset <ClearCoatTest.gltf>] [--work DIR]
 //        [--dump DIR] (PPM images of each case); PRT_ONLY=<text> runs the cases whose name contains it
-//        [--break order|rotation|albedo|mips]  (a deliberately wrong runtime: swapped SH coefficients, no rotation,
-//                                   the lightmap's _PRT_ALBEDO dropped or its level 0 alone sampled;
+//        [--break order|rotation|albedo|mips|model]  (a deliberately wrong runtime: swapped SH coefficients, no rotation,
+//                                   the lightmap's _PRT_ALBEDO dropped or its level 0 alone sampled,
+//                                   a mixed scene's per-vertex primitives shaded with model 0;
 //                                   the test must then fail)
 // Exit status 0 pass, 1 fail, 77 skipped (no Chromium).
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
@@ -27,7 +29,7 @@ import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
 import { argument, run } from '../../tests/engines/common.mjs';
 import { openPage, requireBrowser, runInBrowser } from './browser.mjs';
 import { bakeGlb, prepareBake } from './bake_fixture.mjs';
-import { writeLightmapScene } from './lightmap_scene.mjs';
+import { writeLightmapScene, writeMixedScene } from './lightmap_scene.mjs';
 
 requireBrowser();
 const prt = argument('prt');
@@ -58,6 +60,19 @@ const farLightmap = once(() => bakeGlb({ prt, mesh: lightmapObj, work, name: 'li
 // averages, _PRT_ALBEDO), as prt render does, not the material's white factor.
 const texturedLightmap = once(() => bakeGlb({ prt, mesh: texturedPath, work, name: 'textured_lightmap', samples: 64,
                                                extra: ['--lightmap', '64x64', '--uv', 'generate'] }));
+// A mixed scene (web/test/lightmap_scene.mjs: Floor and Wall per texel, Box per vertex, one glTF): its
+// engine glTF draws both kinds in one scene, each primitive with its own model; prt renders the .prt pair.
+const mixedScene = writeMixedScene(work);
+const mixed = once(() => bakeGlb({ prt, mesh: mixedScene, work, name: 'mixed', samples: 64,
+                                   extra: ['--lightmap', '64x64', '--texel-parts', 'Floor,Wall'] }));
+// A real mixed scene: Khronos's ClearCoatTest (CC-BY 4.0, from Debian's assimp-testmodels when installed),
+// its nine two-sided label planes per texel on generated UVs (their own UVs overlap), its 18 spheres per
+// vertex; prt renders the pair with the mesh that carries the UVs, ROOM.mesh.glb.
+const clearCoatPath = resolve(argument('mixed-asset', '/nonexistent'));
+const clearCoatLabels = 'X0_Label_BaseLayer,X1_Label_Coated,X2_Label_CoatingOnly,Y0_Label_SimpleCoating,Y1_Label_PartialCoating,' +
+                        'Y2_Label_Roughness,Y3_Label_BaseNormals,Y4_Label_CoatNormals,Y5_Label_SharedNormals';
+const clearCoat = once(() => bakeGlb({ prt, mesh: clearCoatPath, work, name: 'clearcoat', samples: 32,
+                                       extra: ['--lightmap', '128', '--uv', 'auto', '--texel-parts', clearCoatLabels] }));
 const plain = () => bake.glb;
 
 const cases = [
@@ -70,6 +85,13 @@ const cases = [
   { name: 'lightmap (per texel), sun on', glb: lightmap, render: [lightmapObj, join(work, 'lightmap.prt')], light: 'disc.json', camera: [30, 35], rotate: [40, 0, 0], sun: true },
   { name: 'lightmap seen minified (mip chain), sun off', glb: farLightmap, light: 'sky.json', camera: [30, 35], rotate: [40, 0, 0], sun: false, size: 64 },
   { name: 'textured lightmap (BoxTextured, generated UVs), sun on', glb: texturedLightmap, light: 'disc.json', camera: [35, 30], rotate: [20, 0, 0], sun: true },
+  { name: 'mixed scene (Floor, Wall per texel; Box per vertex), sun off', glb: mixed, render: [mixedScene, join(work, 'mixed.prt')], light: 'sky.json',
+    camera: [20, 30], rotate: [30, 0, 0], sun: false },
+  { name: 'mixed scene (Floor, Wall per texel; Box per vertex), sun on', glb: mixed, render: [mixedScene, join(work, 'mixed.prt')], light: 'disc.json',
+    camera: [20, 30], rotate: [30, 0, 0], sun: true },
+  ...(existsSync(clearCoatPath) ? [{ name: 'mixed real scene (ClearCoatTest: labels per texel, generated UVs; spheres per vertex), sun on', glb: clearCoat,
+                                     render: [join(work, 'clearcoat.mesh.glb'), join(work, 'clearcoat.prt')], light: 'disc.json', camera: [0, 10],
+                                     rotate: [0, 0, 0], sun: true }] : []),
   ...(existsSync(nodesPath) ? [{ name: 'glTF with many nodes (2CylinderEngine), sun on', glb: nodes, light: 'disc.json', camera: [10, 30], rotate: [0, 0, 0], sun: true }] : []),
 ];
 
@@ -77,7 +99,7 @@ const cases = [
 // rotated ones (missing rotation), the textured lightmap (no _PRT_ALBEDO), the minified lightmap (no mips).
 if (process.env.PRT_ONLY) cases.splice(0, cases.length, ...cases.filter((c) => c.name.includes(process.env.PRT_ONLY)));
 const broken = { order: (c) => c === cases[0], rotation: (c) => c.rotate.some((v) => v !== 0), albedo: (c) => c.name.startsWith('textured lightmap'),
-                 mips: (c) => c.name.includes('(mip chain)') };
+                 mips: (c) => c.name.includes('(mip chain)'), model: (c) => c.name.startsWith('mixed') };
 if (breakage) cases.splice(0, cases.length, ...cases.filter(broken[breakage]));
 
 function readExr(path) {

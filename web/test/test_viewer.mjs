@@ -4,7 +4,8 @@
 // object's pixels, less a 1-pixel rim; the 99th-percentile error is printed), with no console errors.
 // Then: a mouse drag orbits (the canvas changes, the azimuth moves), the sun checkbox turns the discs off
 // (the canvas then equals prt render of the same lighting without its discs), and with &probes= a sphere
-// lit by prt's probe volume (probes/threejs) shares the scene.
+// lit by prt's probe volume (probes/threejs) shares the scene; a mixed scene's engine glTF (per-texel and
+// per-vertex primitives) shows prt render's image of its .prt pair.
 // Usage: node web/test/test_viewer.mjs --prt <prt> --env <sky.exr> --mesh <mesh> [--work DIR] [--shot OUT.png]
 // Exit status 0 pass, 1 fail, 77 skipped (no Chromium).
 import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
@@ -12,7 +13,8 @@ import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { argument, decodePng, run } from '../../tests/engines/common.mjs';
 import { openPage, requireBrowser, runInBrowser } from './browser.mjs';
-import { prepareBake } from './bake_fixture.mjs';
+import { bakeGlb, prepareBake } from './bake_fixture.mjs';
+import { writeMixedScene } from './lightmap_scene.mjs';
 
 requireBrowser();
 const prt = argument('prt');
@@ -23,6 +25,8 @@ const shotPath = argument('shot', '');
 mkdirSync(work, { recursive: true });
 const size = 256, camera = '30,25,auto', exposure = -2;
 const bake = prepareBake({ prt, mesh, env, work, bands: 3 });
+const mixedScene = writeMixedScene(work);
+bakeGlb({ prt, mesh: mixedScene, work, name: 'mixed', samples: 64, extra: ['--lightmap', '64x64', '--texel-parts', 'Floor,Wall'] });
 const noDiscs = JSON.parse(readFileSync(join(work, 'disc.json'), 'utf8'));
 delete noDiscs.discs;
 writeFileSync(join(work, 'disc_off.json'), JSON.stringify(noDiscs));
@@ -51,9 +55,8 @@ function compareDisplay(shot, reference) {
   return { pixels: diffs.length / 3, relRms: Math.sqrt(sumSq / refSq), p99: diffs[Math.floor(0.99 * (diffs.length - 1))] / rms };
 }
 
-function prtRender(light, out) {
-  const glb = join(work, bake.glb);
-  run(prt, ['render', glb, glb, '--env', join(work, light), '--window', 'none', '--background', 'black',
+function prtRender(light, out, inputs = [join(work, bake.glb), join(work, bake.glb)]) {
+  run(prt, ['render', ...inputs, '--env', join(work, light), '--window', 'none', '--background', 'black',
             '--size', `${size}x${size}`, '--camera', camera, '--exposure', String(exposure), '--tone-map', 'aces', '-o', join(work, out)]);
   return decodePng(readFileSync(join(work, out))).pixels;
 }
@@ -64,9 +67,9 @@ await runInBrowser(work, size, size, async ({ port, context }) => {
   const url = `http://127.0.0.1:${port}/web/viewer.html?glb=/work/${bake.glb}&env=/work/disc.json&camera=${camera}` +
               `&size=${size}x${size}&background=black&exposure=${exposure}&tonemap=aces`;
   const page = await openPage(context, url, 'prtViewerReady');
-  const screenshot = async () => {
+  const screenshot = async (from = page) => {
     // The canvas itself (preserveDrawingBuffer), without the control panel drawn over it.
-    const data = await page.evaluate(() => { window.prtViewer.renderNow(); return document.querySelector('canvas').toDataURL('image/png'); });
+    const data = await from.evaluate(() => { window.prtViewer.renderNow(); return document.querySelector('canvas').toDataURL('image/png'); });
     const png = Buffer.from(data.slice(data.indexOf(',') + 1), 'base64');
     return { png, pixels: decodePng(png).pixels };
   };
@@ -98,5 +101,11 @@ await runInBrowser(work, size, size, async ({ port, context }) => {
   const probe = await withProbes.evaluate(() => { window.prtViewer.renderNow(); const v = window.prtViewer; return { sh: v.volume.sample(v.probeSphere.position).coefficients[0].toArray(), meshes: v.relighting.meshes.length }; });
   check(probe.sh[0] > 0 && probe.meshes > 0 && withProbes.errors.length === 0,
         `probe volume and PRT material in one scene: the sphere's blended c0 ${probe.sh.map((v) => v.toFixed(3)).join(',')}, ${withProbes.errors.length} console errors`);
+  // A mixed scene's engine glTF (Floor and Wall per texel, Box per vertex) against prt render of its .prt pair.
+  const mixedPage = await openPage(context, url.replace(`glb=/work/${bake.glb}`, 'glb=/work/mixed.glb'), 'prtViewerReady');
+  r = compareDisplay((await screenshot(mixedPage)).pixels, prtRender('disc.json', 'reference_mixed.png', [mixedScene, join(work, 'mixed.prt')]));
+  check(r.relRms <= 0.01 && r.pixels > 0.05 * size * size && mixedPage.errors.length === 0,
+        `mixed scene (per texel and per vertex in one glTF) shows prt render's image of its pair: rel_rms ${(100 * r.relRms).toFixed(3)}% over ${r.pixels} pixels, ` +
+        `99th percentile ${(100 * r.p99).toFixed(2)}% of rms, ${mixedPage.errors.length} console errors`);
   return failed;
 });
