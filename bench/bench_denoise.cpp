@@ -4,7 +4,9 @@
 // Input: one plane (every texel covered, guides: positions on a grid, one normal), split into 16 x 16
 // square charts; transfer = a smooth field plus pseudo-random noise (a fixed LCG), so that the range
 // weights vary as on a real bake. Reported: the best and the worst of `--repeat` runs of denoise_texels.
-// Usage: bench_denoise [--size N] [--threads T] [--repeat R] [--iterations I] [--twicing W]
+// Usage: bench_denoise [--size N] [--threads T] [--repeat R] [--iterations I] [--twicing W] [--stride F] [--out FILE]
+// --stride: floats per texel (75: 25 coefficients x RGB; 25: one channel). --out: the last run's
+// output, raw little-endian floats, for byte comparisons of two builds.
 // A timed program, not Google Benchmark: run it on a quiet machine.
 #include <algorithm>
 #include <chrono>
@@ -24,6 +26,8 @@ namespace {
 struct Args {
   int size = 1024, threads = 2, repeat = 3, iterations = lightmap::DenoiseOptions{}.iterations;
   float twicing = lightmap::DenoiseOptions{}.twicing;
+  std::size_t stride = 75;
+  const char* out = nullptr;
 };
 
 Args parse(int argc, char** argv) {
@@ -34,6 +38,8 @@ Args parse(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--repeat")) a.repeat = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--iterations")) a.iterations = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--twicing")) a.twicing = float(std::atof(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--stride")) a.stride = std::size_t(std::max(1, std::atoi(argv[i + 1])));
+    else if (!std::strcmp(argv[i], "--out")) a.out = argv[i + 1];
     else {
       std::fprintf(stderr, "bench_denoise: unknown option %s\n", argv[i]);
       std::exit(2);
@@ -46,7 +52,7 @@ Args parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const Args a = parse(argc, argv);
-  const std::size_t texels = std::size_t(a.size) * std::size_t(a.size), stride = 75;
+  const std::size_t texels = std::size_t(a.size) * std::size_t(a.size), stride = a.stride;
   lightmap::DenoiseGuides g;
   g.width = g.height = a.size;
   g.covered.assign(texels, 1);
@@ -74,13 +80,22 @@ int main(int argc, char** argv) {
   o.iterations = a.iterations;
   o.twicing = a.twicing;
   std::vector<double> seconds, cpu;
+  std::vector<float> values;
   for (int r = 0; r < a.repeat; ++r) {
-    std::vector<float> values = input, none;
+    std::vector<float> none;
+    values = input;
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
     lightmap::denoise_texels(values, none, stride, g, o);
     cpu.push_back(double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  if (a.out) {
+    std::FILE* f = std::fopen(a.out, "wb");
+    if (!f || std::fwrite(values.data(), sizeof(float), values.size(), f) != values.size() || std::fclose(f) != 0) {
+      std::fprintf(stderr, "bench_denoise: cannot write %s\n", a.out);
+      return 1;
+    }
   }
   std::sort(seconds.begin(), seconds.end());
   std::sort(cpu.begin(), cpu.end());

@@ -8,6 +8,7 @@
 #include "bake/glossy_passes.h"
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
+#include "core/big_buffer.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "sh/basis.h"
@@ -57,7 +58,8 @@ std::vector<float> apply_albedo(std::vector<float>&& geometric, const std::vecto
     return values;
   }
   const std::size_t stride = 3 * n;
-  std::vector<float> values(points * stride, 0.0f);
+  std::vector<float> values;
+  assign_big(values, points * stride, 0.0f);
   for (std::size_t v = 0; v < points; ++v)
     for (int c = 0; c < 3; ++c)
       for (std::size_t i = 0; i < n; ++i) values[v * stride + c * n + i] = albedo[v][c] * geometric[v * n + i];

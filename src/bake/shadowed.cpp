@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "bake/passes.h"
+#include "core/big_buffer.h"
 #include "sh/rotation.h"
 #include "trace/vertex_rays.h"
 
@@ -52,7 +53,7 @@ std::uint64_t shadowed_geometric(const PassContext& ctx, std::vector<float>& out
   const std::size_t n = static_cast<std::size_t>(ctx.samples->bands) * ctx.samples->bands;
   const std::vector<double> factors = unshadowed_factors(ctx.samples->bands);
   const OccludedRowSums rows(*ctx.samples);
-  out.assign(ctx.point_count() * n, 0.0f);
+  assign_big(out, ctx.point_count() * n, 0.0f);
   Progress progress("bake shadowed", ctx.point_unit(), ctx.point_count(), ctx.progress);
   return trace::trace_vertex_rays(ctx.rays(trace::Query::occluded), progress,
                                   [&] { return ShadowedWorker(ctx, factors, rows, out); });

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/big_buffer.h"
 #include "core/constants.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -53,6 +54,21 @@ float squared_distance(const float* a, const float* b, std::size_t stride) {
   return ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
 }
 
+// The element of rank n / 2 of values[0..n) in ascending order (n <= 25): the value std::nth_element
+// gives, found without branches on the data: the element with n / 2 elements before it, counting
+// smaller ones and, among equal ones, those at smaller indices.
+float median_of(const std::array<float, 25>& values, std::size_t n) {
+  const std::size_t rank = n / 2;
+  float found = values[0];
+  for (std::size_t a = 0; a < n; ++a) {
+    std::size_t before = 0;
+    for (std::size_t b = 0; b < n; ++b)
+      before += std::size_t(values[b] < values[a]) + std::size_t(b < a && values[b] == values[a]);
+    if (before == rank) found = values[a];
+  }
+  return found;
+}
+
 // The initial noise variance of each covered texel's transfer vector (denoise.h): the median over p's
 // 5 x 5 chart window of the squared norm of each texel's difference from the mean of its chart's 3 x 3
 // neighbours, corrected for the mean's share of the noise (x k / (k - 1) for k texels).
@@ -85,22 +101,19 @@ std::vector<float> initial_variance(const std::vector<float>& values, std::size_
       }
   });
   parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> window;
+    std::array<float, 25> window;
     for (std::size_t j = begin; j < end; ++j)
       for (std::size_t i = 0; i < w; ++i) {
         const std::size_t p = i + j * w;
         if (!g.covered[p]) continue;
-        window.clear();
+        std::size_t k = 0;
         for (long dj = -2; dj <= 2; ++dj)
           for (long di = -2; di <= 2; ++di)
             if (grid.same_chart(p, long(i) + di, long(j) + dj)) {
               const float r = residual[std::size_t(long(p) + di + dj * long(w))];
-              if (r >= 0.0f) window.push_back(r);
+              if (r >= 0.0f) window[k++] = r;
             }
-        if (window.empty()) continue;
-        const auto mid = window.begin() + std::ptrdiff_t(window.size() / 2);
-        std::nth_element(window.begin(), mid, window.end());
-        variance[p] = *mid;
+        if (k > 0) variance[p] = median_of(window, k);
       }
   });
   return variance;
@@ -136,21 +149,58 @@ void local_linear(int n, const std::array<glm::vec2, 9>& offsets, std::array<flo
   for (int k = 0; k < n; ++k) w[std::size_t(k)] = float(out[std::size_t(k)] / sum);
 }
 
-// out[p] = sum over the 9 slots of w[slot] in[p + step (di + dj width)] (slot 3 (dj + 1) + di + 1; a zero
-// weight reads nothing), in slot order: the same float operations whichever thread runs p.
+// d = sum over the 9 slots of w[slot] centre[(di step + dj row) floats] (slot 3 (dj + 1) + di + 1; a zero
+// weight reads nothing), in slot order. kStride > 0: `stride` == kStride, the sum held in registers
+// across the slots (the same float operations).
+template <std::size_t kStride>
+void weighted_sum_fixed(const float* centre, float* d, const float* w, long step, long row, std::size_t stride) {
+  const std::size_t n = kStride > 0 ? kStride : stride;
+  float held[kStride > 0 ? kStride : 1];
+  float* acc = kStride > 0 ? held : d;
+  for (std::size_t c = 0; c < n; ++c) acc[c] = w[4] * centre[c];  // the centre is always a tap
+  for (int slot = 0; slot < 9; ++slot) {
+    if (slot == 4 || w[slot] == 0.0f) continue;
+    const float* s = centre + ((slot % 3) - 1) * step + ((slot / 3) - 1) * row;
+    const float ws = w[slot];
+    for (std::size_t c = 0; c < n; ++c) acc[c] += ws * s[c];
+  }
+  if (kStride > 0) std::copy_n(held, n, d);
+}
+
+// out[p] = sum over the 9 slots of w[slot] in[p + step (di + dj width)], in slot order: the same float
+// operations whichever thread runs p.
 void weighted_sum(const std::vector<float>& in, std::vector<float>& out, std::size_t p, const float* w, long step, int width,
                   std::size_t stride) {
   float* d = out.data() + p * stride;
   const float* centre = in.data() + p * stride;
-  for (std::size_t c = 0; c < stride; ++c) d[c] = w[4] * centre[c];  // the centre is always a tap
-  for (int slot = 0; slot < 9; ++slot) {
-    if (slot == 4 || w[slot] == 0.0f) continue;
-    const long offset = ((slot % 3) - 1 + ((slot / 3) - 1) * long(width)) * step;
-    const float* s = in.data() + std::size_t(long(p) + offset) * stride;
-    const float ws = w[slot];
-    for (std::size_t c = 0; c < stride; ++c) d[c] += ws * s[c];
+  const long step_floats = step * long(stride), row_floats = step_floats * long(width);
+  switch (stride) {
+    case 25: return weighted_sum_fixed<25>(centre, d, w, step_floats, row_floats, stride);
+    case 75: return weighted_sum_fixed<75>(centre, d, w, step_floats, row_floats, stride);
+    default: return weighted_sum_fixed<0>(centre, d, w, step_floats, row_floats, stride);
   }
 }
+
+// The normalised tap weights of every level, 9 per covered texel (slot 3 (dj + 1) + di + 1, 0 for no
+// tap), covered texels only, in row-major order: a level's weights of the texels of row j start at
+// row_first[j] x 9.
+struct StoredWeights {
+  std::vector<std::size_t> row_first;  // covered texels before each row; height + 1 entries
+  std::unique_ptr<float[]> data;       // written by each level at every covered texel before it is read
+
+  StoredWeights(const DenoiseGuides& g, int levels) : row_first(std::size_t(g.height) + 1, 0) {
+    const std::size_t width = std::size_t(g.width);
+    for (std::size_t j = 0; j < std::size_t(g.height); ++j)
+      row_first[j + 1] = row_first[j] + std::size_t(std::count_if(g.covered.begin() + std::ptrdiff_t(j * width),
+                                                                   g.covered.begin() + std::ptrdiff_t((j + 1) * width),
+                                                                   [](std::uint8_t c) { return c != 0; }));
+    const std::size_t floats = row_first.back() * 9 * std::size_t(levels);
+    data.reset(new float[floats]);  // uninitialised: no pass over it
+    advise_huge_pages(data.get(), floats * sizeof(float));
+  }
+  // The first weight of `level` for row j.
+  float* row(int level, std::size_t j) const { return data.get() + (std::size_t(level) * row_first.back() + row_first[j]) * 9; }
+};
 
 struct Iteration {
   const DenoiseGuides& g;
@@ -204,15 +254,17 @@ struct Iteration {
     return n;
   }
 
-  // One level: out = the filtered `in` (and bounce_out of bounce_in), next_variance, and each covered
-  // texel's normalised weights in `stored` (9 per texel by slot 3 (dj + 1) + di + 1, 0 for no tap).
+  // One level (`level`): out = the filtered `in` (and bounce_out of bounce_in), next_variance, and each
+  // covered texel's normalised weights in `stored`.
   void apply(const std::vector<float>& in, std::vector<float>& out, const std::vector<float>* bounce_in,
-             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance, float* stored) const {
+             std::vector<float>* bounce_out, std::size_t stride, std::vector<float>& next_variance, const StoredWeights& stored,
+             int level) const {
     const std::size_t width = std::size_t(g.width);
     parallel_for(std::size_t(g.height), kRowGrain, o.threads, [&](std::size_t begin, std::size_t end) {
       std::array<std::size_t, 9> taps{};
       std::array<float, 9> w{};
       std::array<int, 9> slots{};
+      float* slot_w = stored.row(level, begin);
       for (std::size_t j = begin; j < end; ++j)
         for (std::size_t i = 0; i < width; ++i) {
           const std::size_t p = i + j * width;
@@ -225,23 +277,27 @@ struct Iteration {
           }
           const float inv_sum = 1.0f / sum;
           next_variance[p] = var * inv_sum * inv_sum;
-          float* slot_w = stored + p * 9;
           std::fill(slot_w, slot_w + 9, 0.0f);
           for (int k = 0; k < n; ++k) slot_w[slots[std::size_t(k)]] = w[std::size_t(k)] * inv_sum;
           weighted_sum(in, out, p, slot_w, step, g.width, stride);
           if (bounce_in) weighted_sum(*bounce_in, *bounce_out, p, slot_w, step, g.width, stride);
+          slot_w += 9;
         }
     });
   }
 };
 
 // Applies the stored weights of one level (Iteration::apply) to `in`, into `out`.
-void apply_stored(const DenoiseGuides& g, const float* stored, long step, const std::vector<float>& in, std::vector<float>& out,
+void apply_stored(const DenoiseGuides& g, const StoredWeights& stored, int level, const std::vector<float>& in, std::vector<float>& out,
                   std::size_t stride, int threads) {
   const std::size_t width = std::size_t(g.width);
   parallel_for(std::size_t(g.height), kRowGrain, threads, [&](std::size_t begin, std::size_t end) {
+    const float* slot_w = stored.row(level, begin);
     for (std::size_t p = begin * width; p < end * width; ++p)
-      if (g.covered[p]) weighted_sum(in, out, p, stored + p * 9, step, g.width, stride);
+      if (g.covered[p]) {
+        weighted_sum(in, out, p, slot_w, 1L << level, g.width, stride);
+        slot_w += 9;
+      }
   });
 }
 
@@ -252,10 +308,10 @@ namespace {
 // Twicing (Tukey, "Exploratory Data Analysis", 1977): smooth += twicing x S (input - smooth), S the
 // levels whose weights are `stored`. `input` and `scratch` are overwritten.
 void twice(std::vector<float>& smooth, std::vector<float>& input, std::vector<float>& scratch, std::size_t stride,
-           const DenoiseGuides& g, const float* stored, const DenoiseOptions& o) {
+           const DenoiseGuides& g, const StoredWeights& stored, const DenoiseOptions& o) {
   for (std::size_t k = 0; k < input.size(); ++k) input[k] -= smooth[k];
   for (int it = 0; it < o.iterations; ++it) {
-    apply_stored(g, stored + std::size_t(it) * g.covered.size() * 9, 1L << it, input, scratch, stride, o.threads);
+    apply_stored(g, stored, it, input, scratch, stride, o.threads);
     input.swap(scratch);
   }
   for (std::size_t t = 0; t < g.covered.size(); ++t)
@@ -370,23 +426,23 @@ void denoise_texels(std::vector<float>& values, std::vector<float>& bounce_only,
   if (options.iterations == 0 || stride == 0) return;
   const bool bounce = !bounce_only.empty();
   // Twicing keeps the input: the residual input - S input is filtered by the same levels S.
-  std::vector<float> residual = options.twicing > 0.0f ? values : std::vector<float>(),
-                     residual_bounce = options.twicing > 0.0f ? bounce_only : std::vector<float>();
-  std::vector<float> next_values(values), next_bounce(bounce_only);
+  // The copies are full-size, written at once: huge pages (core/big_buffer.h).
+  std::vector<float> residual = options.twicing > 0.0f ? copy_big(values) : std::vector<float>(),
+                     residual_bounce = options.twicing > 0.0f ? copy_big(bounce_only) : std::vector<float>();
+  std::vector<float> next_values = copy_big(values), next_bounce = copy_big(bounce_only);
   std::vector<float> variance = noise ? *noise : initial_variance(values, stride, guides, options.threads), next_variance = variance;
-  // Written at every covered texel by each level before it is read (uninitialised: no pass over it).
-  const std::unique_ptr<float[]> stored(new float[guides.covered.size() * 9 * std::size_t(options.iterations)]);
+  const StoredWeights stored(guides, options.iterations);
   for (int it = 0; it < options.iterations; ++it) {
     const Iteration iteration{guides, options, 1L << it, options.value_floor * std::pow(options.floor_decay, float(it)), variance};
     iteration.apply(values, next_values, bounce ? &bounce_only : nullptr, bounce ? &next_bounce : nullptr, stride, next_variance,
-                    stored.get() + std::size_t(it) * guides.covered.size() * 9);
+                    stored, it);
     values.swap(next_values);
     if (bounce) bounce_only.swap(next_bounce);
     variance.swap(next_variance);
   }
   if (options.twicing > 0.0f) {
-    twice(values, residual, next_values, stride, guides, stored.get(), options);
-    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored.get(), options);
+    twice(values, residual, next_values, stride, guides, stored, options);
+    if (bounce) twice(bounce_only, residual_bounce, next_bounce, stride, guides, stored, options);
   }
 }
 

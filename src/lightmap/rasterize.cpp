@@ -202,6 +202,7 @@ TexelSamples rasterize(const mesh::Mesh& mesh, const std::vector<glm::vec3>& alb
     }
   });
   out.coverage.assign(state.size(), transfer::kTexelEmpty);
+  out.samples.reserve(std::size_t(std::count_if(state.begin(), state.end(), [](const TexelState& s) { return s.owner != kNone; })));
   for (std::size_t texel = 0; texel < state.size(); ++texel) {
     const TexelState& s = state[texel];
     if (s.owner == kNone) continue;

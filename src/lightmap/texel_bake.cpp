@@ -10,6 +10,7 @@
 
 #include "bake/passes.h"
 #include "bake/vertex_samples.h"
+#include "core/big_buffer.h"
 #include "core/error.h"
 #include "core/memory_check.h"
 #include "core/stopwatch.h"
@@ -143,7 +144,7 @@ struct GridWriter {
   const std::vector<std::uint32_t>* extra_sample = nullptr;
 
   void operator()(const std::vector<float>& per_point, std::vector<float>& grid) const {
-    grid.assign((coverage.size() + vertex_points) * stride, 0.0f);
+    assign_big(grid, (coverage.size() + vertex_points) * stride, 0.0f);
     const std::size_t count = samples.samples.size(), extras = extra_sample ? extra_sample->size() : 0;
     for (std::size_t k = 0; k < count; ++k)
       std::copy_n(per_point.begin() + std::ptrdiff_t(k * stride), stride, grid.begin() + std::ptrdiff_t(samples.samples[k].texel * stride));
