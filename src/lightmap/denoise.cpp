@@ -407,6 +407,36 @@ InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample
   return out;
 }
 
+std::size_t add_contact_sets(const TexelSamples& samples, const std::vector<float>& dc, InterleavedSampling& sampling) {
+  if (sampling.tile_bits == 0) return 0;
+  const int width = samples.width, height = samples.height;
+  const auto covered = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < width && j < height && samples.coverage[std::size_t(i) + std::size_t(j) * std::size_t(width)] != 0;
+  };
+  constexpr double kY00 = 0.28209479177387814;  // 1 / (2 sqrt(pi)): g of an unoccluded point
+  const float limit = kContactContrast * float(kY00);
+  const std::uint8_t top = std::uint8_t(1u << (2 * sampling.tile_bits - 1)), flips[kContactSets] = {top, std::uint8_t(top >> 1),
+                                                                                                     std::uint8_t(top | (top >> 1))};
+  std::size_t texels = 0;
+  for (std::size_t k = 0; k < samples.samples.size(); ++k) {
+    const int i = int(samples.samples[k].texel % std::uint32_t(width)), j = int(samples.samples[k].texel / std::uint32_t(width));
+    bool steep = false;
+    for (const auto& [di, dj] : {std::pair{2, 0}, std::pair{0, 2}}) {
+      if (!covered(i + di, j + dj) || !covered(i - di, j - dj)) continue;
+      const float a = dc[std::size_t(i + di) + std::size_t(j + dj) * std::size_t(width)],
+                  b = dc[std::size_t(i - di) + std::size_t(j - dj) * std::size_t(width)];
+      steep |= std::abs(a - b) > limit;
+    }
+    if (!steep) continue;
+    ++texels;
+    for (const std::uint8_t flip : flips) {
+      sampling.set.push_back(std::uint8_t(sampling.set[k] ^ flip));
+      sampling.extra_sample.push_back(std::uint32_t(k));
+    }
+  }
+  return texels;
+}
+
 void validate_denoise_options(const DenoiseOptions& o) {
   if (o.iterations < 0 || o.iterations > 12) fail_option("iterations", " " + std::to_string(o.iterations) + " is out of range 0..12");
   if (!(o.plane_sigma > 0.0f)) fail_option("plane_sigma", " " + std::to_string(o.plane_sigma) + " must be > 0");

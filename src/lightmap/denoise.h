@@ -34,8 +34,9 @@
 // weight (docs/conventions.md has the figures).
 // Still one fixed linear map per texel: linear in the lighting.
 // INTERLEAVED SAMPLES. A bake that will be denoised gives the texels of each tile complementary sample
-// sets, and border texels also their empty neighbours' sets (interleaved_sampling), so that
-// neighbouring texels' noise largely cancels in the filter's sums.
+// sets, border texels also their empty neighbours' sets (interleaved_sampling) and texels on a steep
+// falloff of the direct light three more of their own (add_contact_sets), so that neighbouring texels'
+// noise largely cancels in the filter's sums and texels with few neighbours to average get more samples.
 // Deterministic: each iteration reads only the previous one's values, so the bytes do not depend on
 // the thread count.
 #include <cstdint>
@@ -99,6 +100,18 @@ struct InterleavedSampling {
   std::vector<std::uint32_t> extra_sample;  ///< per extra point: the texel sample (index in samples.samples) it adds to
 };
 InterleavedSampling interleaved_sampling(const TexelSamples& samples, int sample_count, std::uint32_t seed);
+
+/// CONTACT. A texel on a steep falloff of the direct light (a contact shadow) can be averaged only with
+/// few neighbours (the range weight stops at the falloff), so it traces more sets of its own: a texel
+/// sample whose albedo-free direct transfer's first coefficient g (`dc`, per texel of the width x height
+/// grid, read at covered texels of samples.coverage) differs by more than kContactContrast x Y_00 (g of an
+/// unoccluded point) between the covered texels two texels away on its two sides, along u or along v,
+/// gets kContactSets extra points at its own sample: its set xor 2^(2L-1), xor 2^(2L-2) and xor both (sets
+/// from the other quarters of its tile), appended to `sampling` (set, extra_sample) in sample order.
+/// Nothing for L = 0. Returns the number of texels that get them.
+inline constexpr float kContactContrast = 0.4f;
+inline constexpr int kContactSets = 3;
+std::size_t add_contact_sets(const TexelSamples& samples, const std::vector<float>& dc, InterleavedSampling& sampling);
 
 /// L: the largest in 0..4 with 4^L x sample_count <= 2^18 (the sets' directions and basis rows stay
 /// under ~60 MB at 5 bands).

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <numeric>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -179,23 +180,65 @@ struct BakePoints {
   std::vector<glm::vec3> positions, normals, geometric_normals, albedo;
 };
 
-BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<std::uint32_t>& extra_sample,
-                       const std::vector<glm::vec3>& vertex_albedo, bool vertices) {
-  BakePoints p;
-  auto add = [&](const TexelSample& s) {
+// Appends the texel samples `of` (indices into samples.samples) from the `first`-th on to `p`.
+void add_sample_points(BakePoints& p, const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<std::uint32_t>& of,
+                       std::size_t first) {
+  for (std::size_t e = first; e < of.size(); ++e) {
+    const TexelSample& s = samples.samples[of[e]];
     p.positions.push_back(s.position);
     p.normals.push_back(s.normal);
     p.geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
     p.albedo.push_back(s.albedo);
-  };
-  for (const TexelSample& s : samples.samples) add(s);
-  for (const std::uint32_t k : extra_sample) add(samples.samples[k]);
+  }
+}
+
+BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<std::uint32_t>& extra_sample,
+                       const std::vector<glm::vec3>& vertex_albedo, bool vertices) {
+  BakePoints p;
+  std::vector<std::uint32_t> all(samples.samples.size());
+  std::iota(all.begin(), all.end(), 0u);
+  add_sample_points(p, mesh, samples, all, 0);
+  add_sample_points(p, mesh, samples, extra_sample, 0);
   if (!vertices) return p;
   p.positions.insert(p.positions.end(), mesh.positions.begin(), mesh.positions.end());
   p.normals.insert(p.normals.end(), mesh.normals.begin(), mesh.normals.end());
   p.geometric_normals.resize(p.positions.size(), glm::vec3(0.0f));
   p.albedo.insert(p.albedo.end(), vertex_albedo.begin(), vertex_albedo.end());
   return p;
+}
+
+// The contact points of an interleaved bake (denoise.h, add_contact_sets), after its direct pass:
+// `geometric` holds every point's albedo-free direct transfer so far (n floats each, point order, on
+// every rank). The texels on a steep falloff of its first coefficient (read through `dc_writer`, a
+// GridWriter of stride n: the mean of each texel's points) get extra points, traced here with `ctx`'s
+// settings and appended to `sampling`, `points` and `geometric`; `order` becomes the Morton order of
+// all points. Returns the rays this rank traced.
+std::uint64_t add_contact_points(const mesh::Mesh& mesh, const TexelSamples& samples, const GridWriter& dc_writer, const bake::PassContext& ctx,
+                                 InterleavedSampling& sampling, BakePoints& points, std::vector<float>& geometric,
+                                 std::vector<std::uint32_t>& order) {
+  const std::size_t n = dc_writer.stride, texels = std::size_t(samples.width) * std::size_t(samples.height);
+  std::vector<float> grid, dc(texels);
+  dc_writer(geometric, grid);
+  for (std::size_t t = 0; t < texels; ++t) dc[t] = grid[t * n];
+  const std::size_t first = sampling.extra_sample.size();
+  if (add_contact_sets(samples, dc, sampling) == 0) return 0;
+  BakePoints more;
+  add_sample_points(more, mesh, samples, sampling.extra_sample, first);
+  const std::vector<std::uint8_t> sets(sampling.set.begin() + std::ptrdiff_t(samples.samples.size() + first), sampling.set.end());
+  const std::vector<std::uint32_t> more_order = trace::morton_order(more.positions);
+  bake::PassContext contact = ctx;
+  contact.order = &more_order;
+  contact.points = {&more.positions, &more.normals, &more.geometric_normals};
+  contact.point_set = &sets;
+  std::vector<float> more_geometric;
+  const std::uint64_t rays = bake::shadowed_geometric(contact, more_geometric);
+  dist::allgather_items(dist::or_single(ctx.dist), more_geometric, n, &more_order);
+  geometric.insert(geometric.end(), more_geometric.begin(), more_geometric.end());
+  for (auto [to, from] : {std::pair{&points.positions, &more.positions}, std::pair{&points.normals, &more.normals},
+                          std::pair{&points.geometric_normals, &more.geometric_normals}, std::pair{&points.albedo, &more.albedo}})
+    to->insert(to->end(), from->begin(), from->end());
+  order = trace::morton_order(points.positions);
+  return rays;
 }
 
 // Mixed: moves the vertex blocks after the texel grid (`texel_floats`) of `grid` into `vertices`.
@@ -245,7 +288,7 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
                                 {"slope_ridge", d.slope_ridge}, {"twicing", d.twicing}, {"interleave", interleave}};
     if (interleave)
       j["sample_set"] = "owen-scrambled sobol, cosine-weighted hemisphere, interleaved blocks per texel, unturned frames, "
-                        "border texels also trace their empty neighbours' blocks";
+                        "border texels also trace their empty neighbours' blocks, contact texels three more";
   }
   return j.dump();
 }
@@ -311,8 +354,8 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   // Interleaved sample sets per texel sample, frames unturned (denoise.h); a mixed scene's points go on with
   // its vertices, whose sets and frames stay a vertex bake's, so a mixed bake does not interleave.
   const bool interleave = lightmap.denoise && lightmap.denoise_options.interleave && !mixed;
-  const InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
-  const BakePoints points = bake_points(mesh, samples, interleaved.extra_sample, vertex_albedo, mixed);
+  InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
+  BakePoints points = bake_points(mesh, samples, interleaved.extra_sample, vertex_albedo, mixed);
   const std::vector<glm::vec3>& normals = points.normals;
   const std::vector<glm::vec3>& albedo = points.albedo;
   std::vector<std::uint8_t> coverage = samples.coverage;
@@ -322,7 +365,7 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const std::size_t n = std::size_t(options.bands) * std::size_t(options.bands), stride = n * std::size_t(channels);
   const GridWriter to_grid{samples, coverage, rounds, stride, mixed ? mesh.vertex_count() : 0, &interleaved.extra_sample};
 
-  const std::vector<std::uint32_t> order = trace::morton_order(points.positions);
+  std::vector<std::uint32_t> order = trace::morton_order(points.positions);
   const bake::LocalSampleSet set = interleave ? bake::make_interleaved_sample_sets(options.samples, options.bands, options.seed,
                                                                                    1 << (2 * interleaved.tile_bits))
                                               : bake::make_local_sample_set(options.samples, options.bands, options.seed);
@@ -345,10 +388,12 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
     bake::unshadowed_geometric(normals, options.bands, options.threads, geometric);
   } else {
     rep.bake.rays_traced += bake::shadowed_geometric(ctx, geometric);
-    // Distributed: every rank needs the direct pass for the bounces, rank 0 alone for the file.
-    const std::size_t geometric_stride = std::size_t(options.bands) * std::size_t(options.bands);
-    if (options.kind == transfer::Kind::interreflected) dist::allgather_items(dist, geometric, geometric_stride, &order);
-    else dist::gather_items(dist, geometric, geometric_stride, &order);
+    // Distributed: every rank needs the direct pass for the bounces and the contact points, rank 0 alone for the file.
+    if (options.kind == transfer::Kind::interreflected || interleave) dist::allgather_items(dist, geometric, n, &order);
+    else dist::gather_items(dist, geometric, n, &order);
+    if (interleave)
+      rep.bake.rays_traced += add_contact_points(mesh, samples, GridWriter{samples, coverage, rounds, n, 0, &interleaved.extra_sample}, ctx,
+                                                 interleaved, points, geometric, order);
   }
   rep.bake.seconds_visibility = seconds_since(start);
   // What the first bounce pass gathers from: the direct pass, or its albedo-free transfer (albedo_at_hits).

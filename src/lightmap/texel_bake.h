@@ -6,8 +6,9 @@
 //   - shadowed: the same S cosine-distributed Owen-scrambled Sobol directions per sample, in the
 //     frame sh::vertex_frame(n, seed, texel index) (with --denoise: unturned frames and one of up to 256
 //     sample sets per texel, interleaved_sampling, denoise.h; a texel at a chart's border also traces the
-//     sets of its empty neighbours, and its transfer is the mean of its points), with the unshadowed
-//     control variate;
+//     sets of its empty neighbours, and after the direct pass a texel on a steep falloff three more sets,
+//     add_contact_sets; a texel's transfer is the mean of its points), with the unshadowed control
+//     variate;
 //   - interreflected: each bounce pass gathers, at a front-face hit, the previous pass's texel
 //     transfer at the hit's lightmap UV, filtered bilinearly in the texel grid (bake/passes.h,
 //     TexelGrid; the grid's gutters are filled before each pass); the bounce-only part is kept in
