@@ -167,6 +167,13 @@ void bake_vertices(const BakeCommandOptions& o, const bake::BakeOptions& options
   print_summary(what, report, options.kind, seconds, o.output);
 }
 
+// What a mixed bake writes: the pair, the --gltf (if any) and, with generated UVs, the mesh that carries them.
+std::vector<std::string> mixed_output_paths(const BakeCommandOptions& o, bool uv_generated) {
+  std::vector<std::string> paths = {o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output)};
+  if (uv_generated) paths.push_back(pipeline::mixed_mesh_path(o.output));
+  return paths;
+}
+
 // --texel-parts: which parts are baked per texel (lightmap/part_choice.h); for a mixed scene sets
 // lightmap.vertex_triangles and checks what a mixed bake writes (a .prt pair and the --gltf, no --compress;
 // with generated UVs also the mesh that carries them, pipeline/mixed_uv_mesh.h).
@@ -176,9 +183,7 @@ lightmap::PartChoice choose_mixed_parts(const BakeCommandOptions& o, const mesh:
   if (!parts.mixed()) return parts;
   if (!o.compress.empty() || lower_extension(o.output) != ".prt")
     fail("-o " + o.output + ": a mixed scene (--texel-parts) is written as a .prt pair (no --compress, no .cprt)");
-  if (job().is_root()) check_outputs({o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output)}, {o.mesh_path});
-  if (uv_generated && job().is_root())
-    check_outputs({o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output), pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
+  if (job().is_root()) check_outputs(mixed_output_paths(o, uv_generated), {o.mesh_path});
   lightmap.vertex_triangles = parts.vertex_triangle;
   return parts;
 }
@@ -195,8 +200,7 @@ lightmap::PartChoice choose_uvs_and_parts(const BakeCommandOptions& o, mesh::Mes
   lightmap::choose_lightmap_uvs(mesh, uv_mode, lightmap, threads, &uv_source);
   if (!parts_first) parts = choose_mixed_parts(o, mesh, lightmap, uv_source.generated);
   if (!parts.mixed() || !uv_source.generated) return parts;
-  if (parts_first && job().is_root())
-    check_outputs({o.output, o.gltf_output, pipeline::mixed_vertex_path(o.output), pipeline::mixed_mesh_path(o.output)}, {o.mesh_path});
+  if (parts_first && job().is_root()) check_outputs(mixed_output_paths(o, true), {o.mesh_path});
   uv_mesh.emplace(pipeline::mixed_mesh_path(o.output), o.mesh_path, mesh, parts.vertex_triangle);
   mesh = std::move(uv_mesh->loaded());
   lightmap.vertex_triangles = uv_mesh->vertex_triangle();

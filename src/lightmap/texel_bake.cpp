@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <memory>
-#include <numeric>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -132,6 +131,13 @@ void check_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, co
 
 namespace {
 
+// A texel grid's layout: its coverage grown by the gutters, the gutter rounds, floats per texel.
+struct GridShape {
+  const std::vector<std::uint8_t>& coverage;  // grown by grow_gutter
+  const std::vector<std::vector<std::uint32_t>>& rounds;
+  std::size_t stride;
+};
+
 // Per-sample blocks into the texel grid (empty texels zero), then the gutters filled; in a mixed bake
 // the vertex points' blocks follow the grid's (TexelGrid::vertex_base), in vertex order.
 // A texel with extra points (InterleavedSampling::extra_sample, which follow the texel samples) gets the
@@ -180,25 +186,19 @@ struct BakePoints {
   std::vector<glm::vec3> positions, normals, geometric_normals, albedo;
 };
 
-// Appends the texel samples `of` (indices into samples.samples) from the `first`-th on to `p`.
-void add_sample_points(BakePoints& p, const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<std::uint32_t>& of,
-                       std::size_t first) {
-  for (std::size_t e = first; e < of.size(); ++e) {
-    const TexelSample& s = samples.samples[of[e]];
-    p.positions.push_back(s.position);
-    p.normals.push_back(s.normal);
-    p.geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
-    p.albedo.push_back(s.albedo);
-  }
+// Appends a point at texel sample `s` to `p`.
+void add_sample_point(BakePoints& p, const mesh::Mesh& mesh, const TexelSample& s) {
+  p.positions.push_back(s.position);
+  p.normals.push_back(s.normal);
+  p.geometric_normals.push_back(glm::vec3(trace::triangle_normal(mesh, s.triangle)));
+  p.albedo.push_back(s.albedo);
 }
 
 BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, const std::vector<std::uint32_t>& extra_sample,
                        const std::vector<glm::vec3>& vertex_albedo, bool vertices) {
   BakePoints p;
-  std::vector<std::uint32_t> all(samples.samples.size());
-  std::iota(all.begin(), all.end(), 0u);
-  add_sample_points(p, mesh, samples, all, 0);
-  add_sample_points(p, mesh, samples, extra_sample, 0);
+  for (const TexelSample& s : samples.samples) add_sample_point(p, mesh, s);
+  for (const std::uint32_t k : extra_sample) add_sample_point(p, mesh, samples.samples[k]);
   if (!vertices) return p;
   p.positions.insert(p.positions.end(), mesh.positions.begin(), mesh.positions.end());
   p.normals.insert(p.normals.end(), mesh.normals.begin(), mesh.normals.end());
@@ -209,21 +209,18 @@ BakePoints bake_points(const mesh::Mesh& mesh, const TexelSamples& samples, cons
 
 // The contact points of an interleaved bake (denoise.h, add_contact_sets), after its direct pass:
 // `geometric` holds every point's albedo-free direct transfer so far (n floats each, point order, on
-// every rank). The texels on a steep falloff of its first coefficient (read through `dc_writer`, a
-// GridWriter of stride n: the mean of each texel's points) get extra points, traced here with `ctx`'s
-// settings and appended to `sampling`, `points` and `geometric`; `order` becomes the Morton order of
-// all points. Returns the rays this rank traced.
+// every rank). The texels on a steep falloff of its first coefficient (each texel's mean over its points,
+// through `dc_writer`: a GridWriter of stride 1) get extra points, traced here with `ctx`'s settings
+// and appended to `sampling`, `points` and `geometric`. Returns the rays this rank traced.
 std::uint64_t add_contact_points(const mesh::Mesh& mesh, const TexelSamples& samples, const GridWriter& dc_writer, const bake::PassContext& ctx,
-                                 InterleavedSampling& sampling, BakePoints& points, std::vector<float>& geometric,
-                                 std::vector<std::uint32_t>& order) {
-  const std::size_t n = dc_writer.stride, texels = std::size_t(samples.width) * std::size_t(samples.height);
-  std::vector<float> grid, dc(texels);
-  dc_writer(geometric, grid);
-  for (std::size_t t = 0; t < texels; ++t) dc[t] = grid[t * n];
+                                 std::size_t n, InterleavedSampling& sampling, BakePoints& points, std::vector<float>& geometric) {
+  std::vector<float> first_coefficient(geometric.size() / n), dc;
+  for (std::size_t k = 0; k < first_coefficient.size(); ++k) first_coefficient[k] = geometric[k * n];
+  dc_writer(first_coefficient, dc);
   const std::size_t first = sampling.extra_sample.size();
   if (add_contact_sets(samples, dc, sampling) == 0) return 0;
   BakePoints more;
-  add_sample_points(more, mesh, samples, sampling.extra_sample, first);
+  for (std::size_t e = first; e < sampling.extra_sample.size(); ++e) add_sample_point(more, mesh, samples.samples[sampling.extra_sample[e]]);
   const std::vector<std::uint8_t> sets(sampling.set.begin() + std::ptrdiff_t(samples.samples.size() + first), sampling.set.end());
   const std::vector<std::uint32_t> more_order = trace::morton_order(more.positions);
   bake::PassContext contact = ctx;
@@ -237,7 +234,27 @@ std::uint64_t add_contact_points(const mesh::Mesh& mesh, const TexelSamples& sam
   for (auto [to, from] : {std::pair{&points.positions, &more.positions}, std::pair{&points.normals, &more.normals},
                           std::pair{&points.geometric_normals, &more.geometric_normals}, std::pair{&points.albedo, &more.albedo}})
     to->insert(to->end(), from->begin(), from->end());
-  order = trace::morton_order(points.positions);
+  return rays;
+}
+
+// The shadowed direct pass over the points of `ctx` (albedo-free, n = bands^2 floats per point, into
+// `geometric`), then an interleaved bake's contact points (`interleaved`, null for none; add_contact_points
+// through a GridWriter of `shape`, stride 1), with `order` redone over every point when bounces follow.
+// Distributed: every rank holds the result where the bounces or the contact points need it, else rank 0.
+// Returns the rays this rank traced.
+std::uint64_t shadowed_pass(const mesh::Mesh& mesh, const TexelSamples& samples, const GridShape& shape, transfer::Kind kind,
+                            const bake::PassContext& ctx, InterleavedSampling* interleaved, BakePoints& points,
+                            std::vector<std::uint32_t>& order, std::vector<float>& geometric) {
+  const std::size_t n = std::size_t(ctx.samples->bands) * std::size_t(ctx.samples->bands);
+  const dist::Context& dist = dist::or_single(ctx.dist);
+  std::uint64_t rays = bake::shadowed_geometric(ctx, geometric);
+  if (kind == transfer::Kind::interreflected || interleaved) dist::allgather_items(dist, geometric, n, &order);
+  else dist::gather_items(dist, geometric, n, &order);
+  if (!interleaved) return rays;
+  const std::size_t traced = points.positions.size();
+  rays += add_contact_points(mesh, samples, GridWriter{samples, shape.coverage, shape.rounds, shape.stride, 0, &interleaved->extra_sample},
+                             ctx, n, *interleaved, points, geometric);
+  if (points.positions.size() != traced && kind == transfer::Kind::interreflected) order = trace::morton_order(points.positions);
   return rays;
 }
 
@@ -282,7 +299,7 @@ std::string lightmap_parameters(const bake::BakeOptions& options, const mesh::Me
                                {"samples_per_texel", l.stitch_options.samples_per_texel}, {"seams", rep.stitch.seams}};
   if (l.denoise) {
     const DenoiseOptions& d = l.denoise_options;
-    const bool interleave = d.interleave && std::find(l.vertex_triangles.begin(), l.vertex_triangles.end(), 1) == l.vertex_triangles.end();
+    const bool interleave = l.interleaves();
     j["lightmap"]["denoise"] = {{"iterations", d.iterations}, {"plane_sigma", d.plane_sigma}, {"normal_power", d.normal_power},
                                 {"value_sigma", d.value_sigma}, {"value_floor", d.value_floor}, {"floor_decay", d.floor_decay},
                                 {"slope_ridge", d.slope_ridge}, {"twicing", d.twicing}, {"interleave", interleave}};
@@ -310,12 +327,6 @@ transfer::Header texel_header(const mesh::Mesh& mesh, const bake::BakeOptions& o
 }
 
 // The optional passes over the finished grids (rank 0): denoising, then the gutters again, then seams.
-struct GridShape {
-  const std::vector<std::uint8_t>& coverage;  // grown by grow_gutter
-  const std::vector<std::vector<std::uint32_t>>& rounds;
-  std::size_t stride;
-};
-
 void filter_texels(const mesh::Mesh& mesh, const TexelSamples& samples, const LightmapOptions& lightmap, int threads,
                    const GridShape& shape, transfer::TransferData& data, LightmapReport& rep) {
   if (lightmap.denoise) {
@@ -340,7 +351,7 @@ void filter_texels(const mesh::Mesh& mesh, const TexelSamples& samples, const Li
 transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOptions& options, const LightmapOptions& lightmap,
                                      LightmapReport* report, transfer::TransferData* vertex_data) {
   check_lightmap(mesh, options, lightmap);
-  const bool mixed = std::find(lightmap.vertex_triangles.begin(), lightmap.vertex_triangles.end(), 1) != lightmap.vertex_triangles.end();
+  const bool mixed = lightmap.mixed();
   if (mixed && !vertex_data) fail("bake_lightmap: a mixed bake needs vertex_data");
   LightmapReport local;
   LightmapReport& rep = report ? *report : local;
@@ -351,9 +362,8 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const trace::Scene scene(mesh, trace::SceneOptions{options.threads, true});
   rep.bake.seconds_build = seconds_since(start);
   const TexelSamples samples = texel_samples(mesh, scene, vertex_albedo, lightmap, options.seed, options.threads, &rep);
-  // Interleaved sample sets per texel sample, frames unturned (denoise.h); a mixed scene's points go on with
-  // its vertices, whose sets and frames stay a vertex bake's, so a mixed bake does not interleave.
-  const bool interleave = lightmap.denoise && lightmap.denoise_options.interleave && !mixed;
+  // Interleaved sample sets per texel sample, frames unturned (denoise.h).
+  const bool interleave = lightmap.interleaves();
   InterleavedSampling interleaved = interleave ? interleaved_sampling(samples, options.samples, options.seed) : InterleavedSampling{};
   BakePoints points = bake_points(mesh, samples, interleaved.extra_sample, vertex_albedo, mixed);
   const std::vector<glm::vec3>& normals = points.normals;
@@ -384,17 +394,11 @@ transfer::TransferData bake_lightmap(const mesh::Mesh& mesh, const bake::BakeOpt
   const dist::Context& dist = dist::or_single(options.dist);
   start = std::chrono::steady_clock::now();
   std::vector<float> geometric;
-  if (options.kind == transfer::Kind::unshadowed) {
+  if (options.kind == transfer::Kind::unshadowed)
     bake::unshadowed_geometric(normals, options.bands, options.threads, geometric);
-  } else {
-    rep.bake.rays_traced += bake::shadowed_geometric(ctx, geometric);
-    // Distributed: every rank needs the direct pass for the bounces and the contact points, rank 0 alone for the file.
-    if (options.kind == transfer::Kind::interreflected || interleave) dist::allgather_items(dist, geometric, n, &order);
-    else dist::gather_items(dist, geometric, n, &order);
-    if (interleave)
-      rep.bake.rays_traced += add_contact_points(mesh, samples, GridWriter{samples, coverage, rounds, n, 0, &interleaved.extra_sample}, ctx,
-                                                 interleaved, points, geometric, order);
-  }
+  else
+    rep.bake.rays_traced += shadowed_pass(mesh, samples, {coverage, rounds, 1}, options.kind, ctx, interleave ? &interleaved : nullptr,
+                                          points, order, geometric);
   rep.bake.seconds_visibility = seconds_since(start);
   // What the first bounce pass gathers from: the direct pass, or its albedo-free transfer (albedo_at_hits).
   std::vector<float> source;

@@ -19,6 +19,7 @@
 // Pipeline: UV checks (uv_validation.h) -> rasterize (rasterize.h) -> sample repair
 // (sample_repair.h) -> passes -> optional denoising (denoise.h) -> gutters (gutter.h) -> optional seam
 // stitching (seams.h). Byte-identical for any thread count.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -47,6 +48,12 @@ struct LightmapOptions {
   /// Mixed scenes (part_choice.h): per triangle, 1 when it is baked per vertex (no texels of its own,
   /// its UVs not checked); empty: every triangle per texel.
   std::vector<std::uint8_t> vertex_triangles;
+
+  /// A mixed scene: some triangle is baked per vertex.
+  bool mixed() const { return std::find(vertex_triangles.begin(), vertex_triangles.end(), 1) != vertex_triangles.end(); }
+  /// The bake gives its texels interleaved sample sets (denoise.h): denoised, interleave on, not mixed (a
+  /// mixed scene's points go on with its vertices, whose sets and frames stay a vertex bake's).
+  bool interleaves() const { return denoise && denoise_options.interleave && !mixed(); }
 };
 
 struct LightmapReport {

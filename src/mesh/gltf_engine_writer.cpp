@@ -181,15 +181,12 @@ class SourceWriter {
     }
     if (baked) {
       const int group = groups_[std::size_t(baked - mesh_.source_primitives.data())];
+      std::vector<std::uint32_t> loaded(vertices.source.size());  // split: the mesh vertex of each written vertex
+      for (std::size_t i = 0; i < loaded.size(); ++i) loaded[i] = baked->first_vertex + vertices.source[i];
       for (const EngineAttribute& a : extras_.attributes) {
         if (a.group >= 0 && a.group != group) continue;
-        if (!split) {
-          attributes[a.name] = add_attribute_slice(glb_, a, baked->first_vertex, baked->vertex_count);
-          continue;
-        }
-        std::vector<std::uint32_t> loaded(vertices.source.size());
-        for (std::size_t i = 0; i < loaded.size(); ++i) loaded[i] = baked->first_vertex + vertices.source[i];
-        attributes[a.name] = add_attribute_gather(glb_, a, loaded);
+        attributes[a.name] =
+            split ? add_attribute_gather(glb_, a, loaded) : add_attribute_slice(glb_, a, baked->first_vertex, baked->vertex_count);
       }
       if (!extras_.extension.empty()) out["extensions"][extras_.extension] = extras_.primitive(added_, group);
     }

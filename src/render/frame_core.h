@@ -29,7 +29,6 @@ inline constexpr GLuint kWorkgroupSize = 64;
 /// A GL buffer of `bytes` (at least 4) holding `data` (may be null), with storage flags `flags`.
 GLuint make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags);
 
-
 struct FrameCore {
   FrameCore();
   ~FrameCore();
