@@ -108,10 +108,12 @@ UvTriangle uv_triangle(const mesh::Mesh& mesh, std::size_t t, int width, int hei
   return tri;
 }
 
-// Per texel while rasterizing: the owner so far and the first triangle strictly containing the centre.
+// Per texel while rasterizing: the owner so far, the first triangle strictly containing the centre, and
+// whether a second one was counted (Overlaps: one count per texel however many triangles stack there).
 struct TexelState {
   double distance_sq = std::numeric_limits<double>::infinity();
   std::uint32_t owner = kNone, inside = kNone;
+  bool overlapped = false;
   glm::dvec2 nearest{0.0};
 };
 
@@ -134,7 +136,8 @@ void rasterize_triangle(const UvTriangle& tri, std::uint32_t t, int width, int r
       if (w.x > kInsideEpsilon && w.y > kInsideEpsilon && w.z > kInsideEpsilon) {
         if (s.inside == kNone) {
           s.inside = t;
-        } else {
+        } else if (!s.overlapped) {
+          s.overlapped = true;
           ++overlaps.texels;
           if (overlaps.examples.size() < 3) overlaps.examples.emplace_back(s.inside, t);
         }

@@ -44,7 +44,7 @@ struct TexelSamples {
   int width = 0, height = 0;
   std::vector<std::uint8_t> coverage;  ///< width x height, transfer::kTexelEmpty or kTexelCovered
   std::vector<TexelSample> samples;    ///< one per covered texel, in row-major texel order
-  std::size_t overlapping_texels = 0;  ///< texels whose centre lies strictly inside two triangles
+  std::size_t overlapping_texels = 0;  ///< texels whose centre lies strictly inside two or more triangles (each counted once)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> overlap_examples;  ///< up to 3 triangle pairs
 };
 

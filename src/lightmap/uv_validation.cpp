@@ -144,7 +144,7 @@ std::string UvProblems::message(const mesh::Mesh& mesh) const {
   }
   if (overlapping_texels > 0) {
     s << sep << "overlapping charts: " << overlapping_texels << " texel centre" << (overlapping_texels == 1 ? " lies" : "s lie")
-      << " inside two triangles (e.g. " << pairs(mesh, overlap_examples) << ")";
+      << " inside two or more triangles (e.g. " << pairs(mesh, overlap_examples) << ")";
     sep = "; ";
   }
   const double overlap_share = double(overlapping_texels) / double(std::max<std::size_t>(covered_texels, 1));
@@ -173,7 +173,7 @@ std::vector<std::string> UvProblems::summary(const mesh::Mesh& mesh) const {
                     percent(zero_area_area / total_area) + " of the surface) skipped, no texels of their own: " +
                     names(mesh, zero_area_examples, zero_area, kMaxExamples));
   if (overlapping_texels > 0)
-    lines.push_back("lightmap UVs: " + std::to_string(overlapping_texels) + " texel centre(s) inside two triangles (" +
+    lines.push_back("lightmap UVs: " + std::to_string(overlapping_texels) + " texel centre(s) inside two or more triangles (" +
                     percent(double(overlapping_texels) / double(std::max<std::size_t>(covered_texels, 1))) +
                     " of the texels) sampled on one of them: e.g. " + pairs(mesh, overlap_examples));
   return lines;

@@ -165,9 +165,26 @@ TEST_CASE("lightmap UV checks: outside [0,1], zero area and overlaps, counted wi
   mesh::Mesh o = few_triangles();
   for (int k = 0; k < 3; ++k) o.lightmap_uv[3 * 2 + k] = o.lightmap_uv[3 * 1 + k];
   const lightmap::TexelSamples s = lightmap::rasterize(o, std::vector<glm::vec3>(o.vertex_count(), glm::vec3(0.8f)), 32, 32);
-  CHECK(s.overlapping_texels > 10);
+  // Counted once per texel: the centres strictly inside triangle 1 (its own edge test here).
+  const glm::vec2* t1 = &o.lightmap_uv[3];
+  std::size_t inside = 0;
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) {
+      const glm::dvec2 c((i + 0.5) / 32.0, (j + 0.5) / 32.0);
+      double e[3];
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec2 a(t1[k]), b(t1[(k + 1) % 3]);
+        e[k] = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      }
+      inside += (e[0] > 1e-9 && e[1] > 1e-9 && e[2] > 1e-9) || (e[0] < -1e-9 && e[1] < -1e-9 && e[2] < -1e-9);
+    }
+  CHECK(inside > 10);
+  CHECK(s.overlapping_texels == inside);
   REQUIRE(!s.overlap_examples.empty());
   CHECK(s.overlap_examples[0] == std::make_pair(std::uint32_t(1), std::uint32_t(2)));
+  // A third copy stacked on them: still one count per texel (a share of the covered texels, never above 1).
+  for (int k = 0; k < 3; ++k) o.lightmap_uv[3 * 3 + k] = o.lightmap_uv[3 * 1 + k];
+  CHECK(lightmap::rasterize(o, std::vector<glm::vec3>(o.vertex_count(), glm::vec3(0.8f)), 32, 32).overlapping_texels == inside);
   // Two triangles of one chart sharing an edge do not overlap.
   const mesh::Mesh floor = test::floor_and_box(false);
   CHECK(lightmap::rasterize(floor, std::vector<glm::vec3>(floor.vertex_count(), glm::vec3(0.8f)), 64, 64).overlapping_texels == 0);
