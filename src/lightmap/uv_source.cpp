@@ -22,11 +22,11 @@ std::string why_not_usable(const mesh::Mesh& mesh, const LightmapOptions& lightm
   if (!mesh.has_lightmap_uv()) return "the file has no lightmap UVs: " + lightmap.missing_uv_reason;
   std::vector<std::uint8_t> skip;
   UvProblems problems = check_texel_uvs(mesh, lightmap.vertex_triangles, skip);
-  if (problems.tiling()) return problems.message(mesh);
+  if (problems.tiling()) return problems.problems(mesh);
   const TexelSamples samples =
       rasterize(mesh, std::vector<glm::vec3>(mesh.vertex_count(), glm::vec3(1.0f)), lightmap.width, lightmap.height, threads, &skip);
   add_raster_checks(problems, samples);
-  return problems.refused() ? problems.message(mesh) : std::string();
+  return problems.refused() ? problems.problems(mesh) : std::string();
 }
 
 }  // namespace

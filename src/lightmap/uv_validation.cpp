@@ -130,6 +130,10 @@ UvProblems check_texel_uvs(const mesh::Mesh& mesh, const std::vector<std::uint8_
 }
 
 std::string UvProblems::message(const mesh::Mesh& mesh) const {
+  return problems(mesh) + "; generate lightmap UVs with --uv auto or prt unwrap";
+}
+
+std::string UvProblems::problems(const mesh::Mesh& mesh) const {
   std::ostringstream s;
   s << "lightmap UVs:";
   const char* sep = " ";
@@ -157,7 +161,6 @@ std::string UvProblems::message(const mesh::Mesh& mesh) const {
   if (tiling())
     s << "; UVs range over [" << uv_lo.x << ", " << uv_hi.x << "] x [" << uv_lo.y << ", " << uv_hi.y
       << "]: these look like tiling texture UVs (TEXCOORD_" << mesh.lightmap_uv_set << "), not lightmap UVs";
-  s << "; generate lightmap UVs with --uv auto or prt unwrap";
   return s.str();
 }
 

@@ -53,6 +53,8 @@ struct UvProblems {
   /// indices, or glTF node/mesh/primitive and triangle), the shares and what to do, e.g. "lightmap
   /// UVs: 2 triangles have UVs outside [0,1] (e.g. triangles 4, 9); ...".
   std::string message(const mesh::Mesh& mesh) const;
+  /// message() without what to do: why the file's UVs were not used when prt generates its own.
+  std::string problems(const mesh::Mesh& mesh) const;
   /// What is tolerated, one line per kind (empty when ok()): counts, shares and every example triangle.
   std::vector<std::string> summary(const mesh::Mesh& mesh) const;
   /// Per triangle: 1 when it is skipped (outside or zero area), for rasterize.
