@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     unwrap::UnwrapReport report;
     for (int r = 0; r < repeats; ++r) {
       const auto start = std::chrono::steady_clock::now();
-      const std::vector<glm::vec2> uv = unwrap::unwrap(m, unwrap::UnwrapOptions{size, size, 2, 60.0, threads}, &report);
+      const std::vector<glm::vec2> uv = unwrap::unwrap(m, unwrap::UnwrapOptions{size, size, 2, 60.0, threads, ""}, &report);
       total.add(seconds_since(start));
       if (uv.size() != m.indices.size()) return 1;
     }

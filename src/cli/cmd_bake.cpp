@@ -253,11 +253,11 @@ void bake_texels(const BakeCommandOptions& o, const bake::BakeOptions& options, 
   std::optional<pipeline::MixedUvMesh> uv_mesh;
   const lightmap::PartChoice parts = choose_uvs_and_parts(o, mesh, lightmap, options.threads, uv_source, uv_mesh);
   if (uv_source.generated && !o.quiet && job().is_root())
-    std::fprintf(stderr,
-                 "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; shade and render with "
-                 "a mesh that carries them (%s)\n",
-                 o.mesh_path.c_str(), uv_source.reason.c_str(), uv_source.unwrap.charts, 100.0 * uv_source.unwrap.fill,
-                 uv_source.unwrap.seconds, uv_mesh ? uv_mesh->path().c_str() : "the --gltf output, or prt unwrap's");
+    std::fprintf(stderr, "%s: lightmap UVs generated (%s): %zu charts, %.1f%% of the lightmap filled, %.2f s; %s\n", o.mesh_path.c_str(),
+                 uv_source.reason.c_str(), uv_source.unwrap.charts, 100.0 * uv_source.unwrap.fill, uv_source.unwrap.seconds,
+                 uv_mesh ? ("shade and render the pair with " + uv_mesh->path() + ", which carries them").c_str()
+                         : "render the --gltf output, which carries its own model of the transfer (for a .prt that renders with a "
+                           "mesh file, bake prt unwrap's file)");
   lightmap::check_lightmap(mesh, options, lightmap);
   check_job_inputs({mesh_input(o.mesh_path, mesh), options_input(canonical_options(o, options))});
   const auto start = std::chrono::steady_clock::now();

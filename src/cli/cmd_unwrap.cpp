@@ -32,6 +32,7 @@ void run_unwrap(const UnwrapCommandOptions& o) {
   options.padding = o.padding;
   options.chart_angle = o.angle;
   options.threads = o.threads;
+  options.mesh_path = o.mesh_path;
   unwrap::check_options(options);
   check_outputs({o.output}, {o.mesh_path});
   mesh::Mesh mesh = mesh::load_mesh(o.mesh_path, mesh::LoadOptions{o.scene, o.quiet});

@@ -43,6 +43,7 @@ void choose_lightmap_uvs(mesh::Mesh& mesh, UvMode mode, const LightmapOptions& l
   options.height = lightmap.height;
   options.padding = std::max(1, lightmap.gutter);
   options.threads = threads;
+  options.mesh_path = lightmap.mesh_path;
   mesh.lightmap_uv = unwrap::unwrap(mesh, options, &rep.unwrap);
   mesh.lightmap_uv_set = 1;
   rep.generated = true;

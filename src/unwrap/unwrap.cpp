@@ -97,7 +97,15 @@ std::vector<glm::vec2> unwrap(const mesh::Mesh& mesh, const UnwrapOptions& optio
   }
   rep.charts = charts.size();
   std::vector<glm::vec2> uv(mesh.indices.size());
-  const PackResult packed = pack_charts(charts, PackOptions{options.width, options.height, options.padding}, uv);
+  PackResult packed;
+  try {
+    packed = pack_charts(charts, PackOptions{options.width, options.height, options.padding}, uv);
+  } catch (const OptionError&) {
+    throw;
+  } catch (const Error& e) {
+    if (options.mesh_path.empty()) throw;
+    fail_file(options.mesh_path, e.what());
+  }
   rep.texels_per_unit = packed.texels_per_unit;
   rep.fill = packed.fill;
   rep.seconds = seconds_since(start);

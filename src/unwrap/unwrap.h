@@ -8,6 +8,7 @@
 // parallel (each writes only its own result) and packed in one thread: byte-identical UVs for any
 // thread count.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -24,6 +25,7 @@ struct UnwrapOptions {
   int padding = 2;                  ///< empty texels around every chart (pack.h), 0..64
   double chart_angle = 60.0;  ///< chart normal cone half-angle (charts.h), (0, 89]
   int threads = 0;                  ///< 0 = all cores; the UVs do not depend on it
+  std::string mesh_path;            ///< names the mesh in the error when its charts do not fit; empty: none
 };
 
 struct UnwrapReport {
@@ -41,7 +43,7 @@ void check_options(const UnwrapOptions& options);
 
 /// Lightmap UVs for `mesh` (which needs one normal per vertex, as load_mesh gives): one per triangle
 /// corner (Mesh::lightmap_uv's layout and v-down convention), in [0, 1]. Throws prt::OptionError for
-/// options out of range and prt::Error when the charts do not fit the lightmap.
+/// options out of range and prt::Error ("<mesh_path>: N charts do not fit ...") when the charts do not fit the lightmap.
 std::vector<glm::vec2> unwrap(const mesh::Mesh& mesh, const UnwrapOptions& options, UnwrapReport* report = nullptr);
 
 }  // namespace prt::unwrap

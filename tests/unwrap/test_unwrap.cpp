@@ -54,7 +54,7 @@ void similarity_error(const mesh::Mesh& m, const std::vector<glm::vec2>& uv, dou
 // Unwraps `m` for a size x size atlas: one chart whose edge length ratios (UV / 3D) agree to `tolerance`.
 void check_similarity(const mesh::Mesh& m, int size, double tolerance) {
   unwrap::UnwrapReport report;
-  const std::vector<glm::vec2> uv = unwrap::unwrap(m, unwrap::UnwrapOptions{size, size, 2, 60.0, 1}, &report);
+  const std::vector<glm::vec2> uv = unwrap::unwrap(m, unwrap::UnwrapOptions{size, size, 2, 60.0, 1, ""}, &report);
   CHECK(report.charts == 1);
   double spread = 0.0;
   bool oriented = false;

@@ -98,7 +98,7 @@ TEST_CASE("prt unwrap: bad input is one line with exit 1 and no output file", "[
   const std::string dir = test::fresh_temp_dir("unwrap_bad");
   CHECK(test::fails_in_one_line(test::run_prt("unwrap " + dir + "/missing.obj -o " + dir + "/a.glb"), "missing.obj"));
   CHECK(test::fails_in_one_line(test::run_prt("unwrap " + std::string(kEngine) + " -o " + dir + "/a.glb --size 16 -q"),
-                                "charts do not fit a 16x16 lightmap"));
+                                std::string(kEngine) + ": 4178 charts do not fit a 16x16 lightmap"));
   CHECK(test::fails_in_one_line(test::run_prt("unwrap " + asset("guardian_lion_10k.ply") + " -o " + dir + "/a.glb --chart-angle 95"),
                                 "--chart-angle 95"));
   CHECK(test::entries_in(dir) == 0);
